@@ -1,0 +1,85 @@
+//! Jacobians: body twists, `J̇q̇`, and point Jacobians, all read off the world axes `s_a`.
+//!
+//! - Body Jacobian (body coordinates, `docs/physics.md` §3): rows of body `k` are
+//!   `J_k[:, a] = Ad(E_wk⁻¹) s_a` for DOFs `a` on the path of `k`, zero elsewhere, so the body
+//!   twist is `φ_k = J_k q̇`.
+//! - `J̇q̇` of body `k` is `Ad(E_wk⁻¹) A_k`: differentiating `φ = Ad(E⁻¹) V` gives
+//!   `Ad(E⁻¹) V̇ − ad(φ) φ`, and `ad(φ) φ = 0`. It costs nothing beyond the kinematics pass.
+//! - Point Jacobian of a world point `x` moving with body `k`: column `a` is
+//!   `v_a + ω_a × x`, i.e. `P_k(x) = R_k Γ(x_local) J_k`.
+//!
+//! Run [`crate::forward_kinematics`] first.
+
+use faer::MatMut;
+use faer::reborrow::ReborrowMut;
+use glam::DVec3;
+
+use crate::data::Data;
+use crate::model::Model;
+use crate::spatial::Spatial;
+
+/// Writes the 6×n body Jacobian `J_k` (angular rows first) of `body` into `out`.
+pub fn body_jacobian(model: &Model, data: &Data, body: usize, mut out: MatMut<'_, f64>) {
+    out.fill(0.0);
+    let frame = &data.body_frames[body];
+    for joint in model.path_to_root(body) {
+        for a in joint.dofs() {
+            let column = data.axes[a].to_body(frame);
+            write_spatial(&column, out.rb_mut(), a);
+        }
+    }
+}
+
+/// The velocity-product term `J̇_k q̇` of `body` in body coordinates: the body acceleration
+/// (angular first) when `q̈ = 0`.
+pub fn body_bias_acceleration(data: &Data, body: usize) -> Spatial {
+    data.bias_accelerations[body].to_body(&data.body_frames[body])
+}
+
+/// The body twist `φ_k = J_k q̇` of `body` in body coordinates.
+pub fn body_twist(data: &Data, body: usize) -> Spatial {
+    data.velocities[body].to_body(&data.body_frames[body])
+}
+
+/// Writes the 3×n point Jacobian of the world point `x` moving with `body` into `out`:
+/// `ẋ = P q̇`.
+pub fn point_jacobian(model: &Model, data: &Data, body: usize, x: DVec3, mut out: MatMut<'_, f64>) {
+    out.fill(0.0);
+    for joint in model.path_to_root(body) {
+        for a in joint.dofs() {
+            let v = data.axes[a].point_velocity(x);
+            out[(0, a)] = v.x;
+            out[(1, a)] = v.y;
+            out[(2, a)] = v.z;
+        }
+    }
+}
+
+/// Adds `scale · nᵀ P_k(x)` to `row`: the rate of the distance along the world direction `n`
+/// of the point `x` moving with `body`, per unit `q̇`. This is how every contact, wall and
+/// thigmotaxis row is assembled, one spline weight at a time. Column `a` gets
+/// `scale · (n·v_a + (x × n)·ω_a)`.
+pub fn add_point_row(
+    model: &Model,
+    data: &Data,
+    body: usize,
+    x: DVec3,
+    n: DVec3,
+    scale: f64,
+    row: &mut [f64],
+) {
+    let moment_arm = x.cross(n);
+    for joint in model.path_to_root(body) {
+        for a in joint.dofs() {
+            let s = &data.axes[a];
+            row[a] += scale * (n.dot(s.linear) + moment_arm.dot(s.angular));
+        }
+    }
+}
+
+fn write_spatial(v: &Spatial, mut out: MatMut<'_, f64>, column: usize) {
+    let values = [v.angular.x, v.angular.y, v.angular.z, v.linear.x, v.linear.y, v.linear.z];
+    for (r, value) in values.into_iter().enumerate() {
+        out[(r, column)] = value;
+    }
+}

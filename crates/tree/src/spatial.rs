@@ -1,0 +1,251 @@
+//! Spatial algebra in world coordinates.
+//!
+//! Conventions (see `docs/physics.md` §1): a spatial motion vector is `(ω; v)`, angular part
+//! first. In this crate motion vectors are expressed in **world coordinates at the world
+//! origin** ("Plücker at O"): `v` is the velocity of the body-fixed point that currently
+//! coincides with the world origin, so the velocity of any point `x` is `v + ω × x`. Force
+//! vectors (wrenches) are `(n; f)` with the moment `n` taken about the world origin.
+//! Working at one point removes all frame-to-frame transforms from the recursions.
+
+use glam::{DMat3, DVec3};
+
+/// A rigid transform `E = (R, p)`: maps a point `x` in the child frame to `R x + p`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Transform {
+    /// Rotation `R` (orthonormal, det +1).
+    pub rotation: DMat3,
+    /// Translation `p` (cm).
+    pub translation: DVec3,
+}
+
+impl Transform {
+    /// The identity transform.
+    pub const IDENTITY: Self = Self { rotation: DMat3::IDENTITY, translation: DVec3::ZERO };
+
+    /// A pure translation by `p` (cm).
+    pub fn from_translation(p: DVec3) -> Self {
+        Self { rotation: DMat3::IDENTITY, translation: p }
+    }
+
+    /// A pure rotation by `angle` (rad) about the unit `axis`.
+    pub fn from_axis_angle(axis: DVec3, angle: f64) -> Self {
+        Self { rotation: DMat3::from_axis_angle(axis, angle), translation: DVec3::ZERO }
+    }
+
+    /// Composition `self · other` (apply `other` first).
+    pub fn mul(&self, other: &Transform) -> Transform {
+        Transform {
+            rotation: self.rotation * other.rotation,
+            translation: self.rotation * other.translation + self.translation,
+        }
+    }
+
+    /// The inverse `E⁻¹ = (Rᵀ, −Rᵀ p)`.
+    pub fn inverse(&self) -> Transform {
+        let rt = self.rotation.transpose();
+        Transform { rotation: rt, translation: -(rt * self.translation) }
+    }
+
+    /// Maps a point from this frame to the parent frame: `R x + p`.
+    pub fn transform_point(&self, x: DVec3) -> DVec3 {
+        self.rotation * x + self.translation
+    }
+}
+
+/// A spatial motion vector `(ω; v)` (twist) or force vector `(n; f)` (wrench); which one is
+/// meant is stated by the field or function that holds it.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Spatial {
+    /// Angular part: `ω` (rad/s) for motion, the moment `n` (dyn·cm) for force.
+    pub angular: DVec3,
+    /// Linear part: `v` (cm/s) for motion, the force `f` (dyn) for force.
+    pub linear: DVec3,
+}
+
+impl Spatial {
+    /// The zero vector.
+    pub const ZERO: Self = Self { angular: DVec3::ZERO, linear: DVec3::ZERO };
+
+    /// Builds from the angular and linear parts.
+    pub const fn new(angular: DVec3, linear: DVec3) -> Self {
+        Self { angular, linear }
+    }
+
+    /// The unit twist of a rotation about the line through `point` along the unit `axis`:
+    /// `(a; point × a)`.
+    pub fn revolute_axis(axis: DVec3, point: DVec3) -> Self {
+        Self { angular: axis, linear: point.cross(axis) }
+    }
+
+    /// The wrench at the world origin of a force `f` applied at the point `x`: `(x × f; f)`.
+    pub fn point_force(x: DVec3, f: DVec3) -> Self {
+        Self { angular: x.cross(f), linear: f }
+    }
+
+    /// The pairing of a motion and a force vector: power `ω·n + v·f`.
+    pub fn dot(&self, other: &Spatial) -> f64 {
+        self.angular.dot(other.angular) + self.linear.dot(other.linear)
+    }
+
+    /// `self × m` for motion vectors (`crm`): `(ω × ω_m; ω × v_m + v × ω_m)`. The time
+    /// derivative of a motion vector fixed in a frame moving with twist `self`.
+    pub fn cross_motion(&self, m: &Spatial) -> Spatial {
+        Spatial {
+            angular: self.angular.cross(m.angular),
+            linear: self.angular.cross(m.linear) + self.linear.cross(m.angular),
+        }
+    }
+
+    /// `self ×* f` for a force vector (`crf`): `(ω × n + v × f; ω × f)`.
+    pub fn cross_force(&self, f: &Spatial) -> Spatial {
+        Spatial {
+            angular: self.angular.cross(f.angular) + self.linear.cross(f.linear),
+            linear: self.angular.cross(f.linear),
+        }
+    }
+
+    /// Expresses a world twist at the origin in the body frame `E = (R, p)`:
+    /// `Ad(E⁻¹)·(ω; v) = (Rᵀω; Rᵀ(v + ω × p))`.
+    pub fn to_body(&self, frame: &Transform) -> Spatial {
+        let rt = frame.rotation.transpose();
+        Spatial {
+            angular: rt * self.angular,
+            linear: rt * (self.linear + self.angular.cross(frame.translation)),
+        }
+    }
+
+    /// The velocity of the point `x` (world coordinates) moving with this twist: `v + ω × x`.
+    pub fn point_velocity(&self, x: DVec3) -> DVec3 {
+        self.linear + self.angular.cross(x)
+    }
+
+    /// Component-wise `self + s·other`.
+    pub fn add_scaled(&self, other: &Spatial, s: f64) -> Spatial {
+        Spatial {
+            angular: self.angular + other.angular * s,
+            linear: self.linear + other.linear * s,
+        }
+    }
+}
+
+impl std::ops::Add for Spatial {
+    type Output = Spatial;
+    fn add(self, o: Spatial) -> Spatial {
+        Spatial { angular: self.angular + o.angular, linear: self.linear + o.linear }
+    }
+}
+
+impl std::ops::AddAssign for Spatial {
+    fn add_assign(&mut self, o: Spatial) {
+        self.angular += o.angular;
+        self.linear += o.linear;
+    }
+}
+
+impl std::ops::Sub for Spatial {
+    type Output = Spatial;
+    fn sub(self, o: Spatial) -> Spatial {
+        Spatial { angular: self.angular - o.angular, linear: self.linear - o.linear }
+    }
+}
+
+impl std::ops::Mul<f64> for Spatial {
+    type Output = Spatial;
+    fn mul(self, s: f64) -> Spatial {
+        Spatial { angular: self.angular * s, linear: self.linear * s }
+    }
+}
+
+/// The spatial inertia of a rigid body (or a rigid composite) at the world origin, in the
+/// compact form `(m, h = m c, I_O)` with `c` the centre of mass and `I_O` the rotational
+/// inertia about the origin. As a 6×6 matrix it is `[[I_O, [h]], [[h]ᵀ, m·1]]`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RigidInertia {
+    /// Mass `m` (g).
+    pub mass: f64,
+    /// First moment `h = m c` (g·cm).
+    pub first_moment: DVec3,
+    /// Rotational inertia about the world origin `I_O = R I_c Rᵀ + m([c]ᵀ[c])` (g·cm²).
+    pub rotational: DMat3,
+}
+
+impl RigidInertia {
+    /// The zero inertia.
+    pub const ZERO: Self = Self { mass: 0.0, first_moment: DVec3::ZERO, rotational: DMat3::ZERO };
+
+    /// The world inertia of a body of mass `m` with principal moments `principal` (about its
+    /// body axes through the centre of mass) whose body frame is `frame` (origin at the
+    /// centre of mass): `I_O = R diag(I) Rᵀ + m(|c|²·1 − c cᵀ)`.
+    pub fn from_body(mass: f64, principal: DVec3, frame: &Transform) -> Self {
+        let r = frame.rotation;
+        let c = frame.translation;
+        let rotated = r * DMat3::from_diagonal(principal) * r.transpose();
+        let parallel = DMat3::from_diagonal(DVec3::splat(c.length_squared())) - outer(c, c);
+        Self { mass, first_moment: c * mass, rotational: rotated + parallel * mass }
+    }
+
+    /// The momentum of a twist: `I·(ω; v) = (I_O ω + h × v; m v − h × ω)`.
+    pub fn apply(&self, twist: &Spatial) -> Spatial {
+        Spatial {
+            angular: self.rotational * twist.angular + self.first_moment.cross(twist.linear),
+            linear: twist.linear * self.mass - self.first_moment.cross(twist.angular),
+        }
+    }
+}
+
+impl std::ops::AddAssign for RigidInertia {
+    fn add_assign(&mut self, o: RigidInertia) {
+        self.mass += o.mass;
+        self.first_moment += o.first_moment;
+        self.rotational += o.rotational;
+    }
+}
+
+/// The outer product `a bᵀ`.
+pub fn outer(a: DVec3, b: DVec3) -> DMat3 {
+    DMat3::from_cols(a * b.x, a * b.y, a * b.z)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn frame() -> Transform {
+        Transform {
+            rotation: DMat3::from_axis_angle(DVec3::new(1.0, 2.0, -0.5).normalize(), 0.7),
+            translation: DVec3::new(0.3, -1.2, 2.0),
+        }
+    }
+
+    #[test]
+    fn inverse_composes_to_identity() {
+        let e = frame();
+        let id = e.mul(&e.inverse());
+        assert!((id.rotation - DMat3::IDENTITY).abs().to_cols_array().iter().all(|v| *v < 1e-14));
+        assert!(id.translation.length() < 1e-14);
+    }
+
+    #[test]
+    fn inertia_momentum_matches_point_mass_sum() {
+        // A body's momentum equals Σ m v over a point-mass model with the same inertia:
+        // use a single point mass (zero principal moments).
+        let e = frame();
+        let m = 2.5;
+        let inertia = RigidInertia::from_body(m, DVec3::ZERO, &e);
+        let twist = Spatial::new(DVec3::new(0.2, -0.4, 1.1), DVec3::new(-3.0, 0.5, 0.25));
+        let v = twist.point_velocity(e.translation);
+        let momentum = inertia.apply(&twist);
+        assert!((momentum.linear - v * m).length() < 1e-12);
+        assert!((momentum.angular - e.translation.cross(v * m)).length() < 1e-12);
+    }
+
+    #[test]
+    fn to_body_gives_body_origin_velocity() {
+        let e = frame();
+        let twist = Spatial::new(DVec3::new(0.2, -0.4, 1.1), DVec3::new(-3.0, 0.5, 0.25));
+        let body = twist.to_body(&e);
+        let world_origin_velocity = twist.point_velocity(e.translation);
+        assert!((e.rotation * body.linear - world_origin_velocity).length() < 1e-12);
+        assert!((e.rotation * body.angular - twist.angular).length() < 1e-12);
+    }
+}
