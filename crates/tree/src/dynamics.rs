@@ -53,7 +53,7 @@ pub fn inverse_dynamics(model: &Model, data: &mut Data, qddot: Option<&[f64]>, t
         if let Some(parent) = joint.parent {
             // The bias accelerations already sum along the path; q̈ terms must be added
             // along it too.
-            accel += (data.accelerations[parent] - data.bias_accelerations[parent]);
+            accel += data.accelerations[parent] - data.bias_accelerations[parent];
         }
         if let Some(qdd) = qddot {
             for a in joint.dofs() {
