@@ -1,0 +1,30 @@
+//! # hagfish-anatomy
+//!
+//! Hagfish biometrics (a RON data file, `data/hagfish/es103.ron`) turned into a
+//! kinematic-tree model (`hagfish-tree`), in CGS units: cm, g, s, dyn·cm (`docs/physics.md`
+//! D1, D5–D8).
+//!
+//! - [`Biometrics`] is the file's content; [`Biometrics::load`] parses and validates it, and
+//!   every error ([`AnatomyError`]) says `file:line:column: what`.
+//! - [`Biometrics::body_table`] derives N bodies of length ℓ = L/N: radius r = C/2π
+//!   piecewise linear through the marks ([`interpolate_clamped`]), mass m_i = ρπr_i²ℓ with
+//!   ρ chosen so Σ m_i = M, and per-joint limits (±twist on revolutes, ±θ(s) on both DOFs
+//!   of universals).
+//! - [`Biometrics::to_model`] builds the chain along +X: alternating X-revolute /
+//!   YZ-universal joints, root anchored at the world origin, solid-cylinder inertias
+//!   ([`cylinder_inertia`]), gravity off.
+
+mod biometrics;
+mod error;
+mod load;
+mod locate;
+mod model;
+mod profile;
+mod table;
+mod validate;
+
+pub use biometrics::{Biometrics, MAX_BODY_COUNT, TailTaper};
+pub use error::{AnatomyError, Field, Origin};
+pub use model::cylinder_inertia;
+pub use profile::interpolate_clamped;
+pub use table::{BodyRow, BodyTable, LimitDeg, joint_kind};

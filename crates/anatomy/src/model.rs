@@ -1,0 +1,81 @@
+//! Building the kinematic tree from the body table (redmax-notes §2.3): a chain along +X,
+//! the root joint anchored at the wall point (the world origin), gravity off (D4).
+
+use glam::DVec3;
+use hagfish_tree::{BodySpec, DofParams, JointKind, Model, ModelBuilder, Transform};
+
+use crate::biometrics::Biometrics;
+use crate::error::AnatomyError;
+use crate::table::BodyRow;
+
+/// Principal inertia (g·cm²) of a solid cylinder of mass `m`, radius `r` and length `ℓ`
+/// along X about its centre: `I₁ = ½ m r²`, `I₂ = I₃ = m (3r² + ℓ²) / 12` (physics.md §1).
+pub fn cylinder_inertia(mass: f64, radius: f64, length: f64) -> DVec3 {
+    let transverse = mass * (3.0 * radius * radius + length * length) / 12.0;
+    DVec3::new(0.5 * mass * radius * radius, transverse, transverse)
+}
+
+impl Biometrics {
+    /// Builds the model: body `i` of [`Biometrics::body_table`] hangs from joint `i` at its
+    /// proximal end, with its frame at its centre (`body_offset = (ℓ/2, 0, 0)`); joint 0 is
+    /// the root at the world origin, joint `i ≥ 1` sits at `(ℓ, 0, 0)` in joint `i − 1`'s
+    /// frame. Each DOF gets the stiffness of its joint type, the common damping, rest 0 and
+    /// the table's limits in radians. Gravity is zero (neutral buoyancy, D4).
+    pub fn to_model(&self) -> Result<Model, AnatomyError> {
+        let table = self.body_table()?;
+        let ell = table.segment_length_cm;
+        let mut builder = ModelBuilder::new().gravity(DVec3::ZERO);
+        for row in &table.rows {
+            let (parent, joint_offset) = match row.index {
+                0 => (None, Transform::IDENTITY),
+                i => (
+                    Some(i - 1),
+                    Transform::from_translation(DVec3::new(ell, 0.0, 0.0)),
+                ),
+            };
+            builder.add_body(BodySpec {
+                parent,
+                joint: row.joint,
+                joint_offset,
+                body_offset: Transform::from_translation(DVec3::new(0.5 * ell, 0.0, 0.0)),
+                mass: row.mass_g,
+                principal_inertia: cylinder_inertia(row.mass_g, row.radius_cm, ell),
+                radius: row.radius_cm,
+                length: ell,
+                dofs: self.dof_params(row),
+            });
+        }
+        Ok(builder.build()?)
+    }
+
+    /// Spring, damper and limits (rad) of each DOF of `row`'s joint.
+    fn dof_params(&self, row: &BodyRow) -> Vec<DofParams> {
+        let stiffness = match row.joint {
+            JointKind::Revolute { .. } => self.twist_stiffness_dyn_cm_per_rad,
+            _ => self.bending_stiffness_dyn_cm_per_rad,
+        };
+        row.limits_deg
+            .iter()
+            .map(|limit| DofParams {
+                stiffness,
+                damping: self.damping_dyn_cm_s_per_rad,
+                rest: 0.0,
+                lower: limit.lower.to_radians(),
+                upper: limit.upper.to_radians(),
+            })
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cylinder_inertia_matches_formula() {
+        let i = cylinder_inertia(2.0, 0.5, 1.0);
+        assert!((i.x - 0.25).abs() < 1e-15);
+        assert!((i.y - 2.0 * (0.75 + 1.0) / 12.0).abs() < 1e-15);
+        assert_eq!(i.y, i.z);
+    }
+}

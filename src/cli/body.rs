@@ -1,0 +1,85 @@
+//! `hagfish body FILE`: loads a biometrics file and prints the derived chain (D5–D8): a
+//! header with the totals and one row per body (index, s/L of its centre, radius, mass,
+//! joint type, limits per DOF in degrees).
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use hagfish_anatomy::{Biometrics, BodyRow, BodyTable};
+
+use super::CliError;
+
+/// Arguments of `hagfish body`.
+#[derive(Debug, clap::Args)]
+pub struct BodyArgs {
+    /// Biometrics RON file, e.g. data/hagfish/es103.ron.
+    file: PathBuf,
+}
+
+/// Loads, validates and derives the table, then writes header and rows to `out`. The model
+/// itself is built too, so that a file this command accepts also yields a valid tree.
+pub fn run(args: &BodyArgs, out: &mut impl Write) -> Result<(), CliError> {
+    let biometrics = Biometrics::load(&args.file)?;
+    let table = biometrics.body_table()?;
+    let model = biometrics.to_model()?;
+    writeln!(
+        out,
+        "specimen  {} ({})",
+        biometrics.specimen,
+        args.file.display()
+    )?;
+    writeln!(
+        out,
+        "length    {} cm = {} bodies x {:.6} cm",
+        biometrics.length_cm,
+        table.rows.len(),
+        table.segment_length_cm
+    )?;
+    writeln!(
+        out,
+        "mass      {} g (sum over bodies {:.9} g)",
+        biometrics.mass_g,
+        table.total_mass_g()
+    )?;
+    writeln!(
+        out,
+        "density   {:.6} g/cm3 (volume {:.4} cm3)",
+        table.density_g_per_cm3, table.volume_cm3
+    )?;
+    writeln!(out, "bodies    {}", model.body_count())?;
+    writeln!(out, "DOFs      {}", model.dof_count())?;
+    writeln!(out)?;
+    write_rows(&table, out)
+}
+
+/// The per-body table, one line per body, fixed-width columns.
+fn write_rows(table: &BodyTable, out: &mut impl Write) -> Result<(), CliError> {
+    writeln!(
+        out,
+        "{:>5}  {:>6}  {:>9}  {:>8}  {:<9}  limits_deg",
+        "index", "s/L", "radius_cm", "mass_g", "joint"
+    )?;
+    for row in &table.rows {
+        writeln!(
+            out,
+            "{:>5}  {:>6.4}  {:>9.5}  {:>8.5}  {:<9}  {}",
+            row.index,
+            row.centre_fraction,
+            row.radius_cm,
+            row.mass_g,
+            row.joint.name(),
+            limits(row)
+        )?;
+    }
+    Ok(())
+}
+
+/// `[lower, upper]` per DOF in degrees, space separated.
+fn limits(row: &BodyRow) -> String {
+    let ranges: Vec<String> = row
+        .limits_deg
+        .iter()
+        .map(|l| format!("[{:.2}, {:.2}]", l.lower, l.upper))
+        .collect();
+    ranges.join(" ")
+}

@@ -1,0 +1,37 @@
+//! The command line: one [`Command`] variant and one file per subcommand (`body` now; `run`,
+//! `params`, `knot`, `render` and `report` to follow), all sharing [`CliError`].
+
+mod body;
+mod error;
+
+use std::io::{BufWriter, Write};
+
+use clap::{Parser, Subcommand};
+
+pub use error::CliError;
+
+/// Command-line arguments of the `hagfish` binary.
+#[derive(Debug, Parser)]
+#[command(name = "hagfish", version, about)]
+pub struct Cli {
+    /// The subcommand to run.
+    #[command(subcommand)]
+    command: Command,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Print the bodies derived from a biometrics file: radius, mass, joint and limits.
+    Body(body::BodyArgs),
+}
+
+/// Runs the chosen subcommand, writing its report to stdout (buffered, flushed at the end).
+pub fn run(cli: Cli) -> Result<(), CliError> {
+    let mut out = BufWriter::new(std::io::stdout().lock());
+    match cli.command {
+        Command::Body(args) => body::run(&args, &mut out)?,
+    }
+    out.flush()?;
+    Ok(())
+}
