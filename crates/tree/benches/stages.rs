@@ -57,7 +57,6 @@ fn stages(c: &mut Criterion) {
     c.bench_function("tree/generalized_force", |b| {
         b.iter(|| generalized_force(&model, black_box(&state.q), &mut data))
     });
-    assemble_effective_system(&model, &state, h, &mut data);
     c.bench_function("tree/assemble_effective_system", |b| {
         b.iter(|| assemble_effective_system(&model, black_box(&state), h, &mut data))
     });

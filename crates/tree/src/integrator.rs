@@ -15,13 +15,10 @@ use crate::kinematics::forward_kinematics;
 use crate::model::Model;
 use crate::state::State;
 
-/// Runs kinematics and dynamics for `state` and fills `data.effective_mass` (`M̃`) and
-/// `data.effective_momentum` (`f̃`) for the step size `h` (s). Applied forces in `data` are used
-/// as they are.
+/// Fills `data.effective_mass` (`M̃`) and `data.effective_momentum` (`f̃`) for the step size
+/// `h` (s) from `data.mass_matrix` and `data.generalized_force`, which must be current for
+/// `state` (run [`forward_kinematics`], [`mass_matrix`] and [`generalized_force`] first).
 pub fn assemble_effective_system(model: &Model, state: &State, h: f64, data: &mut Data) {
-    forward_kinematics(model, &state.q, &state.qdot, data);
-    mass_matrix(model, data);
-    generalized_force(model, &state.q, data);
     data.effective_mass.copy_from(&data.mass_matrix);
     data.effective_momentum.fill(0.0);
     // f̃ = M q̇⁰ + h f_r, accumulated column by column (contiguous in faer's column-major Mat).
@@ -80,8 +77,8 @@ pub fn integrate(state: &mut State, qdot_next: &[f64], h: f64) -> Result<(), Tre
     Ok(())
 }
 
-/// One unconstrained step of size `h` (s): assemble, factor, solve, integrate. Uses the applied
-/// forces in `data`. The state is checked first and is left unchanged on error.
+/// One unconstrained step of size `h` (s): kinematics, dynamics, assemble, factor, solve,
+/// integrate. Uses the applied forces in `data`. The state is checked first and is left unchanged on error.
 pub fn step_unconstrained(
     model: &Model,
     state: &mut State,
@@ -89,6 +86,9 @@ pub fn step_unconstrained(
     data: &mut Data,
 ) -> Result<(), TreeError> {
     state.validate(model)?;
+    forward_kinematics(model, &state.q, &state.qdot, data);
+    mass_matrix(model, data);
+    generalized_force(model, &state.q, data);
     assemble_effective_system(model, state, h, data);
     factor_effective_mass(data, state.t)?;
     solve_unconstrained(data);

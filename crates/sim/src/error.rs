@@ -1,0 +1,64 @@
+//! Errors of the step pipeline.
+
+use hagfish_geometry::GeometryError;
+use hagfish_solver::{SolveStatus, SolverError};
+use hagfish_tree::TreeError;
+
+/// What can stop a step. Every variant says at which step and simulation time it happened.
+#[derive(Debug, thiserror::Error)]
+pub enum SimError {
+    /// Invalid options (non-positive time step, negative margin, …).
+    #[error("invalid option {name} = {value}: {expected}")]
+    InvalidOption {
+        /// Option name.
+        name: &'static str,
+        /// Value given.
+        value: f64,
+        /// What is expected.
+        expected: &'static str,
+    },
+    /// The kinematic tree rejected the state or could not factor M̃.
+    #[error("step {step} (t = {time} s): {source}")]
+    Tree {
+        /// Step index.
+        step: u64,
+        /// Simulation time (s).
+        time: f64,
+        /// The underlying error.
+        source: TreeError,
+    },
+    /// The contact geometry rejected its input (non-finite centres, …).
+    #[error("step {step} (t = {time} s): contact geometry: {source}")]
+    Geometry {
+        /// Step index.
+        step: u64,
+        /// Simulation time (s).
+        time: f64,
+        /// The underlying error.
+        source: GeometryError,
+    },
+    /// The constraint solver rejected its input (malformed rows).
+    #[error("step {step} (t = {time} s): solver: {source}")]
+    Solver {
+        /// Step index.
+        step: u64,
+        /// Simulation time (s).
+        time: f64,
+        /// The underlying error.
+        source: SolverError,
+    },
+    /// The velocity solve did not produce a usable answer; the state was not advanced.
+    #[error(
+        "step {step} (t = {time} s): velocity solve failed with status {status:?} ({rows} rows)"
+    )]
+    SolveFailed {
+        /// Step index.
+        step: u64,
+        /// Simulation time (s).
+        time: f64,
+        /// The solver's status.
+        status: SolveStatus,
+        /// Number of constraint rows.
+        rows: usize,
+    },
+}

@@ -1,0 +1,23 @@
+//! # hagfish-sim
+//!
+//! The step pipeline of the hagfish simulator (`docs/architecture.md`): a [`World`] holds an
+//! immutable tree [`hagfish_tree::Model`] and [`StepOptions`], the minimal
+//! [`hagfish_tree::State`], and [`StepData`] for everything derived. One step runs named
+//! stages ([`pipeline`]): kinematics → applied forces → dynamics (M̃, f̃) → contact detection
+//! (centreline, self and wall contacts) → constraint rows (head, limits, wall, self contact;
+//! [`rows`]) → velocity solve (Cholesky / KKT / QP, `hagfish-solver`) → integration.
+//! CGS units throughout.
+
+mod error;
+mod options;
+pub mod pipeline;
+mod report;
+pub mod rows;
+mod step_data;
+mod world;
+
+pub use error::SimError;
+pub use options::StepOptions;
+pub use report::StepReport;
+pub use step_data::StepData;
+pub use world::World;

@@ -1,0 +1,76 @@
+//! Options of the step: time step, constraint stabilisation, margins, contact and wall set-up.
+
+use glam::DVec3;
+use hagfish_geometry::{DetectorOptions, WallOptions};
+use hagfish_solver::SolverOptions;
+
+use crate::error::SimError;
+
+/// Everything that shapes a step but is not the body itself. Immutable during a run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StepOptions {
+    /// Time step h (s), default 0.01 (`docs/physics.md` D2).
+    pub time_step: f64,
+    /// Fraction of a bilateral (head) error corrected per step: `b = −(β/h)·error`.
+    pub head_correction: f64,
+    /// Fraction β of a penetration (negative gap) pushed out per step: `b = −(β/h)·d` for
+    /// d < 0. Default 1 (full correction; `docs/physics.md` explains why not 0.2).
+    pub push_out: f64,
+    /// A joint-limit row is added when the gap to the limit is below
+    /// `max(limit_margin, 2h|q̇|)` (rad).
+    pub limit_margin: f64,
+    /// Whether self contact is detected and enforced.
+    pub self_contact: bool,
+    /// Self-contact detection options (margin, chain-index gap, duplicate merging).
+    pub contact: DetectorOptions,
+    /// The wall: a point on it (cm) and its normal toward the body; `None` for no wall.
+    pub wall: Option<(DVec3, DVec3)>,
+    /// Wall contact options (margin, first body tested).
+    pub wall_options: WallOptions,
+    /// Options of the velocity solve (QP backend, tolerances).
+    pub solver: SolverOptions,
+    /// Fixed-point iterations that re-evaluate the velocity-product force at the new
+    /// velocity (0: explicit, as REDMAX). Default 1: explicit terms make the ES103 chain
+    /// unstable at h = 0.01 s once runs of joints lock at their limits (`docs/physics.md`).
+    pub velocity_product_iterations: usize,
+}
+
+impl Default for StepOptions {
+    fn default() -> Self {
+        Self {
+            time_step: 0.01,
+            head_correction: 0.5,
+            push_out: 1.0,
+            limit_margin: 2f64.to_radians(),
+            self_contact: true,
+            contact: DetectorOptions { margin: 0.1, ..DetectorOptions::default() },
+            wall: Some((DVec3::ZERO, DVec3::X)),
+            wall_options: WallOptions { margin: 0.2, ..WallOptions::default() },
+            solver: SolverOptions::default(),
+            velocity_product_iterations: 1,
+        }
+    }
+}
+
+impl StepOptions {
+    /// Checks every scalar option.
+    pub fn validate(&self) -> Result<(), SimError> {
+        let check = |name, value: f64, ok: bool, expected| {
+            if ok && value.is_finite() {
+                Ok(())
+            } else {
+                Err(SimError::InvalidOption { name, value, expected })
+            }
+        };
+        check("time_step", self.time_step, self.time_step > 0.0, "finite and > 0 (s)")?;
+        let fraction = "in (0, 1]";
+        check(
+            "head_correction",
+            self.head_correction,
+            self.head_correction > 0.0 && self.head_correction <= 1.0,
+            fraction,
+        )?;
+        check("push_out", self.push_out, self.push_out > 0.0 && self.push_out <= 1.0, fraction)?;
+        check("limit_margin", self.limit_margin, self.limit_margin >= 0.0, "finite and ≥ 0 (rad)")
+    }
+}

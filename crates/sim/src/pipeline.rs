@@ -1,0 +1,189 @@
+//! The step, as a sequence of named stages (`docs/architecture.md`):
+//!
+//! ```text
+//! kinematics → apply_forces → dynamics → detect_contacts → build_rows → solve_velocities
+//!   → [refresh_velocity_products | add_overshooting_limit_rows → solve_velocities]* → integrate
+//! ```
+//!
+//! Each stage is a public function of the immutable model and options and the mutable step
+//! data, so tests and benchmarks can run any prefix.
+
+use hagfish_solver::Problem;
+use hagfish_tree::{Data, Model, State};
+
+use crate::error::SimError;
+use crate::options::StepOptions;
+use crate::report::StepReport;
+use crate::rows::{
+    add_head_rows, add_limit_rows, add_overshooting_limit_rows, add_self_contact_rows,
+    add_wall_rows,
+};
+
+/// Cap on the extra solves of one step (velocity-product refreshes and limit rows added for
+/// overshooting joints).
+const MAX_RESOLVES: usize = 4;
+use crate::step_data::StepData;
+
+/// Stage 1: frames, axes, twists and velocity products for `state`.
+pub fn kinematics(model: &Model, state: &State, data: &mut StepData) {
+    hagfish_tree::forward_kinematics(model, &state.q, &state.qdot, &mut data.tree);
+}
+
+/// Stage 2: clears the applied forces and lets `apply` set this step's (controller, drag).
+pub fn apply_forces(
+    model: &Model,
+    state: &State,
+    data: &mut StepData,
+    apply: &mut dyn FnMut(&Model, &State, &mut Data),
+) {
+    data.tree.clear_applied();
+    apply(model, state, &mut data.tree);
+}
+
+/// Stage 3: mass matrix, generalized force, then `M̃ = M + hD + h²K` and `f̃ = M q̇ + h f_r`.
+pub fn dynamics(model: &Model, options: &StepOptions, state: &State, data: &mut StepData) {
+    hagfish_tree::mass_matrix(model, &mut data.tree);
+    hagfish_tree::generalized_force(model, &state.q, &mut data.tree);
+    hagfish_tree::assemble_effective_system(model, state, options.time_step, &mut data.tree);
+}
+
+/// Stage 4: centreline through the body centres, self contacts and wall contacts.
+pub fn detect_contacts(
+    model: &Model,
+    options: &StepOptions,
+    data: &mut StepData,
+) -> Result<(), hagfish_geometry::GeometryError> {
+    for (i, centre) in data.centres.iter_mut().enumerate() {
+        *centre = data.tree.body_centre(i);
+    }
+    debug_assert_eq!(data.centres.len(), model.body_count());
+    data.centreline.update(&data.centres, &data.radii)?;
+    data.self_contacts.clear();
+    if options.self_contact {
+        data.report.detection =
+            data.detector.detect(&data.centreline, &data.lengths, &mut data.self_contacts)?;
+    }
+    data.wall_contacts.clear();
+    if let Some(wall) = &data.wall {
+        wall.contacts(&data.centreline, &mut data.wall_contacts);
+    }
+    Ok(())
+}
+
+/// Stage 5: the rows of this step: head, joint limits, wall, self contact.
+pub fn build_rows(model: &Model, options: &StepOptions, state: &State, data: &mut StepData) {
+    let h = options.time_step;
+    data.rows.clear();
+    add_head_rows(model, state, h, options.head_correction, &mut data.rows);
+    add_limit_rows(model, state, h, options.limit_margin, options.push_out, &mut data.rows);
+    add_wall_rows(model, &data.tree, &data.wall_contacts, h, options.push_out, &mut data.rows);
+    add_self_contact_rows(
+        model,
+        &data.tree,
+        &data.self_contacts,
+        h,
+        options.push_out,
+        &mut data.rows,
+    );
+}
+
+/// Stage 6: `min ½q̇ᵀM̃q̇ − q̇ᵀf̃` subject to the rows; the path (Cholesky, KKT, QP) follows
+/// from the rows present.
+pub fn solve_velocities(data: &mut StepData) -> Result<(), hagfish_solver::SolverError> {
+    let problem =
+        Problem::new(data.tree.effective_mass.as_ref(), &data.tree.effective_momentum, &data.rows)?;
+    data.report.solve = *data.solver.solve(&problem)?;
+    Ok(())
+}
+
+/// Optional stage 6b: re-evaluates the velocity-product (Coriolis, centrifugal, gyroscopic)
+/// force at the velocity just solved for and re-forms `f̃`, so that the next solve treats it
+/// implicitly (a fixed-point iteration). Applied forces are kept; positions are unchanged, so
+/// the rows stay valid.
+pub fn refresh_velocity_products(
+    model: &Model,
+    options: &StepOptions,
+    state: &State,
+    data: &mut StepData,
+) {
+    let guess = data.solver.velocity();
+    data.velocity_guess.copy_from_slice(guess);
+    hagfish_tree::forward_kinematics(model, &state.q, &data.velocity_guess, &mut data.tree);
+    hagfish_tree::generalized_force(model, &state.q, &mut data.tree);
+    hagfish_tree::assemble_effective_system(model, state, options.time_step, &mut data.tree);
+}
+
+/// Runs one whole step and advances `state` (see the module docs for the stages). On error the
+/// state is left as it was.
+pub fn step(
+    model: &Model,
+    options: &StepOptions,
+    state: &mut State,
+    step_index: u64,
+    data: &mut StepData,
+    apply: &mut dyn FnMut(&Model, &State, &mut Data),
+) -> Result<(), SimError> {
+    let time = state.t;
+    state.validate(model).map_err(|source| SimError::Tree { step: step_index, time, source })?;
+    data.report = StepReport { step: step_index, time, ..StepReport::default() };
+    kinematics(model, state, data);
+    apply_forces(model, state, data, apply);
+    dynamics(model, options, state, data);
+    detect_contacts(model, options, data).map_err(|source| SimError::Geometry {
+        step: step_index,
+        time,
+        source,
+    })?;
+    measure_penetration(data);
+    build_rows(model, options, state, data);
+    let solver_error = |source| SimError::Solver { step: step_index, time, source };
+    solve_velocities(data).map_err(solver_error)?;
+    for round in 0..MAX_RESOLVES {
+        let mut changed = false;
+        if round < options.velocity_product_iterations {
+            refresh_velocity_products(model, options, state, data);
+            changed = true;
+        }
+        let velocity = data.solver.velocity();
+        let h = options.time_step;
+        changed |= add_overshooting_limit_rows(
+            model,
+            state,
+            velocity,
+            h,
+            options.push_out,
+            &mut data.rows,
+        ) > 0;
+        if !changed {
+            break;
+        }
+        solve_velocities(data).map_err(solver_error)?;
+    }
+    let status = data.report.solve.status;
+    if !status.is_solved() {
+        return Err(SimError::SolveFailed {
+            step: step_index,
+            time,
+            status,
+            rows: data.rows.len(),
+        });
+    }
+    hagfish_tree::integrate(state, data.solver.velocity(), options.time_step)
+        .map_err(|source| SimError::Tree { step: step_index, time, source })
+}
+
+fn measure_penetration(data: &mut StepData) {
+    let report = &mut data.report;
+    report.self_contacts = data.self_contacts.len();
+    report.wall_contacts = data.wall_contacts.len();
+    for contact in &data.self_contacts {
+        let depth = (-contact.gap).max(0.0);
+        let radii = data.centreline.radius(contact.u_a) + data.centreline.radius(contact.u_b);
+        report.max_self_penetration = report.max_self_penetration.max(depth);
+        report.max_self_penetration_relative =
+            report.max_self_penetration_relative.max(depth / radii);
+    }
+    for contact in &data.wall_contacts {
+        report.max_wall_penetration = report.max_wall_penetration.max(-contact.gap);
+    }
+}

@@ -1,0 +1,15 @@
+//! Constraint rows built from the body model, one file per kind. Every row is written in the
+//! solver's convention (`cᵀq̇ = b` or `cᵀq̇ ≥ b`, multipliers pushing along +c) straight into
+//! the solver's [`hagfish_solver::Rows`] container, so building rows does not allocate.
+
+mod head;
+mod limits;
+mod self_contact;
+mod stabilisation;
+mod wall;
+
+pub use head::add_head_rows;
+pub use limits::{add_limit_rows, add_overshooting_limit_rows};
+pub use self_contact::{add_self_contact_rows, add_spline_point_row};
+pub use stabilisation::unilateral_rhs;
+pub use wall::add_wall_rows;

@@ -1,0 +1,77 @@
+//! Everything a step derives or needs as scratch, allocated once per world.
+
+use glam::DVec3;
+use hagfish_geometry::{Centreline, ContactDetector, SelfContact, Wall, WallContact};
+use hagfish_solver::{RowGroup, Rows, SolverWorkspace};
+use hagfish_tree::{Data, Model};
+
+use crate::error::SimError;
+use crate::options::StepOptions;
+use crate::report::StepReport;
+
+/// The per-step data of a [`crate::World`]: tree quantities, contact geometry, rows, solver
+/// workspace and the last report. Each field names the stage that fills it.
+#[derive(Debug)]
+pub struct StepData {
+    /// Kinematics, mass matrix, forces, M̃ and f̃ (stages `kinematics`, `dynamics`).
+    pub tree: Data,
+    /// The centreline through the body centres (stage `detect_contacts`).
+    pub centreline: Centreline,
+    /// Self contacts, sorted head to tail by the anterior parameter (stage `detect_contacts`).
+    pub self_contacts: Vec<SelfContact>,
+    /// Bodies touching the wall (stage `detect_contacts`).
+    pub wall_contacts: Vec<WallContact>,
+    /// Constraint rows of this step (stage `build_rows`).
+    pub rows: Rows,
+    /// The velocity solve: q̇¹, multipliers, per-group impulses (stage `solve_velocities`).
+    pub solver: SolverWorkspace,
+    /// The report of the last step.
+    pub report: StepReport,
+    pub(crate) detector: ContactDetector,
+    pub(crate) wall: Option<Wall>,
+    pub(crate) centres: Vec<DVec3>,
+    pub(crate) radii: Vec<f64>,
+    pub(crate) lengths: Vec<f64>,
+    pub(crate) velocity_guess: Vec<f64>,
+}
+
+impl StepData {
+    /// Allocates everything for `model` and `options`.
+    pub fn new(model: &Model, options: &StepOptions) -> Result<Self, SimError> {
+        let geometry = |source| SimError::Geometry { step: 0, time: 0.0, source };
+        let radii: Vec<f64> = model.bodies().iter().map(|b| b.radius).collect();
+        let lengths: Vec<f64> = model.bodies().iter().map(|b| b.length).collect();
+        let tree = Data::new(model);
+        let centres: Vec<DVec3> = (0..model.body_count()).map(|i| tree.body_centre(i)).collect();
+        let centreline = Centreline::new(&centres, &radii).map_err(geometry)?;
+        let detector = ContactDetector::new(options.contact).map_err(geometry)?;
+        let wall = options
+            .wall
+            .map(|(point, normal)| Wall::new(point, normal, options.wall_options))
+            .transpose()
+            .map_err(geometry)?;
+        Ok(Self {
+            tree,
+            centreline,
+            self_contacts: Vec::new(),
+            wall_contacts: Vec::new(),
+            rows: Rows::new(model.dof_count()),
+            solver: SolverWorkspace::new(options.solver),
+            report: StepReport::default(),
+            detector,
+            wall,
+            centres,
+            radii,
+            lengths,
+            velocity_guess: vec![0.0; model.dof_count()],
+        })
+    }
+
+    /// The generalized force of a row group over the last step, `C_gᵀλ_g / h` (dyn·cm per
+    /// rotational DOF), written into `out` (length n).
+    pub fn group_force(&self, group: RowGroup, time_step: f64, out: &mut [f64]) {
+        for (f, impulse) in out.iter_mut().zip(self.solver.group_impulse(group)) {
+            *f = impulse / time_step;
+        }
+    }
+}

@@ -1,0 +1,79 @@
+//! A world: one immutable model and options, the minimal state, and the step data.
+
+use hagfish_tree::{Data, Model, State};
+
+use crate::error::SimError;
+use crate::options::StepOptions;
+use crate::pipeline;
+use crate::report::StepReport;
+use crate::step_data::StepData;
+
+/// A simulated body with everything needed to step it. The model and options never change
+/// after construction; [`World::step`] advances the state and refills the data.
+#[derive(Debug)]
+pub struct World {
+    model: Model,
+    options: StepOptions,
+    state: State,
+    data: StepData,
+    steps: u64,
+}
+
+impl World {
+    /// A world at `state`, checked against `model` and `options`.
+    pub fn new(model: Model, options: StepOptions, state: State) -> Result<Self, SimError> {
+        options.validate()?;
+        state.validate(&model).map_err(|source| SimError::Tree {
+            step: 0,
+            time: state.t,
+            source,
+        })?;
+        let mut data = StepData::new(&model, &options)?;
+        pipeline::kinematics(&model, &state, &mut data);
+        Ok(Self { model, options, state, data, steps: 0 })
+    }
+
+    /// The immutable model.
+    pub fn model(&self) -> &Model {
+        &self.model
+    }
+
+    /// The step options.
+    pub fn options(&self) -> &StepOptions {
+        &self.options
+    }
+
+    /// The current state.
+    pub fn state(&self) -> &State {
+        &self.state
+    }
+
+    /// The data of the last step (contacts, rows, solver answer, report). Its kinematics are
+    /// those of the state at the start of that step (of the initial state before any step).
+    pub fn data(&self) -> &StepData {
+        &self.data
+    }
+
+    /// Number of steps taken.
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    /// Advances one step of `options.time_step`, with `apply` setting the applied forces
+    /// (it sees the model, the state and the tree data with fresh kinematics).
+    pub fn step(
+        &mut self,
+        apply: &mut dyn FnMut(&Model, &State, &mut Data),
+    ) -> Result<&StepReport, SimError> {
+        pipeline::step(
+            &self.model,
+            &self.options,
+            &mut self.state,
+            self.steps,
+            &mut self.data,
+            apply,
+        )?;
+        self.steps += 1;
+        Ok(&self.data.report)
+    }
+}
