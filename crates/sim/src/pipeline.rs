@@ -40,11 +40,14 @@ pub fn apply_forces(
     apply(model, state, &mut data.tree);
 }
 
-/// Stage 3: mass matrix, generalized force, then `M̃ = M + hD + h²K` and `f̃ = M q̇ + h f_r`.
+/// Stage 3: `M̃ = M + h Jᵀ C_m J + hD + h²K` (with the implicit dampers of stage 2), the
+/// momentum `M q̇⁰`, the generalized force and `f̃ = M q̇⁰ + h f_r`.
 pub fn dynamics(model: &Model, options: &StepOptions, state: &State, data: &mut StepData) {
-    hagfish_tree::mass_matrix(model, &mut data.tree);
+    let h = options.time_step;
+    hagfish_tree::effective_mass(model, &mut data.tree, h);
+    hagfish_tree::generalized_momentum(model, &mut data.tree);
     hagfish_tree::generalized_force(model, &state.q, &mut data.tree);
-    hagfish_tree::assemble_effective_system(model, state, options.time_step, &mut data.tree);
+    hagfish_tree::assemble_effective_momentum(&mut data.tree, h);
 }
 
 /// Stage 4: centreline through the body centres, self contacts and wall contacts.
@@ -97,9 +100,9 @@ pub fn solve_velocities(data: &mut StepData) -> Result<(), hagfish_solver::Solve
 }
 
 /// Optional stage 6b: re-evaluates the velocity-product (Coriolis, centrifugal, gyroscopic)
-/// force at the velocity just solved for and re-forms `f̃`, so that the next solve treats it
-/// implicitly (a fixed-point iteration). Applied forces are kept; positions are unchanged, so
-/// the rows stay valid.
+/// force at the velocity just solved for and re-forms `f̃ = M q̇⁰ + h f_r` (the momentum `M q̇⁰`
+/// and `M̃` are kept), so that the next solve treats it implicitly (a fixed-point iteration).
+/// Applied forces are kept; positions are unchanged, so the rows stay valid.
 pub fn refresh_velocity_products(
     model: &Model,
     options: &StepOptions,
@@ -110,7 +113,7 @@ pub fn refresh_velocity_products(
     data.velocity_guess.copy_from_slice(guess);
     hagfish_tree::forward_kinematics(model, &state.q, &data.velocity_guess, &mut data.tree);
     hagfish_tree::generalized_force(model, &state.q, &mut data.tree);
-    hagfish_tree::assemble_effective_system(model, state, options.time_step, &mut data.tree);
+    hagfish_tree::assemble_effective_momentum(&mut data.tree, options.time_step);
 }
 
 /// Runs one whole step and advances `state` (see the module docs for the stages). On error the

@@ -57,8 +57,9 @@ fn stages(c: &mut Criterion) {
     c.bench_function("tree/generalized_force", |b| {
         b.iter(|| generalized_force(&model, black_box(&state.q), &mut data))
     });
-    c.bench_function("tree/assemble_effective_system", |b| {
-        b.iter(|| assemble_effective_system(&model, black_box(&state), h, &mut data))
+    c.bench_function("tree/effective_mass", |b| b.iter(|| effective_mass(&model, &mut data, h)));
+    c.bench_function("tree/generalized_momentum", |b| {
+        b.iter(|| generalized_momentum(&model, &mut data))
     });
     c.bench_function("tree/factor_effective_mass", |b| {
         b.iter(|| factor_effective_mass(&mut data, 0.0).expect("SPD"))

@@ -35,20 +35,27 @@ pub struct Data {
     pub applied_wrenches: Vec<Spatial>,
     /// Applied joint torques `τ_ext` per DOF (input, dyn·cm).
     pub applied_torques: Vec<f64>,
-    /// Reduced mass matrix `M = Jᵀ M_m J`, n×n (dynamics::mass_matrix).
+    /// Implicit point dampers per body, in inertia form (input: cleared by
+    /// [`Data::clear_applied`], filled by [`Data::apply_point_damping`]).
+    pub applied_damping: Vec<RigidInertia>,
+    /// Reduced mass matrix `M = Jᵀ M_m J`, n×n (mass_matrix::mass_matrix; not needed by the
+    /// step, which builds `M̃` directly).
     pub mass_matrix: Mat<f64>,
     /// Generalized force `f_r = −C(q, q̇) + Sᵀ w_applied + τ_ext − K(q − q_rest)`: everything
     /// but damping and constraints, per DOF (dynamics::generalized_force).
     pub generalized_force: Vec<f64>,
-    /// Effective mass `M̃ = M + hD + h²K` (integrator::assemble_effective_system).
+    /// Generalized momentum `p = M q̇` at the kinematics velocities (dynamics::generalized_momentum).
+    pub momentum: Vec<f64>,
+    /// Effective mass `M̃ = M + h Jᵀ C_m J + hD + h²K` (mass_matrix::effective_mass).
     pub effective_mass: Mat<f64>,
-    /// Effective momentum `f̃ = M q̇⁰ + h f_r` (integrator::assemble_effective_system).
+    /// Effective momentum `f̃ = M q̇⁰ + h f_r` (integrator::assemble_effective_momentum).
     pub effective_momentum: Vec<f64>,
     /// Lower Cholesky factor of `M̃` (integrator::factor_effective_mass).
     pub factor: Mat<f64>,
     /// The new velocities `q̇¹` of the last solve (integrator).
     pub qdot_next: Mat<f64>,
     pub(crate) composite: Vec<RigidInertia>,
+    pub(crate) augmented: Vec<RigidInertia>,
     pub(crate) wrenches: Vec<Spatial>,
     pub(crate) accelerations: Vec<Spatial>,
     pub(crate) stack: MemBuffer,
@@ -77,13 +84,16 @@ impl Data {
             inertias: vec![RigidInertia::ZERO; nb],
             applied_wrenches: vec![Spatial::ZERO; nb],
             applied_torques: vec![0.0; n],
+            applied_damping: vec![RigidInertia::ZERO; nb],
             mass_matrix: Mat::zeros(n, n),
             generalized_force: vec![0.0; n],
+            momentum: vec![0.0; n],
             effective_mass: Mat::zeros(n, n),
             effective_momentum: vec![0.0; n],
             factor: Mat::zeros(n, n),
             qdot_next: Mat::zeros(n, 1),
             composite: vec![RigidInertia::ZERO; nb],
+            augmented: vec![RigidInertia::ZERO; nb],
             wrenches: vec![Spatial::ZERO; nb],
             accelerations: vec![Spatial::ZERO; nb],
             stack: MemBuffer::new(req),
@@ -94,6 +104,15 @@ impl Data {
     pub fn clear_applied(&mut self) {
         self.applied_wrenches.fill(Spatial::ZERO);
         self.applied_torques.fill(0.0);
+        self.applied_damping.fill(RigidInertia::ZERO);
+    }
+
+    /// Adds an implicit linear damper at the world point `x` (cm) of `body`: the force
+    /// `−c ẋ` (dyn) with `c` in dyn·s/cm, evaluated at the new velocity of the step (it enters
+    /// `M̃` as `h c PᵀP`, so no size of `c` can destabilise the step). Water drag and the
+    /// derivative part of a PD controller use it. The caller checks `body`.
+    pub fn apply_point_damping(&mut self, body: usize, x: DVec3, coefficient: f64) {
+        self.applied_damping[body].add_scaled(&RigidInertia::point(coefficient, x), 1.0);
     }
 
     /// Applies a world force `f` (dyn) at the world point `x` (cm) of `body` for the next

@@ -1,7 +1,8 @@
 //! Stage 3, the linearly implicit Euler step (REDMAX; `docs/physics.md` D3 and §4).
 //!
 //! Damping and the spring's linearisation go to the left-hand side:
-//! `M̃ = M + hD + h²K`, `f̃ = M q̇⁰ + h f_r(q⁰, q̇⁰)`, then `M̃ q̇¹ = f̃` (plus constraint
+//! `M̃ = M + h Jᵀ C_m J + hD + h²K` (with the implicit point dampers `C_m`),
+//! `f̃ = M q̇⁰ + h f_r(q⁰, q̇⁰)`, then `M̃ q̇¹ = f̃` (plus constraint
 //! impulses, solved elsewhere) and `q¹ = q⁰ + h q̇¹`. With no constraints the solve is one
 //! dense Cholesky factorisation of `M̃` (SPD: `M` is SPD and `D, K ≥ 0`).
 
@@ -9,28 +10,20 @@ use faer::linalg::cholesky::llt;
 use faer::{Par, Spec};
 
 use crate::data::Data;
-use crate::dynamics::{generalized_force, mass_matrix};
+use crate::dynamics::{generalized_force, generalized_momentum};
 use crate::error::TreeError;
 use crate::kinematics::forward_kinematics;
+use crate::mass_matrix::effective_mass;
 use crate::model::Model;
 use crate::state::State;
 
-/// Fills `data.effective_mass` (`M̃`) and `data.effective_momentum` (`f̃`) for the step size
-/// `h` (s) from `data.mass_matrix` and `data.generalized_force`, which must be current for
-/// `state` (run [`forward_kinematics`], [`mass_matrix`] and [`generalized_force`] first).
-pub fn assemble_effective_system(model: &Model, state: &State, h: f64, data: &mut Data) {
-    data.effective_mass.copy_from(&data.mass_matrix);
-    data.effective_momentum.fill(0.0);
-    // f̃ = M q̇⁰ + h f_r, accumulated column by column (contiguous in faer's column-major Mat).
-    for (b, qdot_b) in state.qdot.iter().enumerate() {
-        let column = data.mass_matrix.col(b);
-        for (a, momentum) in data.effective_momentum.iter_mut().enumerate() {
-            *momentum += column[a] * qdot_b;
-        }
-    }
-    for (a, dof) in model.dofs().iter().enumerate() {
-        data.effective_mass[(a, a)] += h * dof.damping + h * h * dof.stiffness;
-        data.effective_momentum[a] += h * data.generalized_force[a];
+/// Fills `data.effective_momentum` with `f̃ = p + h f_r` from `data.momentum` (`p = M q̇⁰`) and
+/// `data.generalized_force`, for the step size `h` (s).
+pub fn assemble_effective_momentum(data: &mut Data, h: f64) {
+    for ((f, p), force) in
+        data.effective_momentum.iter_mut().zip(&data.momentum).zip(&data.generalized_force)
+    {
+        *f = p + h * force;
     }
 }
 
@@ -87,9 +80,10 @@ pub fn step_unconstrained(
 ) -> Result<(), TreeError> {
     state.validate(model)?;
     forward_kinematics(model, &state.q, &state.qdot, data);
-    mass_matrix(model, data);
+    effective_mass(model, data, h);
+    generalized_momentum(model, data);
     generalized_force(model, &state.q, data);
-    assemble_effective_system(model, state, h, data);
+    assemble_effective_momentum(data, h);
     factor_effective_mass(data, state.t)?;
     solve_unconstrained(data);
     let n = model.dof_count();

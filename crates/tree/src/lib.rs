@@ -9,9 +9,10 @@
 //! - [`Data`] holds everything derived from a state and all scratch, allocated once.
 //!
 //! A step is a sequence of stages, each a free function on `(&Model, &mut Data)`:
-//! [`forward_kinematics`] → [`mass_matrix`] → [`generalized_force`] →
-//! [`assemble_effective_system`] → (constraint solve, in `hagfish-solver`, or
-//! [`solve_unconstrained`]) → [`integrate`]. [`step_unconstrained`] chains them.
+//! [`forward_kinematics`] → [`effective_mass`] → [`generalized_momentum`] →
+//! [`generalized_force`] → [`assemble_effective_momentum`] → (constraint solve, in
+//! `hagfish-solver`, or [`factor_effective_mass`] + [`solve_unconstrained`]) → [`integrate`].
+//! [`step_unconstrained`] chains them.
 //!
 //! All motion vectors are world twists at the world origin ([`spatial`]); body-coordinate
 //! Jacobians as in `docs/physics.md` §3 are available for analysis and tests ([`jacobian`]).
@@ -23,19 +24,21 @@ pub mod integrator;
 pub mod jacobian;
 mod joint;
 pub mod kinematics;
+pub mod mass_matrix;
 mod model;
 pub mod spatial;
 mod state;
 
 pub use data::Data;
-pub use dynamics::{generalized_force, inverse_dynamics, mass_matrix};
+pub use dynamics::{generalized_force, generalized_momentum, inverse_dynamics};
 pub use error::TreeError;
 pub use integrator::{
-    assemble_effective_system, factor_effective_mass, integrate, solve_unconstrained,
+    assemble_effective_momentum, factor_effective_mass, integrate, solve_unconstrained,
     step_unconstrained,
 };
 pub use joint::{DofParams, JointKind};
 pub use kinematics::forward_kinematics;
+pub use mass_matrix::{effective_mass, mass_matrix};
 pub use model::{Body, BodySpec, Joint, Model, ModelBuilder, PathToRoot};
 pub use spatial::{RigidInertia, Spatial, Transform};
 pub use state::State;

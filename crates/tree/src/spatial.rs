@@ -184,6 +184,20 @@ impl RigidInertia {
         Self { mass, first_moment: c * mass, rotational: rotated + parallel * mass }
     }
 
+    /// A point mass `m` at the world point `x`: `(m, m x, m(|x|²·1 − x xᵀ))`. Also the form of
+    /// a point damper of coefficient `m` (dyn·s/cm) at `x`.
+    pub fn point(mass: f64, x: DVec3) -> Self {
+        let parallel = DMat3::from_diagonal(DVec3::splat(x.length_squared())) - outer(x, x);
+        Self { mass, first_moment: x * mass, rotational: parallel * mass }
+    }
+
+    /// Adds `s · other` in place.
+    pub fn add_scaled(&mut self, other: &RigidInertia, s: f64) {
+        self.mass += s * other.mass;
+        self.first_moment += other.first_moment * s;
+        self.rotational += other.rotational * s;
+    }
+
     /// The momentum of a twist: `I·(ω; v) = (I_O ω + h × v; m v − h × ω)`.
     pub fn apply(&self, twist: &Spatial) -> Spatial {
         Spatial {
