@@ -1,0 +1,145 @@
+//! Crossings of a closed polygon seen along a projection direction.
+//!
+//! The polygon is projected onto the plane orthogonal to the view direction v (f64); two
+//! non-adjacent edges cross where their shadows intersect, and the edge with the larger
+//! height v·x passes over. The diagram is only valid if the projection is *generic*: no
+//! vertex on another edge's shadow, no two crossings at one point, distinct heights at each
+//! crossing. Every such test is done with a margin ([`GENERICITY_TOLERANCE`] times the
+//! curve's diameter, which [`crate::closure`] normalises to 1); a projection that fails any
+//! of them is rejected as a whole and the caller tries another direction. Tests that pass
+//! decide the diagram exactly as the exact projection would, because every quantity they
+//! compare carries a rounding error far below the margin.
+
+use glam::{DVec2, DVec3};
+
+use crate::alexander::Crossing;
+
+/// Margin of every genericity test, in units of the curve's diameter (the closure normalises
+/// the curve to diameter 1; the far closure is at distance 100).
+pub(crate) const GENERICITY_TOLERANCE: f64 = 1e-9;
+
+/// One edge of the projected polygon with its bounding box.
+struct Edge {
+    start: DVec2,
+    end: DVec2,
+    start_height: f64,
+    end_height: f64,
+    min: DVec2,
+    max: DVec2,
+}
+
+/// Crossings of the closed polygon `vertices` (the last vertex joins the first) seen along
+/// the unit vector `view`, or `None` if this projection is not generic. Crossing positions
+/// are `edge index + parameter along the edge`.
+pub(crate) fn crossings(vertices: &[DVec3], view: DVec3) -> Option<Vec<Crossing>> {
+    let (e1, e2) = view.any_orthonormal_pair();
+    let n = vertices.len();
+    let project = |x: DVec3| (DVec2::new(e1.dot(x), e2.dot(x)), view.dot(x));
+    let edges: Vec<Edge> = (0..n)
+        .map(|k| {
+            let (start, start_height) = project(vertices[k]);
+            let (end, end_height) = project(vertices[(k + 1) % n]);
+            Edge { start, end, start_height, end_height, min: start.min(end), max: start.max(end) }
+        })
+        .collect();
+    let mut found = Vec::new();
+    for i in 0..n {
+        // Edge n − 1 is adjacent to edge 0: skip that pair.
+        let last = if i == 0 { n.saturating_sub(1) } else { n };
+        for j in i + 2..last {
+            let (p, q) = (&edges[i], &edges[j]);
+            if p.max.x < q.min.x || q.max.x < p.min.x || p.max.y < q.min.y || q.max.y < p.min.y {
+                continue;
+            }
+            if let Some(crossing) = crossing(p, i, q, j)? {
+                found.push(crossing);
+            }
+        }
+    }
+    distinct_positions(&found, &edges).then_some(found)
+}
+
+/// Side of a point relative to an oriented line: `cross` = (line direction) × (point −
+/// line start), `length` = |line direction|.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Side {
+    Left,
+    Right,
+    TooClose,
+}
+
+fn side(cross: f64, length: f64) -> Side {
+    // NaN-safe: anything that is not clearly away from the line is too close.
+    if cross.abs() > GENERICITY_TOLERANCE * length {
+        if cross > 0.0 { Side::Left } else { Side::Right }
+    } else {
+        Side::TooClose
+    }
+}
+
+/// The crossing of edges `p` (index `i`) and `q` (index `j`): `Some(None)` if they do not
+/// cross, `None` if the answer or the heights are within the margin (not generic).
+fn crossing(p: &Edge, i: usize, q: &Edge, j: usize) -> Option<Option<Crossing>> {
+    let (r, s) = (p.end - p.start, q.end - q.start);
+    let (r_length, s_length) = (r.length(), s.length());
+    let o1 = r.perp_dot(q.start - p.start);
+    let o2 = r.perp_dot(q.end - p.start);
+    let o3 = s.perp_dot(p.start - q.start);
+    let o4 = s.perp_dot(p.end - q.start);
+    let sides = [side(o1, r_length), side(o2, r_length), side(o3, s_length), side(o4, s_length)];
+    let same = |x: Side, y: Side| x == y && x != Side::TooClose;
+    if same(sides[0], sides[1]) || same(sides[2], sides[3]) {
+        return Some(None);
+    }
+    if sides.contains(&Side::TooClose) {
+        return None;
+    }
+    let t = o3 / (o3 - o4);
+    let u = o1 / (o1 - o2);
+    let height_p = p.start_height + t * (p.end_height - p.start_height);
+    let height_q = q.start_height + u * (q.end_height - q.start_height);
+    if (height_p - height_q).abs() <= GENERICITY_TOLERANCE {
+        return None;
+    }
+    let (position_p, position_q) = (i as f64 + t, j as f64 + u);
+    let crossing = if height_p > height_q {
+        Crossing { over: position_p, under: position_q, positive: r.perp_dot(s) > 0.0 }
+    } else {
+        Crossing { over: position_q, under: position_p, positive: s.perp_dot(r) > 0.0 }
+    };
+    Some(Some(crossing))
+}
+
+/// Whether no two crossings lie within the margin of each other along the same edge (which
+/// would make their order, hence the diagram, unreliable).
+fn distinct_positions(crossings: &[Crossing], edges: &[Edge]) -> bool {
+    let mut positions: Vec<f64> = crossings.iter().flat_map(|c| [c.over, c.under]).collect();
+    positions.sort_by(f64::total_cmp);
+    positions.windows(2).all(|pair| {
+        let edge = pair[0].floor();
+        // A position is `edge index + t` with t strictly inside (0, 1) (see `side`'s margin).
+        let length = edges.get(edge as usize).map_or(0.0, |e| e.start.distance(e.end));
+        edge != pair[1].floor() || (pair[1] - pair[0]) * length > GENERICITY_TOLERANCE
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_square_with_a_crossing_diagonal_is_found_and_degenerate_views_rejected() {
+        // A bow-tie: edges 0 (0,0,0)→(1,1,1) and 2 (1,0,0)→(0,1,0) cross above (0.5, 0.5).
+        let bow_tie = [
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(1.0, 1.0, 1.0),
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(0.0, 1.0, 0.0),
+        ];
+        let found = crossings(&bow_tie, DVec3::Z).expect("generic");
+        assert_eq!(found.len(), 1);
+        assert!((found[0].over - 0.5).abs() < 1e-12 && (found[0].under - 2.5).abs() < 1e-12);
+        // Seen along x, vertices 0 and 2 project to the same point.
+        assert_eq!(crossings(&bow_tie, DVec3::X), None);
+    }
+}

@@ -1,0 +1,9 @@
+//! Acceptance tests of `hagfish-knots` (issue: knot analysis of an open centreline).
+
+mod closed_forms;
+mod curves;
+mod errors;
+mod hagfish;
+mod hagfish_curve;
+mod invariance;
+mod unknots;
