@@ -1,15 +1,16 @@
 //! The step, as a sequence of named stages (`docs/architecture.md`):
 //!
 //! ```text
-//! kinematics → apply_forces → dynamics → detect_contacts → build_rows → solve_velocities
+//! kinematics → detect_contacts → control → dynamics → build_rows → solve_velocities
 //!   → [refresh_velocity_products | add_overshooting_limit_rows → solve_velocities]* → integrate
 //! ```
 //!
 //! Each stage is a public function of the immutable model and options and the mutable step
 //! data, so tests and benchmarks can run any prefix.
 
+use hagfish_control::{ControlContext, Controller};
 use hagfish_solver::Problem;
-use hagfish_tree::{Data, Model, State};
+use hagfish_tree::{Model, State};
 
 use crate::error::SimError;
 use crate::options::StepOptions;
@@ -29,18 +30,30 @@ pub fn kinematics(model: &Model, state: &State, data: &mut StepData) {
     hagfish_tree::forward_kinematics(model, &state.q, &state.qdot, &mut data.tree);
 }
 
-/// Stage 2: clears the applied forces and lets `apply` set this step's (controller, drag).
-pub fn apply_forces(
+/// Stage 3: the controller sees the state, kinematics and contacts and sets this step's
+/// forces and implicit dampers.
+pub fn control(
     model: &Model,
+    options: &StepOptions,
     state: &State,
     data: &mut StepData,
-    apply: &mut dyn FnMut(&Model, &State, &mut Data),
+    controller: &mut dyn Controller,
 ) {
+    data.actuation.clear();
+    let context = ControlContext {
+        model,
+        state,
+        kinematics: &data.tree,
+        centreline: &data.centreline,
+        self_contacts: &data.self_contacts,
+        time_step: options.time_step,
+    };
+    controller.control(&context, &mut data.actuation);
     data.tree.clear_applied();
-    apply(model, state, &mut data.tree);
+    data.actuation.apply_to(&mut data.tree);
 }
 
-/// Stage 3: `M̃ = M + h Jᵀ C_m J + hD + h²K` (with the implicit dampers of stage 2), the
+/// Stage 4: `M̃ = M + h Jᵀ C_m J + hD + h²K` (with the implicit dampers of stage 2), the
 /// momentum `M q̇⁰`, the generalized force and `f̃ = M q̇⁰ + h f_r`.
 pub fn dynamics(model: &Model, options: &StepOptions, state: &State, data: &mut StepData) {
     let h = options.time_step;
@@ -50,7 +63,7 @@ pub fn dynamics(model: &Model, options: &StepOptions, state: &State, data: &mut 
     hagfish_tree::assemble_effective_momentum(&mut data.tree, h);
 }
 
-/// Stage 4: centreline through the body centres, self contacts and wall contacts.
+/// Stage 2: centreline through the body centres, self contacts and wall contacts.
 pub fn detect_contacts(
     model: &Model,
     options: &StepOptions,
@@ -124,20 +137,20 @@ pub fn step(
     state: &mut State,
     step_index: u64,
     data: &mut StepData,
-    apply: &mut dyn FnMut(&Model, &State, &mut Data),
+    controller: &mut dyn Controller,
 ) -> Result<(), SimError> {
     let time = state.t;
     state.validate(model).map_err(|source| SimError::Tree { step: step_index, time, source })?;
     data.report = StepReport { step: step_index, time, ..StepReport::default() };
     kinematics(model, state, data);
-    apply_forces(model, state, data, apply);
-    dynamics(model, options, state, data);
     detect_contacts(model, options, data).map_err(|source| SimError::Geometry {
         step: step_index,
         time,
         source,
     })?;
     measure_penetration(data);
+    control(model, options, state, data, controller);
+    dynamics(model, options, state, data);
     build_rows(model, options, state, data);
     let solver_error = |source| SimError::Solver { step: step_index, time, source };
     solve_velocities(data).map_err(solver_error)?;

@@ -1,6 +1,7 @@
 //! Everything a step derives or needs as scratch, allocated once per world.
 
 use glam::DVec3;
+use hagfish_control::Actuation;
 use hagfish_geometry::{Centreline, ContactDetector, SelfContact, Wall, WallContact};
 use hagfish_solver::{RowGroup, Rows, SolverWorkspace};
 use hagfish_tree::{Data, Model};
@@ -21,6 +22,8 @@ pub struct StepData {
     pub self_contacts: Vec<SelfContact>,
     /// Bodies touching the wall (stage `detect_contacts`).
     pub wall_contacts: Vec<WallContact>,
+    /// What the controller asked for this step (stage `control`).
+    pub actuation: Actuation,
     /// Constraint rows of this step (stage `build_rows`).
     pub rows: Rows,
     /// The velocity solve: q̇¹, multipliers, per-group impulses (stage `solve_velocities`).
@@ -55,6 +58,7 @@ impl StepData {
             centreline,
             self_contacts: Vec::new(),
             wall_contacts: Vec::new(),
+            actuation: Actuation::default(),
             rows: Rows::new(model.dof_count()),
             solver: SolverWorkspace::new(options.solver),
             report: StepReport::default(),

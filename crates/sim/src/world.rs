@@ -1,6 +1,7 @@
 //! A world: one immutable model and options, the minimal state, and the step data.
 
-use hagfish_tree::{Data, Model, State};
+use hagfish_control::Controller;
+use hagfish_tree::{Model, State};
 
 use crate::error::SimError;
 use crate::options::StepOptions;
@@ -59,20 +60,10 @@ impl World {
         self.steps
     }
 
-    /// Advances one step of `options.time_step`, with `apply` setting the applied forces
-    /// (it sees the model, the state and the tree data with fresh kinematics).
-    pub fn step(
-        &mut self,
-        apply: &mut dyn FnMut(&Model, &State, &mut Data),
-    ) -> Result<&StepReport, SimError> {
-        pipeline::step(
-            &self.model,
-            &self.options,
-            &mut self.state,
-            self.steps,
-            &mut self.data,
-            apply,
-        )?;
+    /// Advances one step of `options.time_step` with `controller` deciding the actuation.
+    pub fn step(&mut self, controller: &mut dyn Controller) -> Result<&StepReport, SimError> {
+        let (model, options) = (&self.model, &self.options);
+        pipeline::step(model, options, &mut self.state, self.steps, &mut self.data, controller)?;
         self.steps += 1;
         Ok(&self.data.report)
     }

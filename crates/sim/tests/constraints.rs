@@ -3,6 +3,7 @@
 //! h = 0.01 s; and one test per row type with hand-checked signs on small chains.
 
 use glam::DVec3;
+use hagfish_control::{Actuation, ControlContext, Controller, Passive, PointForce};
 use hagfish_sim::{StepOptions, World};
 use hagfish_solver::{RowGroup, SolvePath};
 use hagfish_tree::{BodySpec, Data, DofParams, JointKind, Model, ModelBuilder, State, Transform};
@@ -14,12 +15,27 @@ fn hagfish() -> Model {
 
 /// A force on the tail body's centre that sweeps around the body axis and pulls toward the
 /// wall, so the tail is dragged around, bends joints into their limits and meets the wall.
-fn sweeping_tail_force(magnitude: f64) -> impl FnMut(&Model, &State, &mut Data) {
-    move |model, state, data| {
-        let tail = model.body_count() - 1;
-        let phase = 1.5 * state.t;
+struct SweepingTailForce(f64);
+
+impl Controller for SweepingTailForce {
+    fn control(&mut self, context: &ControlContext<'_>, out: &mut Actuation) {
+        let tail = context.model.body_count() - 1;
+        let phase = 1.5 * context.state.t;
         let direction = DVec3::new(-1.0, phase.cos(), phase.sin()).normalize();
-        data.apply_point_force(tail, data.body_centre(tail), direction * magnitude);
+        out.forces.push(PointForce {
+            body: tail,
+            point: context.centre(tail),
+            force: direction * self.0,
+        });
+    }
+}
+
+/// A constant force at the centre of one body.
+struct ConstantForce(usize, DVec3);
+
+impl Controller for ConstantForce {
+    fn control(&mut self, context: &ControlContext<'_>, out: &mut Actuation) {
+        out.forces.push(PointForce { body: self.0, point: context.centre(self.0), force: self.1 });
     }
 }
 
@@ -30,7 +46,7 @@ fn head_limits_and_wall_hold_under_a_sweeping_tail_force() {
     let model = hagfish();
     let state = State::rest(&model);
     let mut world = World::new(model, StepOptions::default(), state).expect("world");
-    let mut force = sweeping_tail_force(20.0);
+    let mut force = SweepingTailForce(20.0);
     let (mut head_error, mut limit_excess, mut wall_depth) = (0.0f64, 0.0f64, 0.0f64);
     let (mut limit_rows, mut wall_rows, mut qp_steps) = (0, 0, 0);
     // A point on the head body's surface, off the twist axis, at rest.
@@ -101,10 +117,7 @@ fn upper_limit_row_stops_the_joint_and_pushes_back() {
     let mut state = State::rest(&model);
     state.q[1] = 0.3;
     let mut world = World::new(model, options_without_contacts(), state).expect("world");
-    let mut push = |_: &Model, _: &State, data: &mut Data| {
-        let tip = data.body_frames[1].transform_point(DVec3::new(0.5, 0.0, 0.0));
-        data.apply_point_force(1, tip, DVec3::new(0.0, 5.0, 0.0)); // +y at the tip: +q₁
-    };
+    let mut push = ConstantForce(1, DVec3::new(0.0, 5.0, 0.0)); // +y on rod 1: drives +q₁
     for _ in 0..20 {
         world.step(&mut push).expect("step");
         let data = world.data();
@@ -127,7 +140,7 @@ fn lower_limit_row_stops_the_joint() {
     state.q[1] = -0.29;
     state.qdot[1] = -5.0; // would reach −0.34 in one step
     let mut world = World::new(model, options_without_contacts(), state).expect("world");
-    world.step(&mut |_, _, _| {}).expect("step");
+    world.step(&mut Passive).expect("step");
     let data = world.data();
     let row =
         (0..data.rows.len()).find(|&i| data.rows.groups()[i] == RowGroup::Limit).expect("row");
@@ -153,9 +166,7 @@ fn wall_row_stops_a_body_pushed_into_the_wall() {
         ..StepOptions::default()
     };
     let mut world = World::new(model, options, state).expect("world");
-    let mut push = |_: &Model, _: &State, data: &mut Data| {
-        data.apply_point_force(2, data.body_centre(2), DVec3::new(-50.0, 0.0, 0.0));
-    };
+    let mut push = ConstantForce(2, DVec3::new(-50.0, 0.0, 0.0));
     let mut saw_wall = false;
     for _ in 0..100 {
         world.step(&mut push).expect("step");

@@ -1,0 +1,99 @@
+//! The controller interface: what a controller sees and what it may do.
+
+use glam::DVec3;
+use hagfish_geometry::{Centreline, SelfContact};
+use hagfish_tree::{Data, Model, State};
+
+/// What a controller sees at the start of a step: the model, the state, the kinematics of that
+/// state (body frames and twists in `kinematics`), the centreline and the self contacts.
+#[derive(Clone, Copy, Debug)]
+pub struct ControlContext<'a> {
+    /// The body model.
+    pub model: &'a Model,
+    /// The state at the start of the step.
+    pub state: &'a State,
+    /// Kinematics of `state` (frames, twists); dynamics fields are not valid yet.
+    pub kinematics: &'a Data,
+    /// The centreline through the body centres.
+    pub centreline: &'a Centreline,
+    /// Self contacts, sorted head to tail by their anterior parameter.
+    pub self_contacts: &'a [SelfContact],
+    /// The step size h (s).
+    pub time_step: f64,
+}
+
+impl ControlContext<'_> {
+    /// World position of the centre of `body` (cm).
+    pub fn centre(&self, body: usize) -> DVec3 {
+        self.kinematics.body_centre(body)
+    }
+
+    /// World velocity of the centre of `body` (cm/s).
+    pub fn centre_velocity(&self, body: usize) -> DVec3 {
+        self.kinematics.velocities[body].point_velocity(self.centre(body))
+    }
+}
+
+/// A point force on a body, applied explicitly for one step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointForce {
+    /// The body.
+    pub body: usize,
+    /// World point of application (cm).
+    pub point: DVec3,
+    /// Force (dyn).
+    pub force: DVec3,
+}
+
+/// A linear damper on a body point, `F = −c ẋ`, treated implicitly (at the new velocity).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointDamper {
+    /// The body.
+    pub body: usize,
+    /// World point (cm).
+    pub point: DVec3,
+    /// Coefficient c (dyn·s/cm), ≥ 0.
+    pub coefficient: f64,
+}
+
+/// What controllers ask for in one step. Cleared by the pipeline before each step; the
+/// buffers keep their capacity.
+#[derive(Clone, Debug, Default)]
+pub struct Actuation {
+    /// Explicit point forces.
+    pub forces: Vec<PointForce>,
+    /// Implicit point dampers.
+    pub dampers: Vec<PointDamper>,
+}
+
+impl Actuation {
+    /// Empties every buffer.
+    pub fn clear(&mut self) {
+        self.forces.clear();
+        self.dampers.clear();
+    }
+
+    /// Writes the forces and dampers into the tree data for the dynamics stage.
+    pub fn apply_to(&self, data: &mut Data) {
+        for f in &self.forces {
+            data.apply_point_force(f.body, f.point, f.force);
+        }
+        for d in &self.dampers {
+            data.apply_point_damping(d.body, d.point, d.coefficient);
+        }
+    }
+}
+
+/// A controller decides, once per step, the actuation from what it sees.
+pub trait Controller {
+    /// Adds this step's actuation to `out`.
+    fn control(&mut self, context: &ControlContext<'_>, out: &mut Actuation);
+}
+
+/// A controller that does nothing (passive body).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Passive;
+
+impl Controller for Passive {
+    fn control(&mut self, _: &ControlContext<'_>, _: &mut Actuation) {}
+}

@@ -1,0 +1,22 @@
+//! # hagfish-control
+//!
+//! Controllers decide, once per step, forces and dampers on the body (and, for thigmotaxis,
+//! constraint rows). They see the state, its kinematics, the centreline and the self contacts
+//! through a [`ControlContext`] and write an [`Actuation`]; the step pipeline applies it.
+//!
+//! - [`WaterDrag`]: implicit linear + quadratic drag on every body.
+//! - [`FormingController`]: the scripted knot-forming tail pull (thesis §3.3.1, §5.1).
+//!
+//! CGS units throughout.
+
+mod controller;
+mod drag;
+mod forming;
+mod loops;
+mod tail_pd;
+
+pub use controller::{Actuation, ControlContext, Controller, Passive, PointDamper, PointForce};
+pub use drag::WaterDrag;
+pub use forming::{FormingController, FormingScript, ScriptProgress, ScriptStep, Waypoint};
+pub use loops::{ProjectedLoop, largest_projected_loop};
+pub use tail_pd::TailGains;
