@@ -9,6 +9,9 @@ pub enum CliError {
     /// The biometrics file could not be read, parsed, validated or turned into a model.
     #[error(transparent)]
     Anatomy(#[from] AnatomyError),
+    /// The scenario could not be loaded or the run stopped.
+    #[error(transparent)]
+    Sim(#[from] hagfish_sim::SimError),
     /// Writing the report to stdout failed (e.g. a closed pipe).
     #[error("cannot write the output: {0}")]
     Output(#[from] std::io::Error),

@@ -3,6 +3,7 @@
 
 mod body;
 mod error;
+mod run;
 
 use std::io::{BufWriter, Write};
 
@@ -24,6 +25,8 @@ pub struct Cli {
 enum Command {
     /// Print the bodies derived from a biometrics file: radius, mass, joint and limits.
     Body(body::BodyArgs),
+    /// Run a scenario and write centreline.csv and metrics.csv into the output directory.
+    Run(run::RunArgs),
 }
 
 /// Runs the chosen subcommand, writing its report to stdout (buffered, flushed at the end).
@@ -31,6 +34,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
     let mut out = BufWriter::new(std::io::stdout().lock());
     match cli.command {
         Command::Body(args) => body::run(&args, &mut out)?,
+        Command::Run(args) => run::run(&args, &mut out)?,
     }
     out.flush()?;
     Ok(())

@@ -25,6 +25,7 @@ mod validate;
 
 pub use biometrics::{Biometrics, MAX_BODY_COUNT, TailTaper};
 pub use error::{AnatomyError, Field, Origin};
+pub use load::DataFile;
 pub use model::cylinder_inertia;
 pub use profile::interpolate_clamped;
 pub use table::{BodyRow, BodyTable, LimitDeg, joint_kind};

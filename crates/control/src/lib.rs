@@ -6,6 +6,7 @@
 //!
 //! - [`WaterDrag`]: implicit linear + quadratic drag on every body.
 //! - [`FormingController`]: the scripted knot-forming tail pull (thesis §3.3.1, §5.1).
+//! - [`PhasedController`]: drag plus a scenario's phases in order.
 //!
 //! CGS units throughout.
 
@@ -13,10 +14,12 @@ mod controller;
 mod drag;
 mod forming;
 mod loops;
+mod phases;
 mod tail_pd;
 
 pub use controller::{Actuation, ControlContext, Controller, Passive, PointDamper, PointForce};
 pub use drag::WaterDrag;
 pub use forming::{FormingController, FormingScript, ScriptProgress, ScriptStep, Waypoint};
 pub use loops::{ProjectedLoop, largest_projected_loop};
+pub use phases::{Phase, PhaseProgress, PhasedController};
 pub use tail_pd::TailGains;

@@ -4,9 +4,23 @@ use hagfish_geometry::GeometryError;
 use hagfish_solver::{SolveStatus, SolverError};
 use hagfish_tree::TreeError;
 
-/// What can stop a step. Every variant says at which step and simulation time it happened.
+/// What can stop a scenario or a step. Every variant says at which step and simulation time it happened.
 #[derive(Debug, thiserror::Error)]
 pub enum SimError {
+    /// A scenario or biometrics file is unreadable or invalid (message has file:line:column).
+    #[error(transparent)]
+    DataFile(#[from] hagfish_anatomy::AnatomyError),
+    /// The model could not be built.
+    #[error("building the model: {0}")]
+    Model(#[from] TreeError),
+    /// An output file could not be written.
+    #[error("{}: cannot write: {source}", path.display())]
+    Output {
+        /// The file.
+        path: std::path::PathBuf,
+        /// The underlying error.
+        source: std::io::Error,
+    },
     /// Invalid options (non-positive time step, negative margin, …).
     #[error("invalid option {name} = {value}: {expected}")]
     InvalidOption {

@@ -11,13 +11,19 @@
 mod error;
 mod options;
 pub mod pipeline;
+mod recorder;
 mod report;
 pub mod rows;
+mod run;
+mod scenario;
 mod step_data;
 mod world;
 
 pub use error::SimError;
 pub use options::StepOptions;
+pub use recorder::{CENTRELINE_HEADER, Frame, METRICS_HEADER, Recorder};
 pub use report::StepReport;
+pub use run::{KnotSample, Progress, RunSummary, run};
+pub use scenario::{LoadedScenario, Scenario};
 pub use step_data::StepData;
 pub use world::World;

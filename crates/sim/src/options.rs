@@ -43,7 +43,7 @@ impl Default for StepOptions {
             push_out: 1.0,
             limit_margin: 2f64.to_radians(),
             self_contact: true,
-            contact: DetectorOptions { margin: 0.1, ..DetectorOptions::default() },
+            contact: DetectorOptions { margin: 0.2, ..DetectorOptions::default() },
             wall: Some((DVec3::ZERO, DVec3::X)),
             wall_options: WallOptions { margin: 0.2, ..WallOptions::default() },
             solver: SolverOptions::default(),

@@ -20,7 +20,8 @@ pub struct StepReport {
     pub wall_contacts: usize,
     /// Deepest self-contact penetration at the start of the step, `max(0, −gap)` (cm).
     pub max_self_penetration: f64,
-    /// The same penetration relative to the local radius sum `r_a + r_b` (dimensionless).
+    /// The deepest self penetration relative to the local radius `(r_a + r_b)/2`
+    /// (dimensionless).
     pub max_self_penetration_relative: f64,
     /// Deepest wall penetration at the start of the step (cm).
     pub max_wall_penetration: f64,

@@ -60,6 +60,21 @@ impl World {
         self.steps
     }
 
+    /// Writes the body centres of the current state into `out` (cm). Recomputes the
+    /// kinematics of the current state into the step data.
+    pub fn body_centres(&mut self, out: &mut Vec<glam::DVec3>) {
+        pipeline::kinematics(&self.model, &self.state, &mut self.data);
+        out.clear();
+        out.extend((0..self.model.body_count()).map(|i| self.data.tree.body_centre(i)));
+    }
+
+    /// The largest excess of a joint angle over its limits in the current state (rad, 0 when
+    /// all are within).
+    pub fn max_limit_excess(&self) -> f64 {
+        let dofs = self.model.dofs().iter().zip(&self.state.q);
+        dofs.map(|(d, q)| (d.lower - q).max(q - d.upper)).fold(0.0, f64::max)
+    }
+
     /// Advances one step of `options.time_step` with `controller` deciding the actuation.
     pub fn step(&mut self, controller: &mut dyn Controller) -> Result<&StepReport, SimError> {
         let (model, options) = (&self.model, &self.options);

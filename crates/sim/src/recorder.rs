@@ -1,0 +1,118 @@
+//! Writes a run's outputs as it goes, flushing every frame, so a killed run keeps every
+//! completed frame (`docs/outputs.md` describes the files and their columns).
+//!
+//! - `centreline.csv`: `frame,time_s,body,x_cm,y_cm,z_cm`, one row per body per frame.
+//! - `metrics.csv`: one row per frame (see [`METRICS_HEADER`]).
+
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+use glam::DVec3;
+use hagfish_knots::KnotReport;
+
+use crate::error::SimError;
+use crate::report::StepReport;
+
+/// Header of `centreline.csv`.
+pub const CENTRELINE_HEADER: &str = "frame,time_s,body,x_cm,y_cm,z_cm";
+
+/// Header of `metrics.csv`. Contact, penetration and solver columns describe the step that
+/// ended at the frame (measured at its start); knot columns describe the frame's centreline.
+pub const METRICS_HEADER: &str = "frame,time_s,phase,self_contacts,wall_contacts,\
+knot,knot_agreement,knot_first_body,knot_last_body,knot_position_cm,\
+max_self_penetration_cm,max_self_penetration_rel,max_wall_penetration_cm,\
+solver_path,solver_status,solver_iterations";
+
+/// What one frame records.
+#[derive(Clone, Copy, Debug)]
+pub struct Frame<'a> {
+    /// Frame index (0 = initial state).
+    pub index: usize,
+    /// Simulation time (s).
+    pub time: f64,
+    /// Name of the controller phase.
+    pub phase: &'a str,
+    /// Body centres (cm).
+    pub centres: &'a [DVec3],
+    /// The report of the step that ended at this frame (default for frame 0).
+    pub step: &'a StepReport,
+    /// Knot analysis of the centreline, if it succeeded.
+    pub knot: Option<&'a KnotReport>,
+}
+
+/// The open output files of a run.
+#[derive(Debug)]
+pub struct Recorder {
+    centreline: (PathBuf, BufWriter<File>),
+    metrics: (PathBuf, BufWriter<File>),
+}
+
+impl Recorder {
+    /// Creates `directory` (and parents) and the output files with their headers.
+    pub fn create(directory: &Path) -> Result<Self, SimError> {
+        std::fs::create_dir_all(directory)
+            .map_err(|source| SimError::Output { path: directory.to_path_buf(), source })?;
+        let mut recorder = Self {
+            centreline: open(&directory.join("centreline.csv"))?,
+            metrics: open(&directory.join("metrics.csv"))?,
+        };
+        write_line(&mut recorder.centreline, format_args!("{CENTRELINE_HEADER}"))?;
+        write_line(&mut recorder.metrics, format_args!("{METRICS_HEADER}"))?;
+        Ok(recorder)
+    }
+
+    /// Appends one frame to every file and flushes them.
+    pub fn record(&mut self, frame: &Frame<'_>) -> Result<(), SimError> {
+        for (body, c) in frame.centres.iter().enumerate() {
+            write_line(
+                &mut self.centreline,
+                format_args!("{},{:.4},{body},{:.6},{:.6},{:.6}", frame.index, frame.time, c.x, c.y, c.z),
+            )?;
+        }
+        let (knot, agreement, first, last, position) = match frame.knot {
+            Some(k) => (
+                k.knot.to_string(),
+                format!("{:.3}", k.agreement),
+                k.extent.map_or(String::new(), |e| e.0.to_string()),
+                k.extent.map_or(String::new(), |e| e.1.to_string()),
+                k.position.map_or(String::new(), |p| format!("{p:.3}")),
+            ),
+            None => Default::default(),
+        };
+        let s = frame.step;
+        write_line(
+            &mut self.metrics,
+            format_args!(
+                "{},{:.4},{},{},{},{knot},{agreement},{first},{last},{position},{:.6},{:.6},{:.6},{:?},{:?},{}",
+                frame.index,
+                frame.time,
+                frame.phase,
+                s.self_contacts,
+                s.wall_contacts,
+                s.max_self_penetration,
+                s.max_self_penetration_relative,
+                s.max_wall_penetration,
+                s.solve.path,
+                s.solve.status,
+                s.solve.iterations,
+            ),
+        )?;
+        flush(&mut self.centreline)?;
+        flush(&mut self.metrics)
+    }
+}
+
+fn open(path: &Path) -> Result<(PathBuf, BufWriter<File>), SimError> {
+    File::create(path)
+        .map(|f| (path.to_path_buf(), BufWriter::new(f)))
+        .map_err(|source| SimError::Output { path: path.to_path_buf(), source })
+}
+
+fn write_line(file: &mut (PathBuf, BufWriter<File>), line: std::fmt::Arguments<'_>) -> Result<(), SimError> {
+    writeln!(file.1, "{line}").map_err(|source| SimError::Output { path: file.0.clone(), source })
+}
+
+fn flush(file: &mut (PathBuf, BufWriter<File>)) -> Result<(), SimError> {
+    file.1.flush().map_err(|source| SimError::Output { path: file.0.clone(), source })
+}
