@@ -7,11 +7,7 @@ use std::process::{Command, Output};
 const ES103: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/data/hagfish/es103.ron");
 
 fn hagfish_body(file: &Path) -> Output {
-    match Command::new(env!("CARGO_BIN_EXE_hagfish"))
-        .arg("body")
-        .arg(file)
-        .output()
-    {
+    match Command::new(env!("CARGO_BIN_EXE_hagfish")).arg("body").arg(file).output() {
         Ok(output) => output,
         Err(e) => panic!("cannot run hagfish: {e}"),
     }
@@ -39,10 +35,7 @@ fn broken_copy(name: &str, from: &str, to: &str, at: &str) -> (PathBuf, usize, u
         .lines()
         .enumerate()
         .filter(|(_, l)| !l.trim_start().starts_with("//"))
-        .find_map(|(i, l)| {
-            l.find(at)
-                .map(|byte| (i + 1, 1 + l[..byte].chars().count()))
-        })
+        .find_map(|(i, l)| l.find(at).map(|byte| (i + 1, 1 + l[..byte].chars().count())))
         .unwrap_or_else(|| panic!("{at:?} not found"));
     (path, line, column)
 }
@@ -55,10 +48,7 @@ fn assert_fails_at(output: &Output, path: &Path, line: usize, column: usize, wor
     assert!(output.stdout.is_empty());
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
     let prefix = format!("error: {}:{line}:{column}: ", path.display());
-    assert!(
-        stderr.starts_with(&prefix),
-        "{stderr:?} does not start with {prefix:?}"
-    );
+    assert!(stderr.starts_with(&prefix), "{stderr:?} does not start with {prefix:?}");
     for w in words {
         assert!(stderr.contains(w), "{stderr:?} lacks {w:?}");
     }
@@ -68,11 +58,7 @@ fn assert_fails_at(output: &Output, path: &Path, line: usize, column: usize, wor
 #[test]
 fn es103_prints_header_totals_and_100_rows() {
     let output = hagfish_body(Path::new(ES103));
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
     let stdout = String::from_utf8_lossy(&output.stdout);
     assert_eq!(header(&stdout, "specimen"), "ES103");
     assert_eq!(header(&stdout, "length"), "42.4");
@@ -92,11 +78,7 @@ fn es103_prints_header_totals_and_100_rows() {
     for (i, cols) in rows.iter().enumerate() {
         assert_eq!(cols[0], i.to_string());
         mass += cols[3].parse::<f64>().unwrap_or(f64::NAN);
-        let (joint, limit_columns) = if i % 2 == 0 {
-            ("revolute", 2)
-        } else {
-            ("universal", 4)
-        };
+        let (joint, limit_columns) = if i % 2 == 0 { ("revolute", 2) } else { ("universal", 4) };
         assert_eq!(cols[4], joint);
         assert_eq!(cols.len(), 5 + limit_columns);
     }
@@ -105,24 +87,16 @@ fn es103_prints_header_totals_and_100_rows() {
 
 #[test]
 fn ron_syntax_error_exits_2_with_line_and_column() {
-    let (path, line, column) = broken_copy(
-        "syntax.ron",
-        "length_cm: 42.4,",
-        "length_cm: 42.4",
-        "mass_g",
-    );
+    let (path, line, column) =
+        broken_copy("syntax.ron", "length_cm: 42.4,", "length_cm: 42.4", "mass_g");
     let output = hagfish_body(&path);
     assert_fails_at(&output, &path, line, column, &["comma"]);
 }
 
 #[test]
 fn invalid_value_exits_2_naming_the_field() {
-    let (path, line, column) = broken_copy(
-        "negative_mass.ron",
-        "mass_g: 80.0",
-        "mass_g: -80.0",
-        "-80.0",
-    );
+    let (path, line, column) =
+        broken_copy("negative_mass.ron", "mass_g: 80.0", "mass_g: -80.0", "-80.0");
     let output = hagfish_body(&path);
     assert_fails_at(&output, &path, line, column, &["mass_g", "-80"]);
 }
@@ -133,8 +107,5 @@ fn missing_file_exits_2_with_the_path() {
     let output = hagfish_body(&path);
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert_eq!(output.status.code(), Some(2), "{stderr}");
-    assert!(
-        stderr.starts_with(&format!("error: {}: ", path.display())),
-        "{stderr}"
-    );
+    assert!(stderr.starts_with(&format!("error: {}: ", path.display())), "{stderr}");
 }

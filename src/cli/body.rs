@@ -22,12 +22,7 @@ pub fn run(args: &BodyArgs, out: &mut impl Write) -> Result<(), CliError> {
     let biometrics = Biometrics::load(&args.file)?;
     let table = biometrics.body_table()?;
     let model = biometrics.to_model()?;
-    writeln!(
-        out,
-        "specimen  {} ({})",
-        biometrics.specimen,
-        args.file.display()
-    )?;
+    writeln!(out, "specimen  {} ({})", biometrics.specimen, args.file.display())?;
     writeln!(
         out,
         "length    {} cm = {} bodies x {:.6} cm",
@@ -76,10 +71,7 @@ fn write_rows(table: &BodyTable, out: &mut impl Write) -> Result<(), CliError> {
 
 /// `[lower, upper]` per DOF in degrees, space separated.
 fn limits(row: &BodyRow) -> String {
-    let ranges: Vec<String> = row
-        .limits_deg
-        .iter()
-        .map(|l| format!("[{:.2}, {:.2}]", l.lower, l.upper))
-        .collect();
+    let ranges: Vec<String> =
+        row.limits_deg.iter().map(|l| format!("[{:.2}, {:.2}]", l.lower, l.upper)).collect();
     ranges.join(" ")
 }

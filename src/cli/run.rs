@@ -4,7 +4,7 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
-use hagfish_sim::{LoadedScenario, Progress};
+use hagfish_sim::{LoadedScenario, Progress, Recorder};
 
 use super::CliError;
 
@@ -33,9 +33,16 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
         last_second = p.time.floor();
         let knot = p.knot.map_or("?".to_string(), |k| format!("{} ({:.2})", k.knot, k.agreement));
         // Progress lines go to stderr so stdout stays the summary.
-        let _ = writeln!(std::io::stderr(), "t = {:6.2} / {:.2} s  phase {:5}  knot {knot}", p.time, p.duration, p.phase);
+        let _ = writeln!(
+            std::io::stderr(),
+            "t = {:6.2} / {:.2} s  phase {:5}  knot {knot}",
+            p.time,
+            p.duration,
+            p.phase
+        );
     };
-    let summary = hagfish_sim::run(&loaded, &args.out, &mut report)?;
+    let mut recorder = Recorder::create(&args.out)?;
+    let summary = hagfish_sim::run(&loaded, &mut recorder, &mut report)?;
     let last = summary.knots.last().and_then(|k| k.knot.as_ref());
     writeln!(
         out,
@@ -46,9 +53,9 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
         summary.frames,
         started.elapsed().as_secs_f64(),
         last.map_or("?".to_string(), |k| format!("{} (agreement {:.2})", k.knot, k.agreement)),
-        100.0 * summary.max_self_penetration_relative,
-        summary.max_wall_penetration,
-        summary.max_limit_excess.to_degrees(),
+        100.0 * summary.maxima.self_penetration_relative,
+        summary.maxima.wall_penetration,
+        summary.maxima.limit_excess.to_degrees(),
     )?;
     Ok(())
 }

@@ -84,10 +84,8 @@ impl Controller for PhasedController {
         while self.progress.phase < self.phases.len() && self.phase_over(context.state.t) {
             self.advance(context.state.t);
         }
-        let holds_target = matches!(
-            self.phases.get(self.progress.phase),
-            Some(Phase::Form(_) | Phase::Hold(_))
-        );
+        let holds_target =
+            matches!(self.phases.get(self.progress.phase), Some(Phase::Form(_) | Phase::Hold(_)));
         if let (true, Some(forming)) = (holds_target, &mut self.forming) {
             forming.control(context, out);
         }

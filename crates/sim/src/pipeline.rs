@@ -194,7 +194,8 @@ fn measure_penetration(data: &mut StepData) {
     report.wall_contacts = data.wall_contacts.len();
     for contact in &data.self_contacts {
         let depth = (-contact.gap).max(0.0);
-        let radius = 0.5 * (data.centreline.radius(contact.u_a) + data.centreline.radius(contact.u_b));
+        let radius =
+            0.5 * (data.centreline.radius(contact.u_a) + data.centreline.radius(contact.u_b));
         report.max_self_penetration = report.max_self_penetration.max(depth);
         report.max_self_penetration_relative =
             report.max_self_penetration_relative.max(depth / radius);

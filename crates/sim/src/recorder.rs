@@ -17,12 +17,52 @@ use crate::report::StepReport;
 /// Header of `centreline.csv`.
 pub const CENTRELINE_HEADER: &str = "frame,time_s,body,x_cm,y_cm,z_cm";
 
-/// Header of `metrics.csv`. Contact, penetration and solver columns describe the step that
-/// ended at the frame (measured at its start); knot columns describe the frame's centreline.
+/// Header of `metrics.csv`. Contact and solver columns describe the step that ended at the
+/// frame (measured at its start); penetration and limit columns are maxima over the steps since
+/// the previous frame; knot columns describe the frame's centreline.
 pub const METRICS_HEADER: &str = "frame,time_s,phase,self_contacts,wall_contacts,\
 knot,knot_agreement,knot_first_body,knot_last_body,knot_position_cm,\
-max_self_penetration_cm,max_self_penetration_rel,max_wall_penetration_cm,\
+max_self_penetration_cm,max_self_penetration_rel,max_wall_penetration_cm,max_limit_excess_deg,\
 solver_path,solver_status,solver_iterations";
+
+/// Worst values over the steps between two frames.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct IntervalMaxima {
+    /// Deepest self penetration (cm).
+    pub self_penetration: f64,
+    /// Deepest self penetration relative to the local radius.
+    pub self_penetration_relative: f64,
+    /// Deepest wall penetration (cm).
+    pub wall_penetration: f64,
+    /// Largest excess of a joint over a limit (rad).
+    pub limit_excess: f64,
+}
+
+impl IntervalMaxima {
+    /// Takes the maxima of `self` and the step's.
+    pub fn include(&mut self, step: &StepReport, limit_excess: f64) {
+        self.self_penetration = self.self_penetration.max(step.max_self_penetration);
+        self.self_penetration_relative =
+            self.self_penetration_relative.max(step.max_self_penetration_relative);
+        self.wall_penetration = self.wall_penetration.max(step.max_wall_penetration);
+        self.limit_excess = self.limit_excess.max(limit_excess);
+    }
+
+    /// The maxima of both.
+    pub fn merge(&mut self, other: &IntervalMaxima) {
+        self.self_penetration = self.self_penetration.max(other.self_penetration);
+        self.self_penetration_relative =
+            self.self_penetration_relative.max(other.self_penetration_relative);
+        self.wall_penetration = self.wall_penetration.max(other.wall_penetration);
+        self.limit_excess = self.limit_excess.max(other.limit_excess);
+    }
+}
+
+/// Where a run's frames go: files ([`Recorder`]) or memory (tests).
+pub trait FrameSink {
+    /// Takes one frame.
+    fn record(&mut self, frame: &Frame<'_>) -> Result<(), SimError>;
+}
 
 /// What one frame records.
 #[derive(Clone, Copy, Debug)]
@@ -37,6 +77,8 @@ pub struct Frame<'a> {
     pub centres: &'a [DVec3],
     /// The report of the step that ended at this frame (default for frame 0).
     pub step: &'a StepReport,
+    /// Worst values since the previous frame.
+    pub maxima: &'a IntervalMaxima,
     /// Knot analysis of the centreline, if it succeeded.
     pub knot: Option<&'a KnotReport>,
 }
@@ -61,13 +103,18 @@ impl Recorder {
         write_line(&mut recorder.metrics, format_args!("{METRICS_HEADER}"))?;
         Ok(recorder)
     }
+}
 
+impl FrameSink for Recorder {
     /// Appends one frame to every file and flushes them.
-    pub fn record(&mut self, frame: &Frame<'_>) -> Result<(), SimError> {
+    fn record(&mut self, frame: &Frame<'_>) -> Result<(), SimError> {
         for (body, c) in frame.centres.iter().enumerate() {
             write_line(
                 &mut self.centreline,
-                format_args!("{},{:.4},{body},{:.6},{:.6},{:.6}", frame.index, frame.time, c.x, c.y, c.z),
+                format_args!(
+                    "{},{:.4},{body},{:.6},{:.6},{:.6}",
+                    frame.index, frame.time, c.x, c.y, c.z
+                ),
             )?;
         }
         let (knot, agreement, first, last, position) = match frame.knot {
@@ -80,19 +127,20 @@ impl Recorder {
             ),
             None => Default::default(),
         };
-        let s = frame.step;
+        let (s, m) = (frame.step, frame.maxima);
         write_line(
             &mut self.metrics,
             format_args!(
-                "{},{:.4},{},{},{},{knot},{agreement},{first},{last},{position},{:.6},{:.6},{:.6},{:?},{:?},{}",
+                "{},{:.4},{},{},{},{knot},{agreement},{first},{last},{position},{:.6},{:.6},{:.6},{:.4},{:?},{:?},{}",
                 frame.index,
                 frame.time,
                 frame.phase,
                 s.self_contacts,
                 s.wall_contacts,
-                s.max_self_penetration,
-                s.max_self_penetration_relative,
-                s.max_wall_penetration,
+                m.self_penetration,
+                m.self_penetration_relative,
+                m.wall_penetration,
+                m.limit_excess.to_degrees(),
                 s.solve.path,
                 s.solve.status,
                 s.solve.iterations,
@@ -109,7 +157,10 @@ fn open(path: &Path) -> Result<(PathBuf, BufWriter<File>), SimError> {
         .map_err(|source| SimError::Output { path: path.to_path_buf(), source })
 }
 
-fn write_line(file: &mut (PathBuf, BufWriter<File>), line: std::fmt::Arguments<'_>) -> Result<(), SimError> {
+fn write_line(
+    file: &mut (PathBuf, BufWriter<File>),
+    line: std::fmt::Arguments<'_>,
+) -> Result<(), SimError> {
     writeln!(file.1, "{line}").map_err(|source| SimError::Output { path: file.0.clone(), source })
 }
 

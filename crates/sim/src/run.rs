@@ -1,12 +1,10 @@
 //! Running a scenario: step the world, record frames, check the knot, report progress.
 
-use std::path::Path;
-
 use glam::DVec3;
 use hagfish_knots::{KnotOptions, KnotReport, analyse_knot};
 
 use crate::error::SimError;
-use crate::recorder::{Frame, Recorder};
+use crate::recorder::{Frame, FrameSink, IntervalMaxima};
 use crate::report::StepReport;
 use crate::scenario::LoadedScenario;
 
@@ -43,37 +41,30 @@ pub struct RunSummary {
     pub frames: usize,
     /// Knot analysis of every frame.
     pub knots: Vec<KnotSample>,
-    /// Largest self penetration relative to the local radius sum over the run.
-    pub max_self_penetration_relative: f64,
-    /// Largest wall penetration (cm).
-    pub max_wall_penetration: f64,
-    /// Largest excess of a joint over its limit (rad).
-    pub max_limit_excess: f64,
+    /// Worst penetrations and limit excess over the whole run.
+    pub maxima: IntervalMaxima,
 }
 
-/// Runs `loaded` to its duration, writing outputs into `out_dir`, calling `progress` after
-/// each recorded frame.
+/// Runs `loaded` to its duration, giving every recorded frame to `sink` and calling
+/// `progress` after each.
 pub fn run(
     loaded: &LoadedScenario,
-    out_dir: &Path,
+    sink: &mut dyn FrameSink,
     progress: &mut dyn FnMut(&Progress<'_>),
 ) -> Result<RunSummary, SimError> {
     let (mut world, mut controller) = loaded.build()?;
     let scenario = &loaded.scenario;
-    let mut recorder = Recorder::create(out_dir)?;
     let steps = (scenario.duration_s / scenario.time_step_s).round() as u64;
     let record_every = ((scenario.record_every_s / scenario.time_step_s).round() as u64).max(1);
     let knot_options = KnotOptions::default();
     let mut centres: Vec<DVec3> = Vec::with_capacity(world.model().body_count());
     let mut summary = RunSummary::default();
     let mut last_report = StepReport::default();
+    let mut maxima = IntervalMaxima::default();
     for step in 0..=steps {
         if step > 0 {
             last_report = *world.step(&mut controller)?;
-            summary.max_self_penetration_relative =
-                summary.max_self_penetration_relative.max(last_report.max_self_penetration_relative);
-            summary.max_wall_penetration = summary.max_wall_penetration.max(last_report.max_wall_penetration);
-            summary.max_limit_excess = summary.max_limit_excess.max(world.max_limit_excess());
+            maxima.include(&last_report, world.max_limit_excess());
         }
         if step % record_every != 0 {
             continue;
@@ -86,9 +77,12 @@ pub fn run(
             phase: controller.phase_name(),
             centres: &centres,
             step: &last_report,
+            maxima: &maxima,
             knot: knot.as_ref(),
         };
-        recorder.record(&frame)?;
+        sink.record(&frame)?;
+        summary.maxima.merge(&maxima);
+        maxima = IntervalMaxima::default();
         summary.frames += 1;
         progress(&Progress {
             time: world.state().t,

@@ -76,7 +76,8 @@ impl LoadedScenario {
     pub fn build(&self) -> Result<(World, PhasedController), SimError> {
         let model = self.biometrics.to_model()?;
         let state = State::rest(&model);
-        let options = StepOptions { time_step: self.scenario.time_step_s, ..StepOptions::default() };
+        let options =
+            StepOptions { time_step: self.scenario.time_step_s, ..StepOptions::default() };
         let world = World::new(model, options, state)?;
         let controller = PhasedController::new(self.scenario.drag, self.scenario.phases.clone());
         Ok((world, controller))
