@@ -4,6 +4,8 @@ use glam::DVec3;
 use hagfish_geometry::{Centreline, SelfContact};
 use hagfish_tree::{Data, Model, State};
 
+use crate::thigmotaxis::ThigmoRequest;
+
 /// What a controller sees at the start of a step: the model, the state, the kinematics of that
 /// state (body frames and twists in `kinematics`), the centreline and the self contacts.
 #[derive(Clone, Copy, Debug)]
@@ -64,6 +66,8 @@ pub struct Actuation {
     pub forces: Vec<PointForce>,
     /// Implicit point dampers.
     pub dampers: Vec<PointDamper>,
+    /// Thigmotaxis rows for the constraint solve.
+    pub thigmo: Vec<ThigmoRequest>,
 }
 
 impl Actuation {
@@ -71,9 +75,11 @@ impl Actuation {
     pub fn clear(&mut self) {
         self.forces.clear();
         self.dampers.clear();
+        self.thigmo.clear();
     }
 
-    /// Writes the forces and dampers into the tree data for the dynamics stage.
+    /// Writes the forces and dampers into the tree data for the dynamics stage (the
+    /// thigmotaxis requests are rows, built by the pipeline).
     pub fn apply_to(&self, data: &mut Data) {
         for f in &self.forces {
             data.apply_point_force(f.body, f.point, f.force);

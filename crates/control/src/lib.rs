@@ -13,13 +13,17 @@
 mod controller;
 mod drag;
 mod forming;
+mod knot_span;
 mod loops;
 mod phases;
 mod tail_pd;
+mod thigmotaxis;
 
 pub use controller::{Actuation, ControlContext, Controller, Passive, PointDamper, PointForce};
 pub use drag::WaterDrag;
 pub use forming::{FormingController, FormingScript, ScriptProgress, ScriptStep, Waypoint};
+pub use knot_span::KnotSpan;
 pub use loops::{ProjectedLoop, largest_projected_loop};
-pub use phases::{Phase, PhaseProgress, PhasedController};
+pub use phases::{Phase, PhaseProgress, PhasedController, ThigmoPhase, Until};
 pub use tail_pd::TailGains;
+pub use thigmotaxis::{SlidingTargets, Strand, ThigmoParameters, ThigmoRequest};

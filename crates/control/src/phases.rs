@@ -6,6 +6,8 @@ use serde::{Deserialize, Serialize};
 use crate::controller::{Actuation, ControlContext, Controller};
 use crate::drag::WaterDrag;
 use crate::forming::{FormingController, FormingScript};
+use crate::knot_span::KnotSpan;
+use crate::thigmotaxis::ThigmoParameters;
 
 /// One phase of a scenario.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -15,6 +17,32 @@ pub enum Phase {
     Form(FormingScript),
     /// Keeps the last forming target (if any) for a time (s); the body is otherwise passive.
     Hold(f64),
+    /// Thigmotaxic inverse dynamics on the first and last self contact until a condition.
+    Thigmotaxis(ThigmoPhase),
+}
+
+/// A thigmotaxis phase: its parameters and when it ends.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ThigmoPhase {
+    /// Targets, tail pull and force cap.
+    pub parameters: ThigmoParameters,
+    /// When the phase ends.
+    pub until: Until,
+}
+
+/// End conditions of a phase; it ends at the first that holds.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Until {
+    /// Longest duration (s).
+    pub seconds: f64,
+    /// Ends once the knot's anterior end is this close to the head (cm of arc length).
+    #[serde(default)]
+    pub knot_start_below_cm: Option<f64>,
+    /// Ends once the knot's anterior end is this far from the head (cm; sliding tail-ward).
+    #[serde(default)]
+    pub knot_start_above_cm: Option<f64>,
 }
 
 /// Progress through the phases: the controller state a checkpoint must keep.
@@ -55,15 +83,25 @@ impl PhasedController {
         match self.phases.get(self.progress.phase) {
             Some(Phase::Form(_)) => "form",
             Some(Phase::Hold(_)) => "hold",
+            Some(Phase::Thigmotaxis(_)) => "thigmo",
             None => "done",
         }
     }
 
-    /// True when the current phase is over at time `t`.
-    fn phase_over(&self, t: f64) -> bool {
+    /// True when the current phase is over.
+    fn phase_over(&self, context: &ControlContext<'_>) -> bool {
+        let elapsed = context.state.t - self.progress.started_at;
         match self.phases.get(self.progress.phase) {
             Some(Phase::Form(_)) => self.forming.as_ref().is_none_or(FormingController::finished),
-            Some(Phase::Hold(seconds)) => t - self.progress.started_at >= *seconds,
+            Some(Phase::Hold(seconds)) => elapsed >= *seconds,
+            Some(Phase::Thigmotaxis(phase)) => {
+                let start =
+                    KnotSpan::of(context.self_contacts, context.centreline).map(|s| s.start_cm);
+                let reached = |limit: Option<f64>, beyond: &dyn Fn(f64, f64) -> bool| matches!((limit, start), (Some(l), Some(s)) if beyond(s, l));
+                elapsed >= phase.until.seconds
+                    || reached(phase.until.knot_start_below_cm, &|s, l| s <= l)
+                    || reached(phase.until.knot_start_above_cm, &|s, l| s >= l)
+            }
             None => false,
         }
     }
@@ -81,13 +119,17 @@ impl Controller for PhasedController {
         if let Some(drag) = &mut self.drag {
             drag.control(context, out);
         }
-        while self.progress.phase < self.phases.len() && self.phase_over(context.state.t) {
+        while self.progress.phase < self.phases.len() && self.phase_over(context) {
             self.advance(context.state.t);
         }
-        let holds_target =
-            matches!(self.phases.get(self.progress.phase), Some(Phase::Form(_) | Phase::Hold(_)));
-        if let (true, Some(forming)) = (holds_target, &mut self.forming) {
-            forming.control(context, out);
+        match self.phases.get(self.progress.phase) {
+            Some(Phase::Form(_) | Phase::Hold(_)) => {
+                if let Some(forming) = &mut self.forming {
+                    forming.control(context, out);
+                }
+            }
+            Some(Phase::Thigmotaxis(phase)) => phase.parameters.actuate(context, out),
+            None => {}
         }
     }
 }

@@ -17,7 +17,7 @@ use crate::options::StepOptions;
 use crate::report::StepReport;
 use crate::rows::{
     add_head_rows, add_limit_rows, add_overshooting_limit_rows, add_self_contact_rows,
-    add_wall_rows,
+    add_thigmo_rows, add_wall_rows,
 };
 
 /// Cap on the extra solves of one step (velocity-product refreshes and limit rows added for
@@ -86,7 +86,7 @@ pub fn detect_contacts(
     Ok(())
 }
 
-/// Stage 5: the rows of this step: head, joint limits, wall, self contact.
+/// Stage 5: the rows of this step: head, joint limits, wall, self contact, thigmotaxis.
 pub fn build_rows(model: &Model, options: &StepOptions, state: &State, data: &mut StepData) {
     let h = options.time_step;
     data.rows.clear();
@@ -99,6 +99,14 @@ pub fn build_rows(model: &Model, options: &StepOptions, state: &State, data: &mu
         &data.self_contacts,
         h,
         options.push_out,
+        &mut data.rows,
+    );
+    add_thigmo_rows(
+        model,
+        &data.tree,
+        &data.self_contacts,
+        &data.actuation.thigmo,
+        h,
         &mut data.rows,
     );
 }

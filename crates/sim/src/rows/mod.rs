@@ -6,10 +6,12 @@ mod head;
 mod limits;
 mod self_contact;
 mod stabilisation;
+mod thigmo;
 mod wall;
 
 pub use head::add_head_rows;
 pub use limits::{add_limit_rows, add_overshooting_limit_rows};
 pub use self_contact::{add_self_contact_rows, add_spline_point_row};
 pub use stabilisation::unilateral_rhs;
+pub use thigmo::add_thigmo_rows;
 pub use wall::add_wall_rows;

@@ -1,0 +1,34 @@
+//! Thigmotaxis rows (thesis Eq. 5.1; `hagfish_control::ThigmoParameters`): for a requested
+//! strand of a self contact, with a the anterior and b the posterior point,
+//! `t_aᵀ(P(u_a) − P(u_b)) q̇ ≥ v_a` or `t_bᵀ(P(u_b) − P(u_a)) q̇ ≥ v_b`. No stabilisation term.
+//! Soft: the slack penalty is the row's largest impulse, `max_force · h`.
+
+use hagfish_control::{Strand, ThigmoRequest};
+use hagfish_geometry::SelfContact;
+use hagfish_solver::{RowGroup, RowKind, Rows};
+use hagfish_tree::{Data, Model};
+
+use super::self_contact::add_spline_point_row;
+
+/// Appends one soft row per request (requests naming a missing contact are skipped).
+pub fn add_thigmo_rows(
+    model: &Model,
+    data: &Data,
+    contacts: &[SelfContact],
+    requests: &[ThigmoRequest],
+    time_step: f64,
+    rows: &mut Rows,
+) {
+    for request in requests {
+        let Some(contact) = contacts.get(request.contact) else { continue };
+        let weight = request.max_force * time_step;
+        let row =
+            rows.push_zeroed(RowKind::SoftInequality { weight }, RowGroup::Thigmo, request.speed);
+        let (this, other, tangent) = match request.strand {
+            Strand::Anterior => (&contact.weights_a, &contact.weights_b, contact.tangent_a),
+            Strand::Posterior => (&contact.weights_b, &contact.weights_a, contact.tangent_b),
+        };
+        add_spline_point_row(model, data, this, tangent, 1.0, row);
+        add_spline_point_row(model, data, other, tangent, -1.0, row);
+    }
+}
