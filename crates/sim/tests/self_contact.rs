@@ -1,0 +1,120 @@
+//! Self contact in the full pipeline, along the first 20 s of `data/scenarios/form.ron` at
+//! h = 0.01 s, where the tail is driven around and across the body: the tubes barely
+//! penetrate with self contact on and pass through each other with it off, and no touching
+//! pair of centreline points is ever missed by the contact records.
+
+use glam::DVec3;
+use hagfish_control::PhasedController;
+use hagfish_geometry::{Centreline, ContactDetector, DetectorOptions};
+use hagfish_sim::{LoadedScenario, StepOptions, World};
+use hagfish_tree::State;
+
+fn forming_world(self_contact: bool) -> (World, PhasedController) {
+    let loaded =
+        LoadedScenario::load(concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/scenarios/form.ron"))
+            .expect("form.ron loads");
+    let model = loaded.biometrics.to_model().expect("model");
+    let options = StepOptions { self_contact, ..StepOptions::default() };
+    let state = State::rest(&model);
+    let world = World::new(model, options, state).expect("world");
+    let controller = PhasedController::new(loaded.scenario.drag, loaded.scenario.phases.clone());
+    (world, controller)
+}
+
+/// Deepest penetration relative to the local radius, and the mean over penetrating contacts,
+/// measured by an independent detector on the current centreline.
+fn penetration(
+    centres: &[DVec3],
+    radii: &[f64],
+    lengths: &[f64],
+    detector: &mut ContactDetector,
+) -> Vec<f64> {
+    let centreline = Centreline::new(centres, radii).expect("centreline");
+    let mut contacts = Vec::new();
+    detector.detect(&centreline, lengths, &mut contacts).expect("detect");
+    contacts
+        .iter()
+        .filter(|c| c.gap < 0.0)
+        .map(|c| -c.gap / (0.5 * (centreline.radius(c.u_a) + centreline.radius(c.u_b))))
+        .collect()
+}
+
+fn run_twenty_seconds(self_contact: bool) -> (f64, f64) {
+    let (mut world, mut controller) = forming_world(self_contact);
+    let radii: Vec<f64> = world.model().bodies().iter().map(|b| b.radius).collect();
+    let lengths: Vec<f64> = world.model().bodies().iter().map(|b| b.length).collect();
+    let mut detector = ContactDetector::new(DetectorOptions::default()).expect("detector");
+    let (mut worst, mut sum, mut count) = (0.0f64, 0.0, 0usize);
+    let mut centres = Vec::new();
+    for _ in 0..2000 {
+        world.step(&mut controller).expect("step");
+        world.body_centres(&mut centres);
+        for depth in penetration(&centres, &radii, &lengths, &mut detector) {
+            worst = worst.max(depth);
+            sum += depth;
+            count += 1;
+        }
+    }
+    (worst, if count > 0 { sum / count as f64 } else { 0.0 })
+}
+
+#[test]
+fn self_contact_keeps_penetration_below_two_percent_and_is_needed() {
+    let (worst_on, mean_on) = run_twenty_seconds(true);
+    let (worst_off, mean_off) = run_twenty_seconds(false);
+    println!(
+        "penetration relative to the radius: contact on max {:.2} % mean {:.3} %; off max {:.1} % mean {:.1} %",
+        100.0 * worst_on,
+        100.0 * mean_on,
+        100.0 * worst_off,
+        100.0 * mean_off
+    );
+    assert!(worst_on < 0.02, "penetration {worst_on} of the radius with self contact on");
+    assert!(
+        worst_off > 0.2,
+        "without self contact the body should pass through itself: {worst_off}"
+    );
+}
+
+#[test]
+fn no_touching_pair_is_missed_along_a_tangled_trajectory() {
+    let (mut world, mut controller) = forming_world(true);
+    let cluster = DetectorOptions::default().cluster_radius;
+    let index_gap = DetectorOptions::default().index_gap as f64;
+    let (mut checked_frames, mut touching_pairs) = (0, 0);
+    for step in 0..2000 {
+        world.step(&mut controller).expect("step");
+        if step % 10 != 0 {
+            continue;
+        }
+        // The step data hold the centreline and contacts of this step's start state.
+        let data = world.data();
+        let line = &data.centreline;
+        let samples: Vec<(f64, DVec3)> = (0..=line.segment_count() * 8)
+            .map(|i| i as f64 / 8.0)
+            .map(|u| (u, line.point(u)))
+            .collect();
+        for (i, &(u_a, x_a)) in samples.iter().enumerate() {
+            for &(u_b, x_b) in &samples[i + 1..] {
+                // Well outside the chain-index exclusion, and truly overlapping.
+                if u_b - u_a <= index_gap + 1.0
+                    || (x_b - x_a).length() >= line.radius(u_a) + line.radius(u_b)
+                {
+                    continue;
+                }
+                touching_pairs += 1;
+                // A record stands for every pair of its segment pair merged into its cluster.
+                let covered = data.self_contacts.iter().any(|c| {
+                    (c.u_a - u_a).abs() <= cluster + 1.0 && (c.u_b - u_b).abs() <= cluster + 1.0
+                });
+                assert!(
+                    covered,
+                    "step {step}: touching pair u = ({u_a}, {u_b}) has no contact record"
+                );
+            }
+        }
+        checked_frames += 1;
+    }
+    println!("{checked_frames} frames, {touching_pairs} touching sample pairs, all covered");
+    assert!(touching_pairs > 100, "the trajectory must be tangled");
+}
