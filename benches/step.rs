@@ -1,34 +1,74 @@
-//! Whole-step benchmarks of the 100-body hagfish built from `data/hagfish/es103.ron`.
+//! Whole-step benchmarks of the 100-body ES103 hagfish (`data/hagfish/es103.ron`).
 //!
-//! `step/unconstrained`: one linearly implicit Euler step (kinematics, CRBA mass matrix,
-//! Newton–Euler forces, Cholesky of M̃, solve, integrate) in a bent, moving state.
+//! - `step/unconstrained`: one linearly implicit Euler step of the free chain (kinematics,
+//!   CRBA of M̃, momentum, Newton–Euler forces, Cholesky, solve, integrate) in a bent, moving
+//!   state.
+//! - `step/knotted/<backend>`: one whole pipeline step (kinematics, contact detection,
+//!   drag, dynamics, rows, constraint solve with its re-solves, integration) in the knotted
+//!   state reached by `data/scenarios/form.ron` at t = 20 s (≈ 40–60 self contacts), with
+//!   the contact-space QP (default) and with clarabel (reference).
 
-use criterion::{Criterion, criterion_group, criterion_main};
+use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
+use hagfish_control::WaterDrag;
+use hagfish_sim::{LoadedScenario, StepOptions, World};
+use hagfish_solver::{QpBackend, SolverOptions};
 use hagfish_tree::{Data, State, step_unconstrained};
 
-fn hagfish_state() -> (hagfish_tree::Model, State) {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/data/hagfish/es103.ron");
-    let biometrics = hagfish_anatomy::Biometrics::load(path).expect("es103.ron loads");
-    let model = biometrics.to_model().expect("es103.ron builds");
+fn form_scenario() -> LoadedScenario {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/data/scenarios/form.ron");
+    LoadedScenario::load(path).expect("form.ron loads")
+}
+
+fn unconstrained(c: &mut Criterion) {
+    let model = form_scenario().biometrics.to_model().expect("model");
     let mut state = State::rest(&model);
     for a in 0..model.dof_count() {
         state.q[a] = 0.2 * (a as f64 * 0.37).sin();
         state.qdot[a] = 0.2 * (a as f64 * 0.91).cos();
     }
-    (model, state)
-}
-
-fn unconstrained(c: &mut Criterion) {
-    let (model, state) = hagfish_state();
     let mut data = Data::new(&model);
     c.bench_function("step/unconstrained", |b| {
         b.iter_batched_ref(
             || state.clone(),
             |s| step_unconstrained(&model, s, 0.01, &mut data).expect("step"),
-            criterion::BatchSize::SmallInput,
+            BatchSize::SmallInput,
         )
     });
 }
 
-criterion_group!(benches, unconstrained);
+fn knotted(c: &mut Criterion) {
+    let loaded = form_scenario();
+    let (mut world, mut controller) = loaded.build().expect("world");
+    for _ in 0..2000 {
+        world.step(&mut controller).expect("forming step");
+    }
+    let knotted = world.state().clone();
+    for backend in [QpBackend::ContactSpace, QpBackend::Clarabel] {
+        let model = world.model().clone();
+        let options = StepOptions {
+            solver: SolverOptions { backend, ..SolverOptions::default() },
+            ..StepOptions::default()
+        };
+        let mut bench_world = World::new(model, options, knotted.clone()).expect("world");
+        let mut drag = WaterDrag::default();
+        bench_world.step(&mut drag).expect("warm-up step");
+        println!(
+            "knotted state: {} self contacts, rows per group {:?}",
+            bench_world.data().report.self_contacts,
+            bench_world.data().report.solve.rows_per_group
+        );
+        c.bench_function(&format!("step/knotted/{backend:?}"), |b| {
+            b.iter_batched(
+                || knotted.clone(),
+                |s| {
+                    bench_world.set_state(s).expect("state");
+                    bench_world.step(&mut drag).expect("step").solve.iterations
+                },
+                BatchSize::SmallInput,
+            )
+        });
+    }
+}
+
+criterion_group!(benches, unconstrained, knotted);
 criterion_main!(benches);

@@ -57,5 +57,18 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
         summary.maxima.wall_penetration,
         summary.maxima.limit_excess.to_degrees(),
     )?;
+    let steps = summary.steps.max(1) as f64;
+    let stages: Vec<String> = summary
+        .timings
+        .stages()
+        .iter()
+        .map(|(name, seconds)| format!("{name} {:.1}", 1e6 * seconds / steps))
+        .collect();
+    writeln!(
+        out,
+        "mean µs per step: {}  (total {:.1})",
+        stages.join(", "),
+        1e6 * summary.timings.total() / steps
+    )?;
     Ok(())
 }

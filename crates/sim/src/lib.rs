@@ -22,7 +22,7 @@ mod world;
 pub use error::SimError;
 pub use options::StepOptions;
 pub use recorder::{CENTRELINE_HEADER, Frame, FrameSink, IntervalMaxima, METRICS_HEADER, Recorder};
-pub use report::StepReport;
+pub use report::{StageTimings, StepReport};
 pub use run::{KnotSample, Progress, RunSummary, run};
 pub use scenario::{LoadedScenario, Scenario};
 pub use step_data::StepData;

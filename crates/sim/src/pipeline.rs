@@ -8,13 +8,15 @@
 //! Each stage is a public function of the immutable model and options and the mutable step
 //! data, so tests and benchmarks can run any prefix.
 
+use std::time::Instant;
+
 use hagfish_control::{ControlContext, Controller};
 use hagfish_solver::Problem;
 use hagfish_tree::{Model, State};
 
 use crate::error::SimError;
 use crate::options::StepOptions;
-use crate::report::StepReport;
+use crate::report::{StageTimings, StepReport};
 use crate::rows::{
     add_head_rows, add_limit_rows, add_overshooting_limit_rows, add_self_contact_rows,
     add_thigmo_rows, add_wall_rows,
@@ -150,39 +152,30 @@ pub fn step(
     let time = state.t;
     state.validate(model).map_err(|source| SimError::Tree { step: step_index, time, source })?;
     data.report = StepReport { step: step_index, time, ..StepReport::default() };
+    let mut timings = StageTimings::default();
+    let clock = Instant::now();
     kinematics(model, state, data);
+    let mut lap = lap_timer(clock);
+    timings.kinematics = lap();
     detect_contacts(model, options, data).map_err(|source| SimError::Geometry {
         step: step_index,
         time,
         source,
     })?;
     measure_penetration(data);
+    timings.detect_contacts = lap();
     control(model, options, state, data, controller);
+    timings.control = lap();
     dynamics(model, options, state, data);
+    timings.dynamics = lap();
     build_rows(model, options, state, data);
-    let solver_error = |source| SimError::Solver { step: step_index, time, source };
-    solve_velocities(data).map_err(solver_error)?;
-    for round in 0..MAX_RESOLVES {
-        let mut changed = false;
-        if round < options.velocity_product_iterations {
-            refresh_velocity_products(model, options, state, data);
-            changed = true;
-        }
-        let velocity = data.solver.velocity();
-        let h = options.time_step;
-        changed |= add_overshooting_limit_rows(
-            model,
-            state,
-            velocity,
-            h,
-            options.push_out,
-            &mut data.rows,
-        ) > 0;
-        if !changed {
-            break;
-        }
-        solve_velocities(data).map_err(solver_error)?;
-    }
+    timings.build_rows = lap();
+    solve_and_resolve(model, options, state, data).map_err(|source| SimError::Solver {
+        step: step_index,
+        time,
+        source,
+    })?;
+    timings.solve = lap();
     let status = data.report.solve.status;
     if !status.is_solved() {
         return Err(SimError::SolveFailed {
@@ -193,7 +186,50 @@ pub fn step(
         });
     }
     hagfish_tree::integrate(state, data.solver.velocity(), options.time_step)
-        .map_err(|source| SimError::Tree { step: step_index, time, source })
+        .map_err(|source| SimError::Tree { step: step_index, time, source })?;
+    timings.integrate = lap();
+    data.report.timings = timings;
+    Ok(())
+}
+
+/// Stage 6 with its re-solves: solve; then, while something changed (a velocity-product
+/// refresh is due, or a joint would overshoot a limit without a row), solve again, at most
+/// [`MAX_RESOLVES`] more times.
+pub fn solve_and_resolve(
+    model: &Model,
+    options: &StepOptions,
+    state: &State,
+    data: &mut StepData,
+) -> Result<(), hagfish_solver::SolverError> {
+    solve_velocities(data)?;
+    for round in 0..MAX_RESOLVES {
+        let mut changed = false;
+        if round < options.velocity_product_iterations {
+            refresh_velocity_products(model, options, state, data);
+            changed = true;
+        }
+        let velocity = data.solver.velocity();
+        let h = options.time_step;
+        let rows = &mut data.rows;
+        changed |=
+            add_overshooting_limit_rows(model, state, velocity, h, options.push_out, rows) > 0;
+        if !changed {
+            break;
+        }
+        solve_velocities(data)?;
+    }
+    Ok(())
+}
+
+/// A closure returning the seconds since its previous call (the first: since `start`).
+fn lap_timer(start: Instant) -> impl FnMut() -> f64 {
+    let mut last = start;
+    move || {
+        let now = Instant::now();
+        let seconds = (now - last).as_secs_f64();
+        last = now;
+        seconds
+    }
 }
 
 fn measure_penetration(data: &mut StepData) {

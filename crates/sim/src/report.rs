@@ -25,4 +25,62 @@ pub struct StepReport {
     pub max_self_penetration_relative: f64,
     /// Deepest wall penetration at the start of the step (cm).
     pub max_wall_penetration: f64,
+    /// Wall-clock time spent in each stage (not part of the simulation's results).
+    pub timings: StageTimings,
+}
+
+/// Seconds of wall-clock time per stage of one step.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct StageTimings {
+    /// Frames, axes, twists.
+    pub kinematics: f64,
+    /// Centreline, broad and narrow phase, wall.
+    pub detect_contacts: f64,
+    /// The controller.
+    pub control: f64,
+    /// M̃, momentum, generalized force.
+    pub dynamics: f64,
+    /// Constraint rows.
+    pub build_rows: f64,
+    /// Every velocity solve of the step, with the velocity-product refreshes and added rows.
+    pub solve: f64,
+    /// Position update.
+    pub integrate: f64,
+}
+
+impl StageTimings {
+    /// Adds another step's timings.
+    pub fn accumulate(&mut self, other: &StageTimings) {
+        self.kinematics += other.kinematics;
+        self.detect_contacts += other.detect_contacts;
+        self.control += other.control;
+        self.dynamics += other.dynamics;
+        self.build_rows += other.build_rows;
+        self.solve += other.solve;
+        self.integrate += other.integrate;
+    }
+
+    /// The named stages and their seconds, in pipeline order.
+    pub fn stages(&self) -> [(&'static str, f64); 7] {
+        [
+            ("kinematics", self.kinematics),
+            ("detect_contacts", self.detect_contacts),
+            ("control", self.control),
+            ("dynamics", self.dynamics),
+            ("build_rows", self.build_rows),
+            ("solve", self.solve),
+            ("integrate", self.integrate),
+        ]
+    }
+
+    /// Sum of all stages (s).
+    pub fn total(&self) -> f64 {
+        self.kinematics
+            + self.detect_contacts
+            + self.control
+            + self.dynamics
+            + self.build_rows
+            + self.solve
+            + self.integrate
+    }
 }

@@ -5,7 +5,7 @@ use hagfish_knots::{KnotOptions, KnotReport, analyse_knot};
 
 use crate::error::SimError;
 use crate::recorder::{Frame, FrameSink, IntervalMaxima};
-use crate::report::StepReport;
+use crate::report::{StageTimings, StepReport};
 use crate::scenario::LoadedScenario;
 
 /// Progress of a run, given to the caller after every recorded frame.
@@ -43,6 +43,8 @@ pub struct RunSummary {
     pub knots: Vec<KnotSample>,
     /// Worst penetrations and limit excess over the whole run.
     pub maxima: IntervalMaxima,
+    /// Wall-clock seconds per stage, summed over all steps.
+    pub timings: StageTimings,
 }
 
 /// Runs `loaded` to its duration, giving every recorded frame to `sink` and calling
@@ -65,6 +67,7 @@ pub fn run(
         if step > 0 {
             last_report = *world.step(&mut controller)?;
             maxima.include(&last_report, world.max_limit_excess());
+            summary.timings.accumulate(&last_report.timings);
         }
         if step % record_every != 0 {
             continue;

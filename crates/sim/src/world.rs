@@ -60,6 +60,18 @@ impl World {
         self.steps
     }
 
+    /// Replaces the state (checked against the model), e.g. to restart from a saved one.
+    pub fn set_state(&mut self, state: State) -> Result<(), SimError> {
+        state.validate(&self.model).map_err(|source| SimError::Tree {
+            step: self.steps,
+            time: state.t,
+            source,
+        })?;
+        self.state = state;
+        pipeline::kinematics(&self.model, &self.state, &mut self.data);
+        Ok(())
+    }
+
     /// Writes the body centres of the current state into `out` (cm). Recomputes the
     /// kinematics of the current state into the step data.
     pub fn body_centres(&mut self, out: &mut Vec<glam::DVec3>) {
