@@ -9,6 +9,7 @@
 //! CGS units throughout.
 
 mod error;
+mod forces;
 mod options;
 pub mod pipeline;
 mod recorder;
@@ -20,8 +21,11 @@ mod step_data;
 mod world;
 
 pub use error::SimError;
+pub use forces::{DofLabel, GroupForces, RECORDED_GROUPS, dof_labels};
 pub use options::StepOptions;
-pub use recorder::{CENTRELINE_HEADER, Frame, FrameSink, IntervalMaxima, METRICS_HEADER, Recorder};
+pub use recorder::{
+    CENTRELINE_HEADER, FORCES_HEADER, Frame, FrameSink, IntervalMaxima, METRICS_HEADER, Recorder,
+};
 pub use report::{StageTimings, StepReport};
 pub use run::{KnotSample, Progress, RunSummary, run};
 pub use scenario::{LoadedScenario, Scenario};

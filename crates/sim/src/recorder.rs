@@ -3,6 +3,7 @@
 //!
 //! - `centreline.csv`: `frame,time_s,body,x_cm,y_cm,z_cm`, one row per body per frame.
 //! - `metrics.csv`: one row per frame (see [`METRICS_HEADER`]).
+//! - `forces.csv`: `frame,time_s,joint,axis,group,value_dyn_cm`, per DOF and recorded group.
 
 use std::fs::File;
 use std::io::{BufWriter, Write};
@@ -12,7 +13,12 @@ use glam::DVec3;
 use hagfish_knots::KnotReport;
 
 use crate::error::SimError;
+use crate::forces::{DofLabel, GroupForces, RECORDED_GROUPS};
 use crate::report::StepReport;
+
+/// Header of `forces.csv`: generalized constraint forces per joint, axis and group over the
+/// step that ended at the frame (dyn·cm).
+pub const FORCES_HEADER: &str = "frame,time_s,joint,axis,group,value_dyn_cm";
 
 /// Header of `centreline.csv`.
 pub const CENTRELINE_HEADER: &str = "frame,time_s,body,x_cm,y_cm,z_cm";
@@ -81,6 +87,10 @@ pub struct Frame<'a> {
     pub maxima: &'a IntervalMaxima,
     /// Knot analysis of the centreline, if it succeeded.
     pub knot: Option<&'a KnotReport>,
+    /// Labels of the DOFs (joint, axis).
+    pub labels: &'a [DofLabel],
+    /// Generalized constraint forces of the step that ended at the frame.
+    pub forces: &'a GroupForces,
 }
 
 /// The open output files of a run.
@@ -88,6 +98,7 @@ pub struct Frame<'a> {
 pub struct Recorder {
     centreline: (PathBuf, BufWriter<File>),
     metrics: (PathBuf, BufWriter<File>),
+    forces: (PathBuf, BufWriter<File>),
 }
 
 impl Recorder {
@@ -98,7 +109,9 @@ impl Recorder {
         let mut recorder = Self {
             centreline: open(&directory.join("centreline.csv"))?,
             metrics: open(&directory.join("metrics.csv"))?,
+            forces: open(&directory.join("forces.csv"))?,
         };
+        write_line(&mut recorder.forces, format_args!("{FORCES_HEADER}"))?;
         write_line(&mut recorder.centreline, format_args!("{CENTRELINE_HEADER}"))?;
         write_line(&mut recorder.metrics, format_args!("{METRICS_HEADER}"))?;
         Ok(recorder)
@@ -146,7 +159,20 @@ impl FrameSink for Recorder {
                 s.solve.iterations,
             ),
         )?;
+        for (values, group) in frame.forces.values.iter().zip(RECORDED_GROUPS) {
+            let name = GroupForces::group_name(group);
+            for (label, value) in frame.labels.iter().zip(values) {
+                write_line(
+                    &mut self.forces,
+                    format_args!(
+                        "{},{:.4},{},{},{name},{value:.6e}",
+                        frame.index, frame.time, label.joint, label.axis
+                    ),
+                )?;
+            }
+        }
         flush(&mut self.centreline)?;
+        flush(&mut self.forces)?;
         flush(&mut self.metrics)
     }
 }

@@ -4,6 +4,7 @@ use glam::DVec3;
 use hagfish_knots::{KnotOptions, KnotReport, analyse_knot};
 
 use crate::error::SimError;
+use crate::forces::{GroupForces, dof_labels};
 use crate::recorder::{Frame, FrameSink, IntervalMaxima};
 use crate::report::{StageTimings, StepReport};
 use crate::scenario::LoadedScenario;
@@ -63,6 +64,8 @@ pub fn run(
     let mut summary = RunSummary::default();
     let mut last_report = StepReport::default();
     let mut maxima = IntervalMaxima::default();
+    let labels = dof_labels(world.model());
+    let mut forces = GroupForces::default();
     for step in 0..=steps {
         if step > 0 {
             last_report = *world.step(&mut controller)?;
@@ -74,6 +77,7 @@ pub fn run(
         }
         world.body_centres(&mut centres);
         let knot = analyse_knot(&centres, &knot_options).ok();
+        forces.fill(world.data(), world.model().dof_count(), scenario.time_step_s);
         let frame = Frame {
             index: summary.frames,
             time: world.state().t,
@@ -82,6 +86,8 @@ pub fn run(
             step: &last_report,
             maxima: &maxima,
             knot: knot.as_ref(),
+            labels: &labels,
+            forces: &forces,
         };
         sink.record(&frame)?;
         summary.maxima.merge(&maxima);
