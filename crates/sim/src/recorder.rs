@@ -10,6 +10,7 @@ use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
 use glam::DVec3;
+use hagfish_control::KnotSpan;
 use hagfish_knots::KnotReport;
 
 use crate::error::SimError;
@@ -29,7 +30,8 @@ pub const CENTRELINE_HEADER: &str = "frame,time_s,body,x_cm,y_cm,z_cm";
 pub const METRICS_HEADER: &str = "frame,time_s,phase,self_contacts,wall_contacts,\
 knot,knot_agreement,knot_first_body,knot_last_body,knot_position_cm,\
 max_self_penetration_cm,max_self_penetration_rel,max_wall_penetration_cm,max_limit_excess_deg,\
-solver_path,solver_status,solver_iterations";
+contacts_start_cm,contacts_end_cm,first_contact_cm,last_contact_cm,\
+solver_path,solver_status,solver_iterations,slack_rows,slack_max_cm_s";
 
 /// Worst values over the steps between two frames.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -87,6 +89,8 @@ pub struct Frame<'a> {
     pub maxima: &'a IntervalMaxima,
     /// Knot analysis of the centreline, if it succeeded.
     pub knot: Option<&'a KnotReport>,
+    /// The stretch of body the self contacts span (of the step that ended at the frame).
+    pub span: Option<KnotSpan>,
     /// Labels of the DOFs (joint, axis).
     pub labels: &'a [DofLabel],
     /// Generalized constraint forces of the step that ended at the frame.
@@ -141,10 +145,16 @@ impl FrameSink for Recorder {
             None => Default::default(),
         };
         let (s, m) = (frame.step, frame.maxima);
+        let span = frame.span.map_or(",,,".to_string(), |k| {
+            format!(
+                "{:.3},{:.3},{:.3},{:.3}",
+                k.start_cm, k.end_cm, k.first_contact_cm, k.last_contact_cm
+            )
+        });
         write_line(
             &mut self.metrics,
             format_args!(
-                "{},{:.4},{},{},{},{knot},{agreement},{first},{last},{position},{:.6},{:.6},{:.6},{:.4},{:?},{:?},{}",
+                "{},{:.4},{},{},{},{knot},{agreement},{first},{last},{position},{:.6},{:.6},{:.6},{:.4},{span},{:?},{:?},{},{},{:.3e}",
                 frame.index,
                 frame.time,
                 frame.phase,
@@ -157,6 +167,8 @@ impl FrameSink for Recorder {
                 s.solve.path,
                 s.solve.status,
                 s.solve.iterations,
+                s.solve.slack.count,
+                s.solve.slack.max,
             ),
         )?;
         for (values, group) in frame.forces.values.iter().zip(RECORDED_GROUPS) {

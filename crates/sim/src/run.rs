@@ -1,6 +1,7 @@
 //! Running a scenario: step the world, record frames, check the knot, report progress.
 
 use glam::DVec3;
+use hagfish_control::KnotSpan;
 use hagfish_knots::{KnotOptions, KnotReport, analyse_knot};
 
 use crate::error::SimError;
@@ -86,6 +87,7 @@ pub fn run(
             step: &last_report,
             maxima: &maxima,
             knot: knot.as_ref(),
+            span: KnotSpan::of(&world.data().self_contacts, &world.data().centreline),
             labels: &labels,
             forces: &forces,
         };
