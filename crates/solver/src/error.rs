@@ -1,0 +1,62 @@
+//! Errors for input the solver cannot interpret.
+//!
+//! A [`SolverError`] means the caller handed over malformed data: a dimension that does not
+//! match, a value that is not finite, a soft-row weight that is not a positive number, an
+//! effective mass matrix M̃ that is not symmetric positive definite. Everything that can happen
+//! to a *well-formed* problem (infeasible rows, an iteration cap, an inexact answer) is not an
+//! error but a [`SolveStatus`](crate::SolveStatus) inside the [`SolveReport`](crate::SolveReport).
+
+/// Malformed input to the velocity solve. Every variant names the offending quantity and where
+/// it sits, so the caller can trace it back to the body model or the row builder.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SolverError {
+    /// A matrix or vector does not have the size the problem needs (n = number of DOFs).
+    #[error("{what} has size {found}, expected {expected}")]
+    DimensionMismatch {
+        /// Which input, e.g. "force", "mass matrix rows", "row coefficients".
+        what: &'static str,
+        /// The size the problem needs.
+        expected: usize,
+        /// The size that was given.
+        found: usize,
+    },
+    /// An input value is NaN or infinite.
+    #[error("{what}[{row}, {col}] = {value} is not finite")]
+    NonFinite {
+        /// Which input, e.g. "mass matrix", "force", "row coefficients", "row rhs".
+        what: &'static str,
+        /// Row index (the DOF for vectors, the constraint row for row data).
+        row: usize,
+        /// Column index (0 for vectors; the DOF for row coefficients).
+        col: usize,
+        /// The offending value.
+        value: f64,
+    },
+    /// M̃ is not symmetric: M̃\[row, col\] and M̃\[col, row\] differ by more than rounding.
+    #[error("mass matrix is not symmetric: M[{row}, {col}] = {upper}, M[{col}, {row}] = {lower}")]
+    NotSymmetric {
+        /// Row of the upper-triangle entry.
+        row: usize,
+        /// Column of the upper-triangle entry.
+        col: usize,
+        /// M̃\[row, col\].
+        upper: f64,
+        /// M̃\[col, row\].
+        lower: f64,
+    },
+    /// The Cholesky factorisation M̃ = L Lᵀ met a non-positive pivot: M̃ is not positive
+    /// definite (for M̃ = M_r + hD + h²K this means a negative stiffness or a broken M_r).
+    #[error("mass matrix is not positive definite (non-positive Cholesky pivot at DOF {pivot})")]
+    NotPositiveDefinite {
+        /// Index of the first failing pivot.
+        pivot: usize,
+    },
+    /// A soft inequality row has a penalty weight that is not finite and strictly positive.
+    #[error("soft row {row}: weight {weight} must be finite and > 0")]
+    InvalidWeight {
+        /// Index of the row.
+        row: usize,
+        /// The weight given.
+        weight: f64,
+    },
+}

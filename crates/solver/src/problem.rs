@@ -1,0 +1,199 @@
+//! The velocity problem of one step, validated once.
+//!
+//! minimize ½ q̇ᵀM̃q̇ − q̇ᵀf̃ subject to the [`Rows`], with M̃ = M_r + hD + h²K (n × n, symmetric
+//! positive definite) and f̃ = M_r q̇⁰ + h f_r. Its optimality (KKT) conditions, in the sign
+//! convention of the whole crate, are
+//!
+//! M̃q̇ = f̃ + Cᵀλ,  λ free on equalities, λ ≥ 0 ⟂ (Cq̇ − b) on inequalities,
+//! 0 ≤ λ ≤ weight on soft inequalities (with slack σ = max(0, b − Cq̇) where λ = weight).
+//!
+//! [`Problem::new`] checks every input once (sizes, finiteness, symmetry of M̃, soft weights),
+//! so the solver itself never sees malformed data. Positive definiteness is checked by the
+//! Cholesky factorisation during the solve.
+
+use faer::MatRef;
+
+use crate::error::SolverError;
+use crate::rows::{RowKind, Rows};
+
+/// Relative tolerance of the symmetry check: |M̃ᵢⱼ − M̃ⱼᵢ| ≤ tol·(|M̃ᵢⱼ| + |M̃ⱼᵢ|) + tol·max|M̃ₖₖ|.
+const SYMMETRY_TOLERANCE: f64 = 1e-12;
+
+/// Borrowed, validated inputs of one velocity solve: M̃, f̃ and the rows.
+#[derive(Debug, Clone, Copy)]
+pub struct Problem<'a> {
+    mass: MatRef<'a, f64>,
+    force: &'a [f64],
+    rows: &'a Rows,
+}
+
+impl<'a> Problem<'a> {
+    /// Validates and wraps M̃ (`mass`, n × n, symmetric; the lower triangle is factored and the
+    /// full matrix enters the residuals), f̃ (`force`, length n) and the rows (over n DOFs).
+    pub fn new(
+        mass: MatRef<'a, f64>,
+        force: &'a [f64],
+        rows: &'a Rows,
+    ) -> Result<Self, SolverError> {
+        let n = force.len();
+        check_size("mass matrix rows", n, mass.nrows())?;
+        check_size("mass matrix columns", n, mass.ncols())?;
+        check_size("row coefficients", n, rows.dofs())?;
+        for (i, &value) in force.iter().enumerate() {
+            check_finite("force", i, 0, value)?;
+        }
+        check_mass(mass)?;
+        check_rows(rows)?;
+        Ok(Self { mass, force, rows })
+    }
+
+    /// M̃, n × n.
+    pub fn mass(&self) -> MatRef<'a, f64> {
+        self.mass
+    }
+
+    /// f̃, length n.
+    pub fn force(&self) -> &'a [f64] {
+        self.force
+    }
+
+    /// The constraint rows.
+    pub fn rows(&self) -> &'a Rows {
+        self.rows
+    }
+
+    /// Number of DOFs n.
+    pub fn dofs(&self) -> usize {
+        self.force.len()
+    }
+}
+
+fn check_size(what: &'static str, expected: usize, found: usize) -> Result<(), SolverError> {
+    if expected == found {
+        Ok(())
+    } else {
+        Err(SolverError::DimensionMismatch { what, expected, found })
+    }
+}
+
+fn check_finite(what: &'static str, row: usize, col: usize, value: f64) -> Result<(), SolverError> {
+    if value.is_finite() { Ok(()) } else { Err(SolverError::NonFinite { what, row, col, value }) }
+}
+
+/// Finite entries and symmetry up to rounding.
+fn check_mass(mass: MatRef<'_, f64>) -> Result<(), SolverError> {
+    let n = mass.nrows();
+    let mut max_diagonal = 0.0_f64;
+    for j in 0..n {
+        for i in 0..n {
+            check_finite("mass matrix", i, j, mass[(i, j)])?;
+        }
+        max_diagonal = max_diagonal.max(mass[(j, j)].abs());
+    }
+    for j in 0..n {
+        for i in 0..j {
+            let (upper, lower) = (mass[(i, j)], mass[(j, i)]);
+            let tolerance = SYMMETRY_TOLERANCE * (upper.abs() + lower.abs() + max_diagonal);
+            if (upper - lower).abs() > tolerance {
+                return Err(SolverError::NotSymmetric { row: i, col: j, upper, lower });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Finite coefficients and right-hand sides, valid soft weights.
+fn check_rows(rows: &Rows) -> Result<(), SolverError> {
+    let transposed = rows.transposed();
+    for (i, (&rhs, &kind)) in rows.rhs().iter().zip(rows.kinds()).enumerate() {
+        check_finite("row rhs", i, 0, rhs)?;
+        if let RowKind::SoftInequality { weight } = kind
+            && !(weight.is_finite() && weight > 0.0)
+        {
+            return Err(SolverError::InvalidWeight { row: i, weight });
+        }
+        for j in 0..transposed.nrows() {
+            check_finite("row coefficients", i, j, transposed[(j, i)])?;
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use faer::Mat;
+
+    use super::*;
+    use crate::rows::RowGroup;
+
+    #[test]
+    fn accepts_a_well_formed_problem() -> Result<(), SolverError> {
+        let mass = Mat::<f64>::identity(2, 2);
+        let mut rows = Rows::new(2);
+        rows.push(RowKind::Inequality, RowGroup::Wall, 0.0, &[1.0, 0.0])?;
+        let problem = Problem::new(mass.as_ref(), &[1.0, 2.0], &rows)?;
+        assert_eq!(problem.dofs(), 2);
+        assert_eq!(problem.rows().len(), 1);
+        Ok(())
+    }
+
+    #[test]
+    fn rejects_size_mismatches() {
+        let mass = Mat::<f64>::identity(2, 2);
+        let rows = Rows::new(2);
+        let err = Problem::new(mass.as_ref(), &[1.0, 2.0, 3.0], &rows).err();
+        assert!(matches!(
+            err,
+            Some(SolverError::DimensionMismatch {
+                what: "mass matrix rows",
+                expected: 3,
+                found: 2
+            })
+        ));
+        let rows3 = Rows::new(3);
+        let err = Problem::new(mass.as_ref(), &[1.0, 2.0], &rows3).err();
+        assert!(matches!(
+            err,
+            Some(SolverError::DimensionMismatch { what: "row coefficients", .. })
+        ));
+    }
+
+    #[test]
+    fn rejects_non_finite_values_with_their_position() -> Result<(), SolverError> {
+        let mut mass = Mat::<f64>::identity(2, 2);
+        let rows = Rows::new(2);
+        let err = Problem::new(mass.as_ref(), &[0.0, f64::NAN], &rows).err();
+        assert!(matches!(err, Some(SolverError::NonFinite { what: "force", row: 1, .. })));
+        mass[(1, 0)] = f64::INFINITY;
+        let err = Problem::new(mass.as_ref(), &[0.0, 0.0], &rows).err();
+        assert!(matches!(
+            err,
+            Some(SolverError::NonFinite { what: "mass matrix", row: 1, col: 0, .. })
+        ));
+        let mass = Mat::<f64>::identity(2, 2);
+        let mut rows = Rows::new(2);
+        rows.push(RowKind::Inequality, RowGroup::Contact, 0.0, &[1.0, f64::NAN])?;
+        let err = Problem::new(mass.as_ref(), &[0.0, 0.0], &rows).err();
+        assert!(matches!(
+            err,
+            Some(SolverError::NonFinite { what: "row coefficients", row: 0, col: 1, .. })
+        ));
+        Ok(())
+    }
+
+    #[test]
+    fn rejects_asymmetric_mass_and_bad_weights() -> Result<(), SolverError> {
+        let mut mass = Mat::<f64>::identity(2, 2);
+        mass[(0, 1)] = 0.5;
+        let rows = Rows::new(2);
+        let err = Problem::new(mass.as_ref(), &[0.0, 0.0], &rows).err();
+        assert!(matches!(err, Some(SolverError::NotSymmetric { row: 0, col: 1, .. })));
+        let mass = Mat::<f64>::identity(2, 2);
+        let mut rows = Rows::new(2);
+        let soft = RowKind::SoftInequality { weight: -1.0 };
+        rows.push(soft, RowGroup::Thigmo, 1.0, &[1.0, 0.0])?;
+        let err = Problem::new(mass.as_ref(), &[0.0, 0.0], &rows).err();
+        assert!(matches!(err, Some(SolverError::InvalidWeight { row: 0, .. })));
+        Ok(())
+    }
+}

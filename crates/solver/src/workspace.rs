@@ -1,0 +1,251 @@
+//! The solver workspace: path selection, the contact-space pipeline, and the answer.
+//!
+//! Path by the rows present (reported as [`SolvePath`]):
+//!
+//! 1. no rows: M̃q̇ = f̃ by Cholesky, q̇ = L⁻ᵀL⁻¹f̃;
+//! 2. equalities only: KKT by the Schur complement, W μ = b − G M̃⁻¹f̃ with W = G M̃⁻¹Gᵀ,
+//!    q̇ = M̃⁻¹(f̃ + Gᵀμ);
+//! 3. any (soft) inequality: the QP, by the contact-space dual (default) or clarabel.
+//!
+//! Paths 1–3 (contact space) are one pipeline: factor M̃ = LLᵀ; form Y = L⁻¹Cᵀ, W = YᵀY,
+//! r = b − C M̃⁻¹f̃ (`contact_space.rs`); minimise the dual over its box by the active-set
+//! method (`active_set.rs`; with only equalities it is one Schur-complement solve, with no
+//! rows it is empty); recover q̇ = M̃⁻¹(f̃ + Cᵀλ); refine on the final active set
+//! (`refine.rs`); verify the bound rows against the refined q̇ and resume the active set if
+//! one is violated (at most `VERIFICATION_PASSES` times). So the QP path equals the KKT path
+//! when no inequality is active, and the KKT path with no rows is the unconstrained path, by
+//! construction.
+//!
+//! Output: q̇ (n), λ (m, in row order) and per-group generalized impulses C_gᵀλ_g (n each,
+//! g·cm²/s per rotational DOF). **Impulses, not forces**: the generalized force of a group
+//! over the step is C_gᵀλ_g / h (dyn·cm per rotational DOF), which the caller forms with its h.
+//!
+//! All buffers live here and only grow, so repeated solves of the same size do not allocate
+//! (the clarabel backend excepted).
+
+use faer::Mat;
+
+use crate::active_set::{ActiveSet, ActiveSetLimits, Termination};
+use crate::clarabel_reference;
+use crate::contact_space::ContactSpace;
+use crate::error::SolverError;
+use crate::linalg::{axpy, zeroed};
+use crate::mass_factor::MassFactor;
+use crate::options::{QpBackend, SolverOptions, WarmStart};
+use crate::problem::Problem;
+use crate::refine::{FactoredSystem, Refinement};
+use crate::report::{SolvePath, SolveReport, SolveStatus};
+use crate::residuals::{Evaluation, evaluate};
+use crate::rows::RowGroup;
+
+/// How often a refined answer may send a violated bound row back to the active-set method.
+const VERIFICATION_PASSES: usize = 4;
+
+/// Owns every buffer of the velocity solve and the answer of the last one.
+#[derive(Debug)]
+pub struct SolverWorkspace {
+    options: SolverOptions,
+    mass: MassFactor,
+    dual: ContactSpace,
+    active: ActiveSet,
+    refinement: Refinement,
+    velocity: Vec<f64>,
+    multipliers: Vec<f64>,
+    impulses: Mat<f64>,
+    residual: Vec<f64>,
+    work: Vec<f64>,
+    report: SolveReport,
+}
+
+impl Default for SolverWorkspace {
+    fn default() -> Self {
+        Self::new(SolverOptions::default())
+    }
+}
+
+impl SolverWorkspace {
+    /// An empty workspace; buffers are sized by the first solve.
+    pub fn new(options: SolverOptions) -> Self {
+        Self {
+            options,
+            mass: MassFactor::new(),
+            dual: ContactSpace::new(),
+            active: ActiveSet::default(),
+            refinement: Refinement::default(),
+            velocity: Vec::new(),
+            multipliers: Vec::new(),
+            impulses: Mat::zeros(0, RowGroup::COUNT),
+            residual: Vec::new(),
+            work: Vec::new(),
+            report: SolveReport::default(),
+        }
+    }
+
+    /// The options in use.
+    pub fn options(&self) -> &SolverOptions {
+        &self.options
+    }
+
+    /// Replaces the options (takes effect at the next solve).
+    pub fn set_options(&mut self, options: SolverOptions) {
+        self.options = options;
+    }
+
+    /// Solves `problem`: minimise ½q̇ᵀM̃q̇ − q̇ᵀf̃ subject to its rows. The answer stays in the
+    /// workspace (see [`velocity`](Self::velocity), [`multipliers`](Self::multipliers),
+    /// [`group_impulse`](Self::group_impulse)); how it went is the returned report. Errors
+    /// only when M̃ is not positive definite (everything else was validated by `Problem`).
+    pub fn solve(&mut self, problem: &Problem<'_>) -> Result<&SolveReport, SolverError> {
+        let rows = problem.rows();
+        let (n, m) = (problem.dofs(), rows.len());
+        let path = match (m, rows.has_inequalities()) {
+            (0, _) => SolvePath::Unconstrained,
+            (_, false) => SolvePath::Kkt,
+            (_, true) => SolvePath::Qp,
+        };
+        let backend = (path == SolvePath::Qp).then_some(self.options.backend);
+        let warm_started = backend == Some(QpBackend::ContactSpace)
+            && self.options.warm_start == WarmStart::PreviousMultipliers
+            && !self.multipliers.is_empty();
+        if warm_started {
+            self.multipliers.resize(m, 0.0);
+        } else {
+            zeroed(&mut self.multipliers, m);
+        }
+        zeroed(&mut self.velocity, n);
+        zeroed(&mut self.residual, n);
+        zeroed(&mut self.work, n);
+
+        let (status, iterations, refinement_steps) = match backend {
+            Some(QpBackend::Clarabel) => {
+                let outcome =
+                    clarabel_reference::solve(problem, &mut self.velocity, &mut self.multipliers);
+                (outcome.status, outcome.iterations, 0)
+            }
+            _ => self.solve_contact_space(problem)?,
+        };
+        let evaluation = evaluate(
+            problem,
+            &self.velocity,
+            &self.multipliers,
+            self.options.acceptance,
+            &mut self.residual,
+            &mut self.work,
+        );
+        self.report = SolveReport {
+            path,
+            backend,
+            status: self.judge(status, &evaluation),
+            iterations,
+            refinement_steps,
+            warm_started,
+            rows_per_group: rows.count_per_group(),
+            active_per_group: evaluation.active_per_group,
+            residuals: evaluation.residuals,
+            slack: evaluation.slack,
+        };
+        self.collect_impulses(problem);
+        Ok(&self.report)
+    }
+
+    /// q̇ of the last solve (n).
+    pub fn velocity(&self) -> &[f64] {
+        &self.velocity
+    }
+
+    /// λ of the last solve (m, in row order): impulses, ≥ 0 on inequalities.
+    pub fn multipliers(&self) -> &[f64] {
+        &self.multipliers
+    }
+
+    /// C_gᵀλ_g of the last solve (n): the generalized impulse of `group`'s rows; divide by h
+    /// for the generalized force (dyn·cm per rotational DOF).
+    pub fn group_impulse(&self, group: RowGroup) -> &[f64] {
+        self.impulses.col_as_slice(group.index())
+    }
+
+    /// Report of the last solve.
+    pub fn report(&self) -> &SolveReport {
+        &self.report
+    }
+
+    /// Factor, dual, active set, recovery, refinement and primal verification; returns the
+    /// method's own status (`Solved`, `MaxIterations` or `Infeasible`), the active-set
+    /// iterations and the refinement steps.
+    fn solve_contact_space(
+        &mut self,
+        problem: &Problem<'_>,
+    ) -> Result<(SolveStatus, usize, usize), SolverError> {
+        self.mass.factor(problem.mass())?;
+        self.dual.build(&self.mass, problem);
+        let limits = ActiveSetLimits {
+            max_iterations: self.options.max_iterations,
+            release_tolerance: self.options.release_tolerance,
+        };
+        let mut outcome =
+            self.active.solve(&self.dual, problem.rows().kinds(), &mut self.multipliers, limits);
+        let (mut iterations, mut steps) = (outcome.iterations, 0);
+        for pass in 0..=VERIFICATION_PASSES {
+            self.dual.recover(&self.mass, &self.multipliers, &mut self.velocity);
+            let system = FactoredSystem {
+                problem,
+                mass: &self.mass,
+                dual: &self.dual,
+                free: self.active.free(),
+            };
+            steps += self.refinement.run(
+                system,
+                &mut self.multipliers,
+                &mut self.velocity,
+                self.options.max_refinement_steps,
+            );
+            if outcome.termination != Termination::Optimal || pass == VERIFICATION_PASSES {
+                break;
+            }
+            let tolerance = self.options.release_tolerance;
+            let Some(row) = self.active.violated_bound(problem, &self.velocity, tolerance) else {
+                break;
+            };
+            let left = ActiveSetLimits {
+                max_iterations: limits.max_iterations.saturating_sub(iterations),
+                ..limits
+            };
+            outcome = self.active.resume(&self.dual, &mut self.multipliers, left, row);
+            iterations += outcome.iterations;
+        }
+        let contradiction =
+            self.active.redundant_violated(problem, &self.velocity, self.options.acceptance);
+        let status = match outcome.termination {
+            Termination::Optimal if contradiction => SolveStatus::Infeasible,
+            Termination::Optimal => SolveStatus::Solved,
+            Termination::MaxIterations => SolveStatus::MaxIterations,
+            Termination::Infeasible => SolveStatus::Infeasible,
+        };
+        Ok((status, iterations, steps))
+    }
+
+    /// Final status: non-finite numbers are a numerical error; a "solved" answer whose
+    /// residuals exceed the acceptance is inexact; other outcomes stand.
+    fn judge(&self, status: SolveStatus, evaluation: &Evaluation) -> SolveStatus {
+        let finite = self.velocity.iter().chain(&self.multipliers).all(|v| v.is_finite());
+        match status {
+            _ if !finite => SolveStatus::NumericalError,
+            SolveStatus::Solved
+                if evaluation.residuals.worst_relative > self.options.acceptance =>
+            {
+                SolveStatus::SolvedInexact
+            }
+            _ => status,
+        }
+    }
+
+    /// impulse_g = Σ_{i in g} λᵢcᵢ for every group.
+    fn collect_impulses(&mut self, problem: &Problem<'_>) {
+        let rows = problem.rows();
+        self.impulses.resize_with(problem.dofs(), RowGroup::COUNT, |_, _| 0.0);
+        self.impulses.fill(0.0);
+        for (i, group) in rows.groups().iter().enumerate() {
+            axpy(self.multipliers[i], rows.row(i), self.impulses.col_as_slice_mut(group.index()));
+        }
+    }
+}
