@@ -1,0 +1,48 @@
+//! Broad phase and whole self-contact detection at 100 bodies on tangled centrelines.
+
+#![allow(missing_docs)]
+
+#[path = "../tests/support/curves.rs"]
+mod curves;
+
+use std::hint::black_box;
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use curves::{BODY_COUNT, BODY_LENGTH, hagfish_radii, helix, tangle};
+use hagfish_geometry::{
+    BroadPhase, BroadPhaseOptions, Centreline, ContactDetector, DetectorOptions, closest_points,
+};
+
+fn bench(c: &mut Criterion) {
+    let radii = hagfish_radii(BODY_COUNT);
+    let lengths = vec![BODY_LENGTH; BODY_COUNT];
+    for (name, centres) in [("tangle", tangle(BODY_COUNT, 1)), ("helix", helix(BODY_COUNT))] {
+        let line = Centreline::new(&centres, &radii).expect("valid centreline");
+        let mut broad = BroadPhase::new(BroadPhaseOptions::default()).expect("valid options");
+        let mut pairs = Vec::new();
+        c.bench_function(&format!("broad_phase/{name}/100"), |b| {
+            b.iter(|| {
+                broad.find_pairs(black_box(&line), &lengths, &mut pairs).expect("valid lengths");
+            })
+        });
+        let mut detector = ContactDetector::new(DetectorOptions::default()).expect("valid");
+        let mut contacts = Vec::new();
+        c.bench_function(&format!("detect/{name}/100"), |b| {
+            b.iter(|| {
+                detector.detect(black_box(&line), &lengths, &mut contacts).expect("valid lengths")
+            })
+        });
+        let mut centreline = line.clone();
+        c.bench_function(&format!("centreline_update/{name}/100"), |b| {
+            b.iter(|| centreline.update(black_box(&centres), &radii).expect("valid centreline"))
+        });
+    }
+    let line = Centreline::new(&tangle(BODY_COUNT, 1), &radii).expect("valid centreline");
+    let (a, b) = (line.segment(20), line.segment(60));
+    c.bench_function("closest_points/tangle", |bench| {
+        bench.iter(|| closest_points(black_box(&a), black_box(&b)))
+    });
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

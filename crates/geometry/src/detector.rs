@@ -1,0 +1,278 @@
+//! Self-contact detection: broad phase, narrow phase on the spline, merging.
+
+use crate::broad_phase::{BroadPhase, BroadPhaseOptions};
+use crate::centreline::Centreline;
+use crate::chord::chord_distance;
+use crate::cluster::{Candidate, keep_deepest_per_cluster};
+use crate::contact::SelfContact;
+use crate::error::GeometryError;
+use crate::narrow_phase::{NewtonStatus, closest_points};
+use crate::segment::Segment;
+
+/// Whether segments k_a and k_b can come within `margin` of touching.
+///
+/// Each segment lies within its [`Segment::chord_deviation_bound`] σ of its chord, so the
+/// spline distance is at least d_chord − σ_a − σ_b; the tube radii along a segment are at
+/// most the larger of its two body radii.
+fn may_touch(
+    radii: &[f64],
+    segments: &[(Segment, f64)],
+    (k_a, k_b): (usize, usize),
+    margin: f64,
+) -> bool {
+    let ((a, sigma_a), (b, sigma_b)) = (&segments[k_a], &segments[k_b]);
+    let reach = radii[k_a].max(radii[k_a + 1]) + radii[k_b].max(radii[k_b + 1]) + margin;
+    chord_distance(a.chord(), b.chord()) - sigma_a - sigma_b < reach
+}
+
+/// Options of the [`ContactDetector`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DetectorOptions {
+    /// Contacts with u_b − u_a ≤ `index_gap` are ignored (default 8): neighbouring parts
+    /// of the chain always overlap (redmax-notes §11.2).
+    pub index_gap: usize,
+    /// Speculative margin (cm, ≥ 0, default 0.05): a contact is reported when its gap is
+    /// below it, so the solver sees it one step before the tubes touch.
+    pub margin: f64,
+    /// Records closer than this in both u_a and u_b are one contact (default 1.5).
+    pub cluster_radius: f64,
+    /// Inflation of the broad-phase spheres (cm, default 0.25); see
+    /// [`BroadPhaseOptions::inflation`] for the lower bound that avoids missed contacts.
+    pub broad_phase_inflation: f64,
+}
+
+impl Default for DetectorOptions {
+    fn default() -> Self {
+        DetectorOptions {
+            index_gap: 8,
+            margin: 0.05,
+            cluster_radius: 1.5,
+            broad_phase_inflation: BroadPhaseOptions::default().inflation,
+        }
+    }
+}
+
+/// Counts from one [`ContactDetector::detect`] call, for logging and tests.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct DetectionReport {
+    /// Body pairs reported by the broad phase.
+    pub candidate_pairs: usize,
+    /// Distinct segment pairs around the candidate body pairs.
+    pub segment_pairs: usize,
+    /// Segment pairs close enough to touch (by the chord bound) and hence searched.
+    pub searched: usize,
+    /// Segment pairs whose Newton search did not converge (kept, with their status, if
+    /// they are contacts).
+    pub newton_failures: usize,
+    /// Records within the margin before merging.
+    pub raw_contacts: usize,
+    /// Records merged into another record of the same cluster.
+    pub merged: usize,
+    /// Contacts written to the output.
+    pub contacts: usize,
+}
+
+/// Self-contact detector: options plus the reusable broad- and narrow-phase workspaces.
+///
+/// Per call: the broad phase proposes body pairs (with an index gap two less than
+/// `index_gap`, so that no pair whose spline parameters differ by more than `index_gap`
+/// is lost); the segments touching each body ({i−1, i} × {j−1, j}, deduplicated) that can
+/// touch by the chord bound are searched for their closest points; records with
+/// gap < margin and u_b − u_a > index_gap are kept, and duplicates merged (see
+/// `cluster.rs`: this also drops a closest point clamped to a segment end that is the
+/// same point as the neighbouring segment's result). No allocation after warm-up.
+#[derive(Debug, Clone)]
+pub struct ContactDetector {
+    options: DetectorOptions,
+    broad_phase: BroadPhase,
+    body_pairs: Vec<(usize, usize)>,
+    /// Every segment of the centreline with its chord deviation bound.
+    segments: Vec<(Segment, f64)>,
+    segment_pairs: Vec<(usize, usize)>,
+    candidates: Vec<Candidate>,
+}
+
+impl ContactDetector {
+    /// Creates a detector with validated options.
+    ///
+    /// # Errors
+    /// [`GeometryError::InvalidOption`] if the margin, cluster radius or inflation is
+    /// negative or not finite.
+    pub fn new(options: DetectorOptions) -> Result<Self, GeometryError> {
+        for (name, value) in
+            [("margin", options.margin), ("cluster_radius", options.cluster_radius)]
+        {
+            GeometryError::require_option(
+                value.is_finite() && value >= 0.0,
+                name,
+                "finite and non-negative",
+                value,
+            )?;
+        }
+        let broad_phase = BroadPhase::new(BroadPhaseOptions {
+            index_gap: options.index_gap.saturating_sub(2),
+            inflation: options.broad_phase_inflation,
+        })?;
+        Ok(ContactDetector {
+            options,
+            broad_phase,
+            body_pairs: Vec::new(),
+            segments: Vec::new(),
+            segment_pairs: Vec::new(),
+            candidates: Vec::new(),
+        })
+    }
+
+    /// The options this detector was built with.
+    pub fn options(&self) -> &DetectorOptions {
+        &self.options
+    }
+
+    /// Fills `out` with the self contacts of `centreline`, sorted by (u_a, u_b).
+    ///
+    /// `body_lengths` are the body lengths ℓ_i (cm) for the broad-phase spheres.
+    ///
+    /// # Errors
+    /// As [`BroadPhase::find_pairs`]; `out` is cleared first.
+    pub fn detect(
+        &mut self,
+        centreline: &Centreline,
+        body_lengths: &[f64],
+        out: &mut Vec<SelfContact>,
+    ) -> Result<DetectionReport, GeometryError> {
+        out.clear();
+        self.broad_phase.find_pairs(centreline, body_lengths, &mut self.body_pairs)?;
+        self.collect_segment_pairs(centreline.segment_count());
+        self.segments.clear();
+        self.segments.extend((0..centreline.segment_count()).map(|k| {
+            let segment = centreline.segment(k);
+            (segment, segment.chord_deviation_bound())
+        }));
+        let (margin, index_gap) = (self.options.margin, self.options.index_gap as f64);
+        let mut searched = 0;
+        let mut newton_failures = 0;
+        self.candidates.clear();
+        for &(k_a, k_b) in &self.segment_pairs {
+            if !may_touch(centreline.radii(), &self.segments, (k_a, k_b), margin) {
+                continue;
+            }
+            searched += 1;
+            let closest = closest_points(&self.segments[k_a].0, &self.segments[k_b].0);
+            if closest.status != NewtonStatus::Converged {
+                newton_failures += 1;
+            }
+            let u_a = k_a as f64 + closest.s_a;
+            let u_b = k_b as f64 + closest.s_b;
+            let radii = centreline.radius(u_a) + centreline.radius(u_b);
+            let gap = closest.distance_squared.sqrt() - radii;
+            if gap < margin && u_b - u_a > index_gap {
+                self.candidates.push(Candidate { u_a, u_b, gap, status: closest.status });
+            }
+        }
+        let raw_contacts = self.candidates.len();
+        let merged = keep_deepest_per_cluster(&mut self.candidates, self.options.cluster_radius);
+        out.extend(
+            self.candidates.iter().map(|c| SelfContact::new(centreline, c.u_a, c.u_b, c.status)),
+        );
+        Ok(DetectionReport {
+            candidate_pairs: self.body_pairs.len(),
+            segment_pairs: self.segment_pairs.len(),
+            searched,
+            newton_failures,
+            raw_contacts,
+            merged,
+            contacts: out.len(),
+        })
+    }
+
+    /// Segment pairs (k_a < k_b) touching the candidate body pairs, sorted and unique:
+    /// body i touches segments i − 1 and i (those that exist).
+    fn collect_segment_pairs(&mut self, segment_count: usize) {
+        let touching = move |body: usize| {
+            [body.checked_sub(1), Some(body)]
+                .into_iter()
+                .flatten()
+                .filter(move |&k| k < segment_count)
+        };
+        self.segment_pairs.clear();
+        for &(i, j) in &self.body_pairs {
+            for k_a in touching(i) {
+                self.segment_pairs
+                    .extend(touching(j).filter(|&k_b| k_a < k_b).map(|k_b| (k_a, k_b)));
+            }
+        }
+        self.segment_pairs.sort_unstable();
+        self.segment_pairs.dedup();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+
+    /// Centres one `spacing` apart (by chord) along the curve (2(t² − 1), t(t² − 1), 0.25t),
+    /// t ∈ [−1.8, 1.8], which crosses itself at t = ±1 with the strands 0.5 cm apart in z.
+    fn alpha_curve(spacing: f64) -> Vec<DVec3> {
+        let curve = |t: f64| DVec3::new(2.0 * (t * t - 1.0), t * (t * t - 1.0), 0.25 * t);
+        let mut centres = vec![curve(-1.8)];
+        for i in 1..=200_000 {
+            let p = curve(-1.8 + 3.6 * f64::from(i) / 200_000.0);
+            if centres.last().is_some_and(|last| last.distance(p) >= spacing) {
+                centres.push(p);
+            }
+        }
+        centres
+    }
+
+    #[test]
+    fn one_crossing_gives_one_contact_with_normal_from_a_to_b() {
+        let centres = alpha_curve(0.424);
+        let n = centres.len();
+        let line = Centreline::new(&centres, &vec![0.3; n]).expect("valid");
+        let mut detector = ContactDetector::new(DetectorOptions::default()).expect("valid");
+        let mut contacts = Vec::new();
+        let report = detector.detect(&line, &vec![0.424; n], &mut contacts).expect("valid");
+        assert_eq!(contacts.len(), 1, "{report:?}: {contacts:#?}");
+        assert!(report.merged > 0, "neighbouring segment pairs see the same crossing");
+        let contact = &contacts[0];
+        assert!((contact.distance - 0.5).abs() < 0.01, "{contact:?}");
+        assert!((contact.gap - (contact.distance - 0.6)).abs() < 1e-12);
+        assert!(contact.normal.dot(DVec3::Z) > 0.95, "a is at z < 0, b at z > 0");
+        // Interior closest points: the normal is perpendicular to both strands.
+        assert!(contact.normal.dot(contact.tangent_a).abs() < 1e-9);
+        assert!(contact.normal.dot(contact.tangent_b).abs() < 1e-9);
+        assert!(contact.point_a.z < 0.0 && contact.point_b.z > 0.0);
+        assert_eq!(contact.status, NewtonStatus::Converged);
+    }
+
+    #[test]
+    fn margin_makes_contacts_speculative() {
+        let centres = alpha_curve(0.424);
+        let n = centres.len();
+        // Tubes of radius 0.24 leave a gap of ≈ 0.02 cm: reported only with the margin.
+        let line = Centreline::new(&centres, &vec![0.24; n]).expect("valid");
+        let mut contacts = Vec::new();
+        for (margin, expected) in [(0.05, 1), (0.0, 0)] {
+            let options = DetectorOptions { margin, ..DetectorOptions::default() };
+            let mut detector = ContactDetector::new(options).expect("valid");
+            detector.detect(&line, &vec![0.424; n], &mut contacts).expect("valid");
+            assert_eq!(contacts.len(), expected, "margin {margin}");
+        }
+    }
+
+    #[test]
+    fn invalid_options_are_rejected() {
+        let bad = [
+            DetectorOptions { margin: -0.1, ..DetectorOptions::default() },
+            DetectorOptions { cluster_radius: f64::NAN, ..DetectorOptions::default() },
+            DetectorOptions { broad_phase_inflation: f64::INFINITY, ..DetectorOptions::default() },
+        ];
+        for options in bad {
+            assert!(
+                matches!(ContactDetector::new(options), Err(GeometryError::InvalidOption { .. })),
+                "{options:?}"
+            );
+        }
+    }
+}

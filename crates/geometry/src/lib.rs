@@ -1,0 +1,46 @@
+//! Pure geometry of the hagfish body: the Catmull-Rom centreline through the body
+//! centres, self-contact detection on the tube around it, and wall contacts.
+//!
+//! The crate knows nothing about joints or masses. It takes body centres (cm, as
+//! [`glam::DVec3`]) and radii and returns contact records that carry everything the solver
+//! needs to build its rows: gaps, normals, tangents and the fixed weights of the real
+//! bodies whose blend is each contact point (physics.md §5, redmax-notes §6.3–6.4).
+//!
+//! Pipeline of one step:
+//!
+//! 1. [`Centreline::update`] copies the centres and radii and rebuilds the arc-length table;
+//! 2. [`ContactDetector::detect`] runs the [`BroadPhase`] (parry3d bounding spheres per
+//!    body), the Newton [`closest_points`] search on the spline segments around each
+//!    candidate body pair (thesis Eq. 4.5), and merges duplicate records into
+//!    [`SelfContact`]s sorted head to tail;
+//! 3. [`Wall::contacts`] lists the bodies near the wall as [`WallContact`]s.
+//!
+//! Per-step functions reuse the buffers of their workspaces and write into caller-owned
+//! `Vec`s, so they do not allocate after the first call. Outputs are sorted over total
+//! orders, so results are deterministic. Units are CGS (cm).
+
+mod arc_length;
+mod broad_phase;
+mod centreline;
+mod chord;
+mod cluster;
+mod contact;
+mod detector;
+mod error;
+mod narrow_phase;
+mod seeds;
+mod segment;
+mod wall;
+mod weights;
+
+pub use broad_phase::{BroadPhase, BroadPhaseOptions};
+pub use centreline::Centreline;
+pub use contact::SelfContact;
+pub use detector::{ContactDetector, DetectionReport, DetectorOptions};
+pub use error::GeometryError;
+pub use narrow_phase::{
+    ClosestPoints, GRADIENT_TOLERANCE, MAX_NEWTON_ITERATIONS, NewtonStatus, closest_points,
+};
+pub use segment::Segment;
+pub use wall::{Wall, WallContact, WallOptions};
+pub use weights::SplineWeights;

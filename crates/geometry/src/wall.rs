@@ -1,0 +1,148 @@
+//! Contact between the bodies and the wall the head is attached to.
+//!
+//! The wall is the half-space boundary through p_w with unit normal n_w pointing into the
+//! water (the body side). Each body is tested as a sphere of radius r_k at its centre
+//! (redmax-notes §6.3), with gap d_k = n_w·(c_k − p_w) − r_k; only the centre velocity enters
+//! the row n_wᵀ R_k [0 I₃] J_k, so the record needs just the body, gap and normal.
+
+use glam::DVec3;
+
+use crate::centreline::Centreline;
+use crate::error::GeometryError;
+
+/// One body near or inside the wall.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WallContact {
+    /// Body index k.
+    pub body: usize,
+    /// Signed gap d = n_w·(c_k − p_w) − r_k (cm); negative when the body penetrates.
+    pub gap: f64,
+    /// The wall's unit normal n_w (pointing to the body side).
+    pub normal: DVec3,
+}
+
+/// Options of a [`Wall`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WallOptions {
+    /// Bodies are reported when their gap is below this (cm, default 0.05).
+    pub margin: f64,
+    /// Bodies with a smaller index are never reported (default 3): the head and its
+    /// neighbours touch the wall by construction (redmax-notes §11.14).
+    pub first_body: usize,
+}
+
+impl Default for WallOptions {
+    fn default() -> Self {
+        WallOptions { margin: 0.05, first_body: 3 }
+    }
+}
+
+/// A planar wall with its contact options.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Wall {
+    point: DVec3,
+    normal: DVec3,
+    options: WallOptions,
+}
+
+impl Wall {
+    /// Creates a wall through `point` with normal `normal` (normalised here; it points to
+    /// the body side).
+    ///
+    /// # Errors
+    /// [`GeometryError::InvalidOption`] if `point` is not finite, `normal` is zero or not
+    /// finite, or the margin is not finite (the value shown is the vector's length for
+    /// vectors).
+    pub fn new(point: DVec3, normal: DVec3, options: WallOptions) -> Result<Self, GeometryError> {
+        GeometryError::require_option(point.is_finite(), "wall point", "finite", point.length())?;
+        let normal = normal.try_normalize().ok_or(GeometryError::InvalidOption {
+            name: "wall normal",
+            requirement: "finite and non-zero",
+            value: normal.length(),
+        })?;
+        GeometryError::require_option(
+            options.margin.is_finite(),
+            "wall margin",
+            "finite",
+            options.margin,
+        )?;
+        Ok(Wall { point, normal, options })
+    }
+
+    /// The wall's unit normal n_w.
+    pub fn normal(&self) -> DVec3 {
+        self.normal
+    }
+
+    /// Signed gap d = n_w·(c − p_w) − r of a sphere of radius `radius` at `centre` (cm).
+    pub fn gap(&self, centre: DVec3, radius: f64) -> f64 {
+        self.normal.dot(centre - self.point) - radius
+    }
+
+    /// Fills `out` with the bodies k ≥ `first_body` of `centreline` whose gap is below
+    /// the margin, in increasing body order (a pure function of its inputs).
+    pub fn contacts(&self, centreline: &Centreline, out: &mut Vec<WallContact>) {
+        out.clear();
+        let bodies = centreline.centres().iter().zip(centreline.radii()).enumerate();
+        out.extend(
+            bodies
+                .skip(self.options.first_body)
+                .map(|(body, (&c, &r))| WallContact {
+                    body,
+                    gap: self.gap(c, r),
+                    normal: self.normal,
+                })
+                .filter(|contact| contact.gap < self.options.margin),
+        );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn wall() -> Wall {
+        Wall::new(DVec3::ZERO, DVec3::new(2.0, 0.0, 0.0), WallOptions::default())
+            .expect("valid wall")
+    }
+
+    #[test]
+    fn gap_is_positive_outside_zero_touching_negative_inside() {
+        let w = wall();
+        assert!((w.gap(DVec3::new(2.0, 5.0, 0.0), 0.5) - 1.5).abs() < 1e-15);
+        assert_eq!(w.gap(DVec3::new(0.5, -1.0, 3.0), 0.5), 0.0);
+        assert!((w.gap(DVec3::new(0.2, 0.0, 0.0), 0.5) + 0.3).abs() < 1e-15);
+        assert!(w.gap(DVec3::new(-1.0, 0.0, 0.0), 0.5) < 0.0);
+        assert_eq!(w.normal(), DVec3::X);
+    }
+
+    #[test]
+    fn reports_bodies_within_margin_from_first_body_on() {
+        // Bodies at x = 0, −1, 0.52, 3, 0.1: radius 0.5.
+        let xs = [0.0, -1.0, 0.52, 3.0, 0.1, 0.54];
+        let centres: Vec<_> = xs.iter().map(|&x| DVec3::new(x, 0.0, 0.0)).collect();
+        let line = Centreline::new(&centres, &[0.5; 6]).expect("valid");
+        let mut out = Vec::new();
+        let options = WallOptions { first_body: 0, ..WallOptions::default() };
+        Wall::new(DVec3::ZERO, DVec3::X, options).expect("valid").contacts(&line, &mut out);
+        let bodies: Vec<_> = out.iter().map(|c| c.body).collect();
+        assert_eq!(bodies, vec![0, 1, 2, 4, 5]);
+        assert!(out.iter().all(|c| c.normal == DVec3::X));
+        wall().contacts(&line, &mut out);
+        let bodies: Vec<_> = out.iter().map(|c| (c.body, c.gap < 0.0)).collect();
+        assert_eq!(bodies, vec![(4, true), (5, false)]);
+    }
+
+    #[test]
+    fn invalid_walls_are_rejected() {
+        let options = WallOptions::default();
+        assert!(Wall::new(DVec3::ZERO, DVec3::ZERO, options).is_err());
+        assert!(Wall::new(DVec3::ZERO, DVec3::new(f64::NAN, 0.0, 0.0), options).is_err());
+        assert!(Wall::new(DVec3::splat(f64::INFINITY), DVec3::X, options).is_err());
+        let nan_margin = WallOptions { margin: f64::NAN, ..options };
+        assert!(matches!(
+            Wall::new(DVec3::ZERO, DVec3::X, nan_margin),
+            Err(GeometryError::InvalidOption { name: "wall margin", .. })
+        ));
+    }
+}
