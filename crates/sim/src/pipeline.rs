@@ -203,20 +203,27 @@ pub fn solve_and_resolve(
 ) -> Result<(), hagfish_solver::SolverError> {
     solve_velocities(data)?;
     for round in 0..MAX_RESOLVES {
-        let mut changed = false;
-        if round < options.velocity_product_iterations {
+        let refreshed = round < options.velocity_product_iterations;
+        if refreshed {
             refresh_velocity_products(model, options, state, data);
-            changed = true;
         }
         let velocity = data.solver.velocity();
         let h = options.time_step;
         let rows = &mut data.rows;
-        changed |=
-            add_overshooting_limit_rows(model, state, velocity, h, options.push_out, rows) > 0;
-        if !changed {
-            break;
+        let added = add_overshooting_limit_rows(model, state, velocity, h, options.push_out, rows);
+        match (refreshed, added) {
+            (false, 0) => break,
+            // Only f̃ changed: keep the factor of M̃ and the contact-space matrices.
+            (true, 0) => {
+                let problem = Problem::new(
+                    data.tree.effective_mass.as_ref(),
+                    &data.tree.effective_momentum,
+                    &data.rows,
+                )?;
+                data.report.solve = *data.solver.solve_with_new_force(&problem)?;
+            }
+            _ => solve_velocities(data)?,
         }
-        solve_velocities(data)?;
     }
     Ok(())
 }

@@ -56,13 +56,19 @@ impl ContactSpace {
         self.w.resize_with(m, m, |_, _| 0.0);
         matmul(self.w.as_mut(), Accum::Replace, self.y.transpose(), self.y.as_ref(), 1.0, Par::Seq);
 
+        self.b.clear();
+        self.b.extend_from_slice(rows.rhs());
+        self.update_force(factor, problem);
+    }
+
+    /// Recomputes z = L⁻¹f̃ and r = b − Yᵀz for a new f̃, keeping Y and W: for a problem whose
+    /// M̃ and rows are those of the last [`build`](Self::build).
+    pub(crate) fn update_force(&mut self, factor: &MassFactor, problem: &Problem<'_>) {
         self.z.clear();
         self.z.extend_from_slice(problem.force());
         factor.solve_lower(column_mut(&mut self.z));
-        self.b.clear();
-        self.b.extend_from_slice(rows.rhs());
         self.r.clear();
-        self.r.extend_from_slice(rows.rhs());
+        self.r.extend_from_slice(&self.b);
         matmul(
             column_mut(&mut self.r),
             Accum::Add,
@@ -71,6 +77,11 @@ impl ContactSpace {
             -1.0,
             Par::Seq,
         );
+    }
+
+    /// Number of rows m of the last build.
+    pub(crate) fn rows(&self) -> usize {
+        self.b.len()
     }
 
     /// Number of DOFs n.

@@ -55,6 +55,17 @@ pub struct SolverWorkspace {
     residual: Vec<f64>,
     work: Vec<f64>,
     report: SolveReport,
+    /// True when `mass` and `dual` hold the factor and matrices of the last solve's M̃ and rows.
+    contact_space_ready: bool,
+}
+
+/// What a solve may take over from the previous one.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Reuse {
+    /// Factor M̃ and build the contact-space matrices afresh.
+    Nothing,
+    /// M̃ and the rows are unchanged: keep the factor, Y and W.
+    MassAndRows,
 }
 
 impl Default for SolverWorkspace {
@@ -78,6 +89,7 @@ impl SolverWorkspace {
             residual: Vec::new(),
             work: Vec::new(),
             report: SolveReport::default(),
+            contact_space_ready: false,
         }
     }
 
@@ -96,6 +108,30 @@ impl SolverWorkspace {
     /// [`group_impulse`](Self::group_impulse)); how it went is the returned report. Errors
     /// only when M̃ is not positive definite (everything else was validated by `Problem`).
     pub fn solve(&mut self, problem: &Problem<'_>) -> Result<&SolveReport, SolverError> {
+        self.solve_with(problem, Reuse::Nothing)
+    }
+
+    /// Solves `problem` when only f̃ changed since the last solve: same M̃ (values) and the same
+    /// rows. The Cholesky factor of M̃ and the contact-space matrices Y = L⁻¹Cᵀ and W = YᵀY are
+    /// kept; only L⁻¹f̃ and the dual's linear term are recomputed, and the active set starts
+    /// from the last multipliers. Used to re-evaluate the velocity-product force at the new
+    /// velocity. When the last solve was not on the contact-space path or the sizes differ, this
+    /// is a full [`solve`](Self::solve). The caller guarantees that M̃ and the rows are unchanged.
+    pub fn solve_with_new_force(
+        &mut self,
+        problem: &Problem<'_>,
+    ) -> Result<&SolveReport, SolverError> {
+        let same_shape = self.contact_space_ready
+            && problem.rows().len() == self.dual.rows()
+            && problem.dofs() == self.dual.dofs();
+        self.solve_with(problem, if same_shape { Reuse::MassAndRows } else { Reuse::Nothing })
+    }
+
+    fn solve_with(
+        &mut self,
+        problem: &Problem<'_>,
+        reuse: Reuse,
+    ) -> Result<&SolveReport, SolverError> {
         let rows = problem.rows();
         let (n, m) = (problem.dofs(), rows.len());
         let path = match (m, rows.has_inequalities()) {
@@ -122,8 +158,9 @@ impl SolverWorkspace {
                     clarabel_reference::solve(problem, &mut self.velocity, &mut self.multipliers);
                 (outcome.status, outcome.iterations, 0)
             }
-            _ => self.solve_contact_space(problem)?,
+            _ => self.solve_contact_space(problem, reuse)?,
         };
+        self.contact_space_ready = backend != Some(QpBackend::Clarabel);
         let evaluation = evaluate(
             problem,
             &self.velocity,
@@ -175,9 +212,16 @@ impl SolverWorkspace {
     fn solve_contact_space(
         &mut self,
         problem: &Problem<'_>,
+        reuse: Reuse,
     ) -> Result<(SolveStatus, usize, usize), SolverError> {
-        self.mass.factor(problem.mass())?;
-        self.dual.build(&self.mass, problem);
+        match reuse {
+            Reuse::Nothing => {
+                self.contact_space_ready = false;
+                self.mass.factor(problem.mass())?;
+                self.dual.build(&self.mass, problem);
+            }
+            Reuse::MassAndRows => self.dual.update_force(&self.mass, problem),
+        }
         let limits = ActiveSetLimits {
             max_iterations: self.options.max_iterations,
             release_tolerance: self.options.release_tolerance,

@@ -351,3 +351,33 @@ proptest! {
         warm_start(shape, seed)?;
     }
 }
+
+/// A second solve after only f̃ changed, reusing the factor of M̃ and the contact-space
+/// matrices, gives the same answer as a fresh solve of the changed problem.
+fn new_force_resolve_matches_fresh_solve(shape: Shape, seed: u64) -> Outcome {
+    let mut s = generate(shape, seed);
+    let mut rng = common::Rng::new(seed ^ 0x5eed);
+    let mut reused = workspace(QpBackend::ContactSpace);
+    solve_in(&mut reused, &s)?;
+    for f in s.force.iter_mut() {
+        *f *= 1.0 + 0.2 * (rng.uniform() - 0.5);
+    }
+    let problem = Problem::new(s.mass.as_ref(), &s.force, &s.rows).map_err(fail)?;
+    let report = *reused.solve_with_new_force(&problem).map_err(fail)?;
+    let (fresh_report, fresh, _) = solve(&s, QpBackend::ContactSpace)?;
+    prop_assert_eq!(report.status, fresh_report.status);
+    let difference: Vec<f64> = reused.velocity().iter().zip(&fresh).map(|(a, b)| a - b).collect();
+    let m_norm = |x: &[f64]| dot(x, &mass_times(&s, x)).max(0.0).sqrt();
+    let error = m_norm(&difference) / (m_norm(&fresh) + 1e-3);
+    prop_assert!(error < 1e-8, "reused vs fresh: relative M-norm difference {error}");
+    check_kkt(&s, reused.velocity(), reused.multipliers())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 32 * RELEASE_FACTOR, ..ProptestConfig::default() })]
+
+    #[test]
+    fn contact_space_resolve_with_new_force_matches_fresh_solve((shape, seed) in shapes()) {
+        new_force_resolve_matches_fresh_solve(shape, seed)?;
+    }
+}
