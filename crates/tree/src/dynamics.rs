@@ -37,16 +37,7 @@ pub fn inverse_dynamics(model: &Model, data: &mut Data, qddot: Option<&[f64]>, t
             - data.applied_wrenches[i]
             - weight;
     }
-    for i in (0..model.body_count()).rev() {
-        let joint = &model.joints()[i];
-        if let Some(parent) = joint.parent {
-            let w = data.wrenches[i];
-            data.wrenches[parent] += w;
-        }
-        for a in joint.dofs() {
-            tau[a] = data.axes[a].dot(&data.wrenches[i]);
-        }
-    }
+    project_subtree_sums(model, &data.axes, &mut data.wrenches, tau);
 }
 
 /// Fills `data.momentum` with the generalized momentum `p = M q̇` at the velocities of the
@@ -55,14 +46,21 @@ pub fn generalized_momentum(model: &Model, data: &mut Data) {
     for i in 0..model.body_count() {
         data.wrenches[i] = data.inertias[i].apply(&data.velocities[i]);
     }
+    project_subtree_sums(model, &data.axes, &mut data.wrenches, &mut data.momentum);
+}
+
+/// The backward pass shared by RNEA and the momentum: sums the per-body vectors over each
+/// subtree, leaf to root (in place), and projects each joint's sum on its axes:
+/// `out_a = s_aᵀ Σ_{k ∈ subtree(a)} w_k`.
+fn project_subtree_sums(model: &Model, axes: &[Spatial], sums: &mut [Spatial], out: &mut [f64]) {
     for i in (0..model.body_count()).rev() {
         let joint = &model.joints()[i];
         if let Some(parent) = joint.parent {
-            let w = data.wrenches[i];
-            data.wrenches[parent] += w;
+            let w = sums[i];
+            sums[parent] += w;
         }
         for a in joint.dofs() {
-            data.momentum[a] = data.axes[a].dot(&data.wrenches[i]);
+            out[a] = axes[a].dot(&sums[i]);
         }
     }
 }
