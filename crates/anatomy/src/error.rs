@@ -56,10 +56,7 @@ impl Field {
 
     /// Element `index` of an array field.
     pub fn element(name: &'static str, index: usize) -> Self {
-        Self {
-            name,
-            index: Some(index),
-        }
+        Self { name, index: Some(index) }
     }
 
     /// The key as written in the file: the last segment of [`Field::name`].

@@ -79,16 +79,9 @@ fn parse_error(e: ron::error::SpannedError, path: &Path) -> AnatomyError {
     };
     match e.code {
         ron::Error::MissingStructField { field, .. } => AnatomyError::MissingField { at, field },
-        ron::Error::NoSuchStructField {
-            expected, found, ..
-        } => AnatomyError::UnknownField {
-            at,
-            field: found,
-            expected,
-        },
-        code => AnatomyError::Parse {
-            at,
-            message: code.to_string(),
-        },
+        ron::Error::NoSuchStructField { expected, found, .. } => {
+            AnatomyError::UnknownField { at, field: found, expected }
+        }
+        code => AnatomyError::Parse { at, message: code.to_string() },
     }
 }

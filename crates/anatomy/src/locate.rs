@@ -101,11 +101,7 @@ fn find_key(code: &[(usize, char)], key: &str) -> Option<usize> {
     let is_ident = |c: char| c.is_alphanumeric() || c == '_';
     (0..code.len()).find_map(|start| {
         let end = start + key.len();
-        let matches = code
-            .get(start..end)?
-            .iter()
-            .map(|&(_, c)| c)
-            .eq(key.iter().copied());
+        let matches = code.get(start..end)?.iter().map(|&(_, c)| c).eq(key.iter().copied());
         let boundary = start == 0 || !is_ident(code[start - 1].1);
         if !(matches && boundary) {
             return None;

@@ -28,10 +28,7 @@ impl Biometrics {
         for row in &table.rows {
             let (parent, joint_offset) = match row.index {
                 0 => (None, Transform::IDENTITY),
-                i => (
-                    Some(i - 1),
-                    Transform::from_translation(DVec3::new(ell, 0.0, 0.0)),
-                ),
+                i => (Some(i - 1), Transform::from_translation(DVec3::new(ell, 0.0, 0.0))),
             };
             builder.add_body(BodySpec {
                 parent,

@@ -22,10 +22,7 @@ pub struct LimitDeg {
 impl LimitDeg {
     /// The symmetric range `±theta` (deg).
     pub fn symmetric(theta: f64) -> Self {
-        Self {
-            lower: -theta,
-            upper: theta,
-        }
+        Self { lower: -theta, upper: theta }
     }
 }
 
@@ -93,16 +90,12 @@ impl Biometrics {
         self.validate()?;
         let n = self.body_count as f64;
         let ell = self.length_cm / n;
-        let radii: Vec<f64> = (0..self.body_count)
-            .map(|i| self.radius_at((i as f64 + 0.5) / n))
-            .collect();
+        let radii: Vec<f64> =
+            (0..self.body_count).map(|i| self.radius_at((i as f64 + 0.5) / n)).collect();
         let volume: f64 = radii.iter().map(|r| PI * r * r * ell).sum();
         let density = self.mass_g / volume;
         if !(volume.is_finite() && volume > 0.0 && density.is_finite() && density > 0.0) {
-            return Err(AnatomyError::DegenerateDensity {
-                volume_cm3: volume,
-                density,
-            });
+            return Err(AnatomyError::DegenerateDensity { volume_cm3: volume, density });
         }
         let rows = radii
             .iter()

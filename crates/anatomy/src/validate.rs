@@ -49,12 +49,7 @@ impl Checker<'_> {
             return Ok(());
         }
         let at = (self.locate)(&field);
-        Err(AnatomyError::OutOfRange {
-            at,
-            field,
-            value,
-            expected: bound.expected().into(),
-        })
+        Err(AnatomyError::OutOfRange { at, field, value, expected: bound.expected().into() })
     }
 
     /// Checks an array: one entry per mark, each within `bound`.
@@ -84,9 +79,7 @@ impl Checker<'_> {
     fn marks(&self, marks: &[f64]) -> Result<(), AnatomyError> {
         const NAME: &str = "mark_fractions";
         if marks.is_empty() {
-            return Err(AnatomyError::NoMarks {
-                at: (self.locate)(&Field::whole(NAME)),
-            });
+            return Err(AnatomyError::NoMarks { at: (self.locate)(&Field::whole(NAME)) });
         }
         self.per_mark(NAME, marks, marks.len(), Bound::Fraction)?;
         match marks.windows(2).position(|w| w[1] <= w[0]) {
@@ -138,32 +131,12 @@ impl Biometrics {
         check.value(Field::whole("mass_g"), self.mass_g, Bound::Positive)?;
         check.marks(&self.mark_fractions)?;
         let marks = self.mark_fractions.len();
-        check.per_mark(
-            "circumferences_cm",
-            &self.circumferences_cm,
-            marks,
-            Bound::Positive,
-        )?;
-        check.per_mark(
-            "bending_limits_deg",
-            &self.bending_limits_deg,
-            marks,
-            Bound::Angle,
-        )?;
-        check.value(
-            Field::whole("twist_limit_deg"),
-            self.twist_limit_deg,
-            Bound::Angle,
-        )?;
+        check.per_mark("circumferences_cm", &self.circumferences_cm, marks, Bound::Positive)?;
+        check.per_mark("bending_limits_deg", &self.bending_limits_deg, marks, Bound::Angle)?;
+        check.value(Field::whole("twist_limit_deg"), self.twist_limit_deg, Bound::Angle)?;
         for (name, value) in [
-            (
-                "bending_stiffness_dyn_cm_per_rad",
-                self.bending_stiffness_dyn_cm_per_rad,
-            ),
-            (
-                "twist_stiffness_dyn_cm_per_rad",
-                self.twist_stiffness_dyn_cm_per_rad,
-            ),
+            ("bending_stiffness_dyn_cm_per_rad", self.bending_stiffness_dyn_cm_per_rad),
+            ("twist_stiffness_dyn_cm_per_rad", self.twist_stiffness_dyn_cm_per_rad),
             ("damping_dyn_cm_s_per_rad", self.damping_dyn_cm_s_per_rad),
         ] {
             check.value(Field::whole(name), value, Bound::NonNegative)?;

@@ -20,11 +20,7 @@ impl Edit {
     fn new(from: &str, to: &'static str) -> Self {
         assert_eq!(ES103.matches(from).count(), 1, "{from:?} must occur once");
         let start = ES103.find(from).unwrap_or_default();
-        Self {
-            text: ES103.replacen(from, to, 1),
-            start,
-            to,
-        }
+        Self { text: ES103.replacen(from, to, 1), start, to }
     }
 
     /// Parses the text, which must fail.
@@ -43,26 +39,16 @@ impl Edit {
         };
         let before = &self.text[..self.start + offset];
         let line_start = before.rfind('\n').map_or(0, |i| i + 1);
-        (
-            1 + before.matches('\n').count(),
-            1 + before[line_start..].chars().count(),
-        )
+        (1 + before.matches('\n').count(), 1 + before[line_start..].chars().count())
     }
 }
 
 /// Asserts the error's origin is `PATH:line:column` and its message shows it and `words`.
 fn assert_at(e: &AnatomyError, origin: &Origin, line: usize, column: usize, words: &[&str]) {
-    let expected = Origin::Position {
-        path: PATH.into(),
-        line,
-        column,
-    };
+    let expected = Origin::Position { path: PATH.into(), line, column };
     assert_eq!(origin, &expected, "{e}");
     let message = e.to_string();
-    assert!(
-        message.starts_with(&format!("{PATH}:{line}:{column}: ")),
-        "{message}"
-    );
+    assert!(message.starts_with(&format!("{PATH}:{line}:{column}: ")), "{message}");
     for w in words {
         assert!(message.contains(w), "{message:?} lacks {w:?}");
     }
@@ -72,9 +58,7 @@ fn assert_at(e: &AnatomyError, origin: &Origin, line: usize, column: usize, word
 fn assert_out_of_range(from: &str, to: &'static str, field: &str, value_text: &str) {
     let edit = Edit::new(from, to);
     let e = edit.error();
-    let AnatomyError::OutOfRange { at, field: f, .. } = &e else {
-        panic!("{e:?}")
-    };
+    let AnatomyError::OutOfRange { at, field: f, .. } = &e else { panic!("{e:?}") };
     assert_eq!(f.to_string(), field);
     let (line, column) = edit.position_of(value_text);
     assert_at(&e, at, line, column, &[field]);
@@ -84,9 +68,7 @@ fn assert_out_of_range(from: &str, to: &'static str, field: &str, value_text: &s
 fn ron_syntax_error_has_line_and_column() {
     let edit = Edit::new("length_cm: 42.4,", "length_cm: 42.4");
     let e = edit.error();
-    let AnatomyError::Parse { at, .. } = &e else {
-        panic!("{e:?}")
-    };
+    let AnatomyError::Parse { at, .. } = &e else { panic!("{e:?}") };
     let (line, column) = edit.position_of("mass_g");
     assert_at(&e, at, line, column, &["comma"]);
 }
@@ -95,9 +77,7 @@ fn ron_syntax_error_has_line_and_column() {
 fn missing_field_is_typed_and_named() {
     let edit = Edit::new("    mass_g: 80.0,\n", "");
     let e = edit.error();
-    let AnatomyError::MissingField { at, field } = &e else {
-        panic!("{e:?}")
-    };
+    let AnatomyError::MissingField { at, field } = &e else { panic!("{e:?}") };
     assert_eq!(*field, "mass_g");
     let line = edit.text.lines().count();
     assert_at(&e, at, line, 1, &["missing field `mass_g`"]);
@@ -107,14 +87,7 @@ fn missing_field_is_typed_and_named() {
 fn unknown_field_is_typed_and_named() {
     let edit = Edit::new("mass_g: 80.0", "mass: 80.0");
     let e = edit.error();
-    let AnatomyError::UnknownField {
-        at,
-        field,
-        expected,
-    } = &e
-    else {
-        panic!("{e:?}")
-    };
+    let AnatomyError::UnknownField { at, field, expected } = &e else { panic!("{e:?}") };
     assert_eq!(field, "mass");
     assert!(expected.contains(&"mass_g"));
     let (line, column) = edit.position_of("mass:");
@@ -175,31 +148,15 @@ fn limits_of_0_and_180_degrees_are_rejected() {
         "twist_limit_deg",
         "180.0",
     );
-    assert_out_of_range(
-        "twist_limit_deg: 48.0",
-        "twist_limit_deg: 0.0",
-        "twist_limit_deg",
-        "0.0",
-    );
+    assert_out_of_range("twist_limit_deg: 48.0", "twist_limit_deg: 0.0", "twist_limit_deg", "0.0");
 }
 
 #[test]
 fn non_increasing_marks_are_rejected() {
     let edit = Edit::new("[0.2, 0.4, 0.6, 0.8]", "[0.2, 0.4, 0.4, 0.8]");
     let e = edit.error();
-    let AnatomyError::NotIncreasing {
-        at,
-        field,
-        value,
-        previous,
-    } = &e
-    else {
-        panic!("{e:?}")
-    };
-    assert_eq!(
-        (field.to_string().as_str(), *value, *previous),
-        ("mark_fractions[2]", 0.4, 0.4)
-    );
+    let AnatomyError::NotIncreasing { at, field, value, previous } = &e else { panic!("{e:?}") };
+    assert_eq!((field.to_string().as_str(), *value, *previous), ("mark_fractions[2]", 0.4, 0.4));
     let (line, column) = edit.position_of("0.4, 0.8");
     assert_at(&e, at, line, column, &["mark_fractions[2]"]);
 }
@@ -218,13 +175,7 @@ fn marks_outside_the_body_are_rejected() {
 fn array_length_mismatch_is_rejected() {
     let edit = Edit::new("[5.6, 5.5, 5.6, 4.3]", "[5.6, 5.5, 5.6]");
     let e = edit.error();
-    let AnatomyError::LengthMismatch {
-        at,
-        field,
-        got: 3,
-        expected: 4,
-    } = &e
-    else {
+    let AnatomyError::LengthMismatch { at, field, got: 3, expected: 4 } = &e else {
         panic!("{e:?}")
     };
     assert_eq!(field.to_string(), "circumferences_cm");
@@ -246,9 +197,7 @@ fn too_few_bodies_and_bad_taper_are_rejected() {
 #[test]
 fn missing_file_names_the_path() {
     let e = Biometrics::load("no/such/file.ron").err();
-    let Some(e @ AnatomyError::Io { .. }) = e else {
-        panic!("{e:?}")
-    };
+    let Some(e @ AnatomyError::Io { .. }) = e else { panic!("{e:?}") };
     assert!(e.to_string().starts_with("no/such/file.ron: "), "{e}");
 }
 
@@ -256,37 +205,17 @@ fn missing_file_names_the_path() {
 fn invalid_utf8_has_a_position() {
     let bytes = b"Biometrics(\n  specimen: \"E\xff\",\n)";
     let e = Biometrics::from_ron(bytes, Path::new(PATH)).err();
-    let Some(AnatomyError::NotUtf8 { at }) = e else {
-        panic!("{e:?}")
-    };
-    assert_eq!(
-        at,
-        Origin::Position {
-            path: PATH.into(),
-            line: 2,
-            column: 15
-        }
-    );
+    let Some(AnatomyError::NotUtf8 { at }) = e else { panic!("{e:?}") };
+    assert_eq!(at, Origin::Position { path: PATH.into(), line: 2, column: 15 });
 }
 
 #[test]
 fn values_built_in_code_are_validated_too() -> Result<(), AnatomyError> {
-    let good = Biometrics::load(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../data/hagfish/es103.ron"
-    ))?;
-    let bad = Biometrics {
-        mass_g: -1.0,
-        ..good
-    };
+    let good =
+        Biometrics::load(concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/hagfish/es103.ron"))?;
+    let bad = Biometrics { mass_g: -1.0, ..good };
     let e = bad.to_model().err();
-    let Some(
-        e @ AnatomyError::OutOfRange {
-            at: Origin::InMemory,
-            ..
-        },
-    ) = e
-    else {
+    let Some(e @ AnatomyError::OutOfRange { at: Origin::InMemory, .. }) = e else {
         panic!("{e:?}")
     };
     assert!(e.to_string().starts_with("biometrics: mass_g = -1"), "{e}");

@@ -63,16 +63,8 @@ fn body_table_radii_masses_and_density() -> Result<(), hagfish_anatomy::AnatomyE
     assert_eq!(table.dof_count(), 150);
     assert!(close(table.segment_length_cm, 0.424, 1e-15));
     assert!(close(table.total_mass_g(), 80.0, 80.0 * 1e-9));
-    assert!(close(
-        table.density_g_per_cm3,
-        80.0 / table.volume_cm3,
-        1e-15
-    ));
-    assert!(
-        close(table.density_g_per_cm3, 0.871, 0.002),
-        "ρ = {}",
-        table.density_g_per_cm3
-    );
+    assert!(close(table.density_g_per_cm3, 80.0 / table.volume_cm3, 1e-15));
+    assert!(close(table.density_g_per_cm3, 0.871, 0.002), "ρ = {}", table.density_g_per_cm3);
     for row in &table.rows {
         assert_eq!(row.radius_cm, b.radius_at((row.index as f64 + 0.5) / 100.0));
         let volume = std::f64::consts::PI * row.radius_cm.powi(2) * table.segment_length_cm;
@@ -104,10 +96,7 @@ fn limits_are_interpolated_at_the_joint() -> Result<(), hagfish_anatomy::Anatomy
         for k in model.joints()[joint].dofs() {
             let dof = model.dofs()[k];
             assert!(close(dof.upper, theta.to_radians(), 1e-12), "joint {joint}");
-            assert!(
-                close(dof.lower, -theta.to_radians(), 1e-12),
-                "joint {joint}"
-            );
+            assert!(close(dof.lower, -theta.to_radians(), 1e-12), "joint {joint}");
             assert_eq!((dof.stiffness, dof.damping, dof.rest), (1.0, 0.1, 0.0));
         }
     }
@@ -115,10 +104,7 @@ fn limits_are_interpolated_at_the_joint() -> Result<(), hagfish_anatomy::Anatomy
         let j = &model.joints()[joint];
         assert_eq!(j.kind, JointKind::Revolute { axis: DVec3::X });
         let dof = model.dofs()[j.dof_start];
-        assert_eq!(
-            (dof.lower, dof.upper),
-            ((-48.0f64).to_radians(), 48.0f64.to_radians())
-        );
+        assert_eq!((dof.lower, dof.upper), ((-48.0f64).to_radians(), 48.0f64.to_radians()));
         assert_eq!((dof.stiffness, dof.damping), (5.0, 0.1));
     }
     Ok(())
@@ -138,10 +124,7 @@ fn chain_layout_follows_redmax_notes() -> Result<(), hagfish_anatomy::AnatomyErr
     for body in model.bodies() {
         assert!(close(body.offset.translation.x, ell / 2.0, 1e-15));
         assert!(close(body.length, ell, 1e-15));
-        assert_eq!(
-            body.principal_inertia,
-            cylinder_inertia(body.mass, body.radius, body.length)
-        );
+        assert_eq!(body.principal_inertia, cylinder_inertia(body.mass, body.radius, body.length));
     }
     let head = &model.bodies()[0].principal_inertia;
     assert!(close(head.x, 0.37, 0.01) && close(head.y, 0.20, 0.01));
@@ -158,10 +141,7 @@ fn build_is_deterministic() -> Result<(), hagfish_anatomy::AnatomyError> {
 
 #[test]
 fn tail_taper_reaches_tip_radius_and_keeps_mass() -> Result<(), hagfish_anatomy::AnatomyError> {
-    let b = Biometrics {
-        tail_taper: Some(TailTaper { tip_radius_cm: 0.3 }),
-        ..es103()
-    };
+    let b = Biometrics { tail_taper: Some(TailTaper { tip_radius_cm: 0.3 }), ..es103() };
     assert_eq!(b.radius_at(0.8), 4.3 / TAU);
     assert!(close(b.radius_at(0.9), 0.5 * (4.3 / TAU + 0.3), 1e-12));
     assert_eq!(b.radius_at(1.0), 0.3);

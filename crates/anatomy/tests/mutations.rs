@@ -35,10 +35,7 @@ impl Mutation {
 /// Bytes biased toward RON's own syntax and digits, so that many mutants still parse and
 /// reach validation and the model build.
 fn byte() -> impl Strategy<Value = u8> {
-    prop_oneof![
-        any::<u8>(),
-        prop::sample::select(b"0123456789.-+eE,:()[]\" \n/*".to_vec()),
-    ]
+    prop_oneof![any::<u8>(), prop::sample::select(b"0123456789.-+eE,:()[]\" \n/*".to_vec()),]
 }
 
 fn mutation() -> impl Strategy<Value = Mutation> {
