@@ -21,11 +21,13 @@ pub struct StepOptions {
     pub limit_margin: f64,
     /// Whether self contact is detected and enforced.
     pub self_contact: bool,
-    /// Self-contact detection options (margin, chain-index gap, duplicate merging).
+    /// Self-contact detection options (chain-index gap, duplicate merging, speculative margin:
+    /// default 0.1 cm, so approach speeds up to 10 cm/s at h = 0.01 s are caught a step early;
+    /// 0.2 cm gave the same penetration in `form.ron` and a 10 % slower knotted step).
     pub contact: DetectorOptions,
     /// The wall: a point on it (cm) and its normal toward the body; `None` for no wall.
     pub wall: Option<(DVec3, DVec3)>,
-    /// Wall contact options (margin, first body tested).
+    /// Wall contact options (first body tested; margin 0.2 cm by default).
     pub wall_options: WallOptions,
     /// Options of the velocity solve (QP backend, tolerances).
     pub solver: SolverOptions,
@@ -43,7 +45,7 @@ impl Default for StepOptions {
             push_out: 1.0,
             limit_margin: 2f64.to_radians(),
             self_contact: true,
-            contact: DetectorOptions { margin: 0.2, ..DetectorOptions::default() },
+            contact: DetectorOptions { margin: 0.1, ..DetectorOptions::default() },
             wall: Some((DVec3::ZERO, DVec3::X)),
             wall_options: WallOptions { margin: 0.2, ..WallOptions::default() },
             solver: SolverOptions::default(),
