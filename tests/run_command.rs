@@ -44,3 +44,24 @@ fn form_scenario_ties_and_holds_a_trefoil() {
     assert_eq!(centreline.lines().next(), Some("frame,time_s,body,x_cm,y_cm,z_cm"));
     assert_eq!(centreline.lines().count(), 1 + 301 * 100);
 }
+
+#[test]
+fn the_same_scenario_gives_bit_identical_outputs() {
+    let scenario = concat!(env!("CARGO_MANIFEST_DIR"), "/data/scenarios/form.ron");
+    let run = |name: &str| {
+        let out = out_dir(name);
+        let status = Command::new(env!("CARGO_BIN_EXE_hagfish"))
+            .args(["run", scenario, "--quiet", "--out"])
+            .arg(&out)
+            .status()
+            .expect("hagfish runs");
+        assert!(status.success(), "exit status {status}");
+        out
+    };
+    let (first, second) = (run("determinism_a"), run("determinism_b"));
+    for file in ["centreline.csv", "metrics.csv", "forces.csv"] {
+        let a = std::fs::read(first.join(file)).expect(file);
+        let b = std::fs::read(second.join(file)).expect(file);
+        assert!(!a.is_empty() && a == b, "{file} differs between two runs");
+    }
+}
