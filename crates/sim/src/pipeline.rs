@@ -21,15 +21,38 @@ use crate::rows::{
     add_head_rows, add_limit_rows, add_overshooting_limit_rows, add_self_contact_rows,
     add_thigmo_rows, add_wall_rows,
 };
+use crate::step_data::StepData;
 
 /// Cap on the extra solves of one step (velocity-product refreshes and limit rows added for
 /// overshooting joints).
 const MAX_RESOLVES: usize = 4;
-use crate::step_data::StepData;
 
 /// Stage 1: frames, axes, twists and velocity products for `state`.
 pub fn kinematics(model: &Model, state: &State, data: &mut StepData) {
     hagfish_tree::forward_kinematics(model, &state.q, &state.qdot, &mut data.tree);
+}
+
+/// Stage 2: centreline through the body centres, self contacts and wall contacts.
+pub fn detect_contacts(
+    model: &Model,
+    options: &StepOptions,
+    data: &mut StepData,
+) -> Result<(), hagfish_geometry::GeometryError> {
+    for (i, centre) in data.centres.iter_mut().enumerate() {
+        *centre = data.tree.body_centre(i);
+    }
+    debug_assert_eq!(data.centres.len(), model.body_count());
+    data.centreline.update(&data.centres, &data.radii)?;
+    data.self_contacts.clear();
+    if options.self_contact {
+        data.report.detection =
+            data.detector.detect(&data.centreline, &data.lengths, &mut data.self_contacts)?;
+    }
+    data.wall_contacts.clear();
+    if let Some(wall) = &data.wall {
+        wall.contacts(&data.centreline, &mut data.wall_contacts);
+    }
+    Ok(())
 }
 
 /// Stage 3: the controller sees the state, kinematics and contacts and sets this step's
@@ -55,7 +78,7 @@ pub fn control(
     data.actuation.apply_to(&mut data.tree);
 }
 
-/// Stage 4: `M̃ = M + h Jᵀ C_m J + hD + h²K` (with the implicit dampers of stage 2), the
+/// Stage 4: `M̃ = M + h Jᵀ C_m J + hD + h²K` (with the implicit dampers of stage 3), the
 /// momentum `M q̇⁰`, the generalized force and `f̃ = M q̇⁰ + h f_r`.
 pub fn dynamics(model: &Model, options: &StepOptions, state: &State, data: &mut StepData) {
     let h = options.time_step;
@@ -63,29 +86,6 @@ pub fn dynamics(model: &Model, options: &StepOptions, state: &State, data: &mut 
     hagfish_tree::generalized_momentum(model, &mut data.tree);
     hagfish_tree::generalized_force(model, &state.q, &mut data.tree);
     hagfish_tree::assemble_effective_momentum(&mut data.tree, h);
-}
-
-/// Stage 2: centreline through the body centres, self contacts and wall contacts.
-pub fn detect_contacts(
-    model: &Model,
-    options: &StepOptions,
-    data: &mut StepData,
-) -> Result<(), hagfish_geometry::GeometryError> {
-    for (i, centre) in data.centres.iter_mut().enumerate() {
-        *centre = data.tree.body_centre(i);
-    }
-    debug_assert_eq!(data.centres.len(), model.body_count());
-    data.centreline.update(&data.centres, &data.radii)?;
-    data.self_contacts.clear();
-    if options.self_contact {
-        data.report.detection =
-            data.detector.detect(&data.centreline, &data.lengths, &mut data.self_contacts)?;
-    }
-    data.wall_contacts.clear();
-    if let Some(wall) = &data.wall {
-        wall.contacts(&data.centreline, &mut data.wall_contacts);
-    }
-    Ok(())
 }
 
 /// Stage 5: the rows of this step: head, joint limits, wall, self contact, thigmotaxis.
