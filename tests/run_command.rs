@@ -5,15 +5,11 @@
 use std::path::PathBuf;
 use std::process::Command;
 
-fn out_dir(name: &str) -> PathBuf {
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    dir
-}
-
-#[test]
-fn form_scenario_ties_and_holds_a_trefoil() {
-    let out = out_dir("run_form");
+/// Runs `hagfish run data/scenarios/form.ron --quiet` into a fresh directory named `name`
+/// under the test target's temporary directory and returns that directory.
+fn run_form(name: &str) -> PathBuf {
+    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&out);
     let scenario = concat!(env!("CARGO_MANIFEST_DIR"), "/data/scenarios/form.ron");
     let status = Command::new(env!("CARGO_BIN_EXE_hagfish"))
         .args(["run", scenario, "--quiet", "--out"])
@@ -21,6 +17,12 @@ fn form_scenario_ties_and_holds_a_trefoil() {
         .status()
         .expect("hagfish runs");
     assert!(status.success(), "exit status {status}");
+    out
+}
+
+#[test]
+fn form_scenario_ties_and_holds_a_trefoil() {
+    let out = run_form("run_form");
 
     let metrics = std::fs::read_to_string(out.join("metrics.csv")).expect("metrics.csv");
     let mut lines = metrics.lines();
@@ -47,18 +49,7 @@ fn form_scenario_ties_and_holds_a_trefoil() {
 
 #[test]
 fn the_same_scenario_gives_bit_identical_outputs() {
-    let scenario = concat!(env!("CARGO_MANIFEST_DIR"), "/data/scenarios/form.ron");
-    let run = |name: &str| {
-        let out = out_dir(name);
-        let status = Command::new(env!("CARGO_BIN_EXE_hagfish"))
-            .args(["run", scenario, "--quiet", "--out"])
-            .arg(&out)
-            .status()
-            .expect("hagfish runs");
-        assert!(status.success(), "exit status {status}");
-        out
-    };
-    let (first, second) = (run("determinism_a"), run("determinism_b"));
+    let (first, second) = (run_form("determinism_a"), run_form("determinism_b"));
     for file in ["centreline.csv", "metrics.csv", "forces.csv"] {
         let a = std::fs::read(first.join(file)).expect(file);
         let b = std::fs::read(second.join(file)).expect(file);
