@@ -57,6 +57,21 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
         summary.maxima.wall_penetration,
         summary.maxima.limit_excess.to_degrees(),
     )?;
+    for phase in summary.force_field.phases() {
+        let Some(stats) = summary.force_field.stats(phase).filter(|s| s.mean_dyn_cm > 0.0) else {
+            continue;
+        };
+        writeln!(
+            out,
+            "thigmotaxic force field in {phase}: mean |f| {:.0} → {:.0} dyn·cm (first → last quarter), \
+             zero tail-ward of the knot in {:.1} % of samples, roughness in space {:.2}, in time {:.2}",
+            stats.first_quarter_mean_dyn_cm,
+            stats.last_quarter_mean_dyn_cm,
+            100.0 * stats.tailward_zero_fraction,
+            stats.spatial_roughness,
+            stats.temporal_roughness,
+        )?;
+    }
     let steps = summary.steps.max(1) as f64;
     let stages: Vec<String> = summary
         .timings

@@ -21,17 +21,25 @@ pub enum Phase {
     Thigmotaxis(ThigmoPhase),
 }
 
-/// A thigmotaxis phase: its parameters and when it ends.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+/// A thigmotaxis phase: its name, parameters and when it ends.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ThigmoPhase {
+    /// Name shown in the `phase` column of the outputs, e.g. "tighten", "loosen", "slide".
+    #[serde(default = "default_thigmo_name")]
+    pub name: String,
     /// Targets, tail pull and force cap.
     pub parameters: ThigmoParameters,
     /// When the phase ends.
     pub until: Until,
 }
 
-/// End conditions of a phase; it ends at the first that holds.
+fn default_thigmo_name() -> String {
+    "thigmo".to_string()
+}
+
+/// End conditions of a phase; it ends at the first that holds. The knot conditions read the
+/// self contacts of the step ([`KnotSpan`]); without contacts only the duration counts.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Until {
@@ -43,6 +51,27 @@ pub struct Until {
     /// Ends once the knot's anterior end is this far from the head (cm; sliding tail-ward).
     #[serde(default)]
     pub knot_start_above_cm: Option<f64>,
+    /// Ends once the knot's span (contact stretch, cm) is at most this (tightening).
+    #[serde(default)]
+    pub span_below_cm: Option<f64>,
+    /// Ends once the knot's span (contact stretch, cm) is at least this (loosening).
+    #[serde(default)]
+    pub span_above_cm: Option<f64>,
+}
+
+impl Until {
+    /// True once the phase that started `elapsed` seconds ago with the knot at `span` is over.
+    pub fn reached(&self, elapsed: f64, span: Option<&KnotSpan>) -> bool {
+        let at_most = |limit: Option<f64>, value: Option<f64>| matches!((limit, value), (Some(l), Some(v)) if v <= l);
+        let at_least = |limit: Option<f64>, value: Option<f64>| matches!((limit, value), (Some(l), Some(v)) if v >= l);
+        let start = span.map(|s| s.start_cm);
+        let length = span.map(KnotSpan::length_cm);
+        elapsed >= self.seconds
+            || at_most(self.knot_start_below_cm, start)
+            || at_least(self.knot_start_above_cm, start)
+            || at_most(self.span_below_cm, length)
+            || at_least(self.span_above_cm, length)
+    }
 }
 
 /// Progress through the phases: the controller state a checkpoint must keep.
@@ -78,12 +107,13 @@ impl PhasedController {
         &self.progress
     }
 
-    /// A short name of the current phase for tables: "form", "hold" or "done".
-    pub fn phase_name(&self) -> &'static str {
+    /// A short name of the current phase for tables: "form", "hold", the thigmotaxis phase's
+    /// name, or "done".
+    pub fn phase_name(&self) -> &str {
         match self.phases.get(self.progress.phase) {
             Some(Phase::Form(_)) => "form",
             Some(Phase::Hold(_)) => "hold",
-            Some(Phase::Thigmotaxis(_)) => "thigmo",
+            Some(Phase::Thigmotaxis(phase)) => &phase.name,
             None => "done",
         }
     }
@@ -94,14 +124,9 @@ impl PhasedController {
         match self.phases.get(self.progress.phase) {
             Some(Phase::Form(_)) => self.forming.as_ref().is_none_or(FormingController::finished),
             Some(Phase::Hold(seconds)) => elapsed >= *seconds,
-            Some(Phase::Thigmotaxis(phase)) => {
-                let start =
-                    KnotSpan::of(context.self_contacts, context.centreline).map(|s| s.start_cm);
-                let reached = |limit: Option<f64>, beyond: &dyn Fn(f64, f64) -> bool| matches!((limit, start), (Some(l), Some(s)) if beyond(s, l));
-                elapsed >= phase.until.seconds
-                    || reached(phase.until.knot_start_below_cm, &|s, l| s <= l)
-                    || reached(phase.until.knot_start_above_cm, &|s, l| s >= l)
-            }
+            Some(Phase::Thigmotaxis(phase)) => phase
+                .until
+                .reached(elapsed, KnotSpan::of(context.self_contacts, context.centreline).as_ref()),
             None => false,
         }
     }

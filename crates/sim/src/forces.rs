@@ -63,6 +63,11 @@ impl GroupForces {
         }
     }
 
+    /// The forces of one recorded group (empty for a group that is not recorded).
+    pub fn group(&self, group: RowGroup) -> &[f64] {
+        RECORDED_GROUPS.iter().position(|g| *g == group).map_or(&[], |i| &self.values[i])
+    }
+
     /// A short lowercase name of a group for tables.
     pub fn group_name(group: RowGroup) -> &'static str {
         match group {

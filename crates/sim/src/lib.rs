@@ -9,6 +9,7 @@
 //! CGS units throughout.
 
 mod error;
+mod force_field;
 mod forces;
 mod options;
 pub mod pipeline;
@@ -21,6 +22,7 @@ mod step_data;
 mod world;
 
 pub use error::SimError;
+pub use force_field::{ForceFieldLog, ForceFieldStats};
 pub use forces::{DofLabel, GroupForces, RECORDED_GROUPS, dof_labels};
 pub use options::StepOptions;
 pub use recorder::{

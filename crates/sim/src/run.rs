@@ -3,8 +3,10 @@
 use glam::DVec3;
 use hagfish_control::KnotSpan;
 use hagfish_knots::{KnotOptions, KnotReport, analyse_knot};
+use hagfish_solver::RowGroup;
 
 use crate::error::SimError;
+use crate::force_field::ForceFieldLog;
 use crate::forces::{GroupForces, dof_labels};
 use crate::recorder::{Frame, FrameSink, IntervalMaxima};
 use crate::report::{StageTimings, StepReport};
@@ -35,7 +37,7 @@ pub struct KnotSample {
 }
 
 /// What a finished run reports.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub struct RunSummary {
     /// Steps taken.
     pub steps: u64,
@@ -47,6 +49,8 @@ pub struct RunSummary {
     pub maxima: IntervalMaxima,
     /// Wall-clock seconds per stage, summed over all steps.
     pub timings: StageTimings,
+    /// The thigmotaxic force field of every frame.
+    pub force_field: ForceFieldLog,
 }
 
 /// Runs `loaded` to its duration, giving every recorded frame to `sink` and calling
@@ -62,10 +66,18 @@ pub fn run(
     let record_every = ((scenario.record_every_s / scenario.time_step_s).round() as u64).max(1);
     let knot_options = KnotOptions::default();
     let mut centres: Vec<DVec3> = Vec::with_capacity(world.model().body_count());
-    let mut summary = RunSummary::default();
+    let labels = dof_labels(world.model());
+    world.body_centres(&mut centres);
+    let mut summary = RunSummary {
+        steps: 0,
+        frames: 0,
+        knots: Vec::new(),
+        maxima: IntervalMaxima::default(),
+        timings: StageTimings::default(),
+        force_field: ForceFieldLog::new(labels.clone(), dof_arc_lengths(world.model(), &centres)),
+    };
     let mut last_report = StepReport::default();
     let mut maxima = IntervalMaxima::default();
-    let labels = dof_labels(world.model());
     let mut forces = GroupForces::default();
     for step in 0..=steps {
         if step > 0 {
@@ -79,6 +91,9 @@ pub fn run(
         world.body_centres(&mut centres);
         let knot = analyse_knot(&centres, &knot_options).ok();
         forces.fill(world.data(), world.model().dof_count(), scenario.time_step_s);
+        let span = KnotSpan::of(&world.data().self_contacts, &world.data().centreline);
+        let thigmo = forces.group(RowGroup::Thigmo);
+        summary.force_field.push(world.state().t, controller.phase_name(), span, thigmo);
         let frame = Frame {
             index: summary.frames,
             time: world.state().t,
@@ -87,7 +102,7 @@ pub fn run(
             step: &last_report,
             maxima: &maxima,
             knot: knot.as_ref(),
-            span: KnotSpan::of(&world.data().self_contacts, &world.data().centreline),
+            span,
             labels: &labels,
             forces: &forces,
         };
@@ -106,4 +121,15 @@ pub fn run(
     }
     summary.steps = world.steps();
     Ok(summary)
+}
+
+/// Arc length of each DOF's joint from the head body's centre (cm), read off `centres` of the
+/// straight body at rest: tree joint i sits halfway between centres i − 1 and i (joint 0 at the
+/// wall). This is the arc-length convention of [`KnotSpan`].
+fn dof_arc_lengths(model: &hagfish_tree::Model, centres: &[DVec3]) -> Vec<f64> {
+    let joint_arc = |i: usize| match i {
+        0 => -centres[0].length(),
+        _ => (0.5 * (centres[i - 1] + centres[i]) - centres[0]).length(),
+    };
+    model.dof_joint().iter().map(|&joint| joint_arc(joint)).collect()
 }

@@ -2,6 +2,10 @@
 //! strand of a self contact, with a the anterior and b the posterior point,
 //! `t_aᵀ(P(u_a) − P(u_b)) q̇ ≥ v_a` or `t_bᵀ(P(u_b) − P(u_a)) q̇ ≥ v_b`. No stabilisation term.
 //! Soft: the slack penalty is the row's largest impulse, `max_force · h`.
+//!
+//! A negative target asks for sliding the other way (the knot moves tail-ward): the row becomes
+//! `−tᵀ(P(u_this) − P(u_other)) q̇ ≥ |v|`. Merely lowering the bound of the head-ward row below
+//! zero would only *allow* tail-ward sliding, never drive it.
 
 use hagfish_control::{Strand, ThigmoRequest};
 use hagfish_geometry::SelfContact;
@@ -22,12 +26,16 @@ pub fn add_thigmo_rows(
     for request in requests {
         let Some(contact) = contacts.get(request.contact) else { continue };
         let weight = request.max_force * time_step;
-        let row =
-            rows.push_zeroed(RowKind::SoftInequality { weight }, RowGroup::Thigmo, request.speed);
-        let (this, other, tangent) = match request.strand {
+        let row = rows.push_zeroed(
+            RowKind::SoftInequality { weight },
+            RowGroup::Thigmo,
+            request.speed.abs(),
+        );
+        let (this, other, tail_ward) = match request.strand {
             Strand::Anterior => (&contact.weights_a, &contact.weights_b, contact.tangent_a),
             Strand::Posterior => (&contact.weights_b, &contact.weights_a, contact.tangent_b),
         };
+        let tangent = if request.speed < 0.0 { -tail_ward } else { tail_ward };
         add_spline_point_row(model, data, this, tangent, 1.0, row);
         add_spline_point_row(model, data, other, tangent, -1.0, row);
     }

@@ -1,0 +1,255 @@
+//! Thigmotaxic inverse dynamics, end to end at h = 0.01 s (issue #6): the scenarios
+//! `thesis.ron` (form → tighten → slide to the head), `loosen.ron` and `reverse.ron` run in
+//! full and their frames are checked against the thesis' claims. The knot's span is the stretch
+//! of body its self contacts cover ([`KnotSpan`]); spans are averaged over 0.5 s because single
+//! frames flicker as contacts appear and vanish at the margin.
+
+use glam::DVec3;
+use hagfish_control::{
+    Actuation, ControlContext, Controller, KnotSpan, SlidingTargets, ThigmoParameters,
+};
+use hagfish_knots::KnotType;
+use hagfish_sim::{Frame, FrameSink, LoadedScenario, RunSummary, SimError};
+use hagfish_solver::RowGroup;
+
+/// What the checks need of one frame.
+#[derive(Clone, Debug)]
+struct Record {
+    time: f64,
+    phase: String,
+    span: Option<KnotSpan>,
+    trefoil: bool,
+    penetration_relative: f64,
+    slack_rows: usize,
+    head: DVec3,
+}
+
+#[derive(Default)]
+struct Records(Vec<Record>);
+
+impl FrameSink for Records {
+    fn record(&mut self, frame: &Frame<'_>) -> Result<(), SimError> {
+        self.0.push(Record {
+            time: frame.time,
+            phase: frame.phase.to_string(),
+            span: frame.span,
+            trefoil: frame.knot.is_some_and(|k| k.knot == KnotType::Trefoil),
+            penetration_relative: frame.maxima.self_penetration_relative,
+            slack_rows: frame.step.solve.slack.count,
+            head: frame.centres[0],
+        });
+        Ok(())
+    }
+}
+
+fn run(name: &str) -> (Vec<Record>, RunSummary) {
+    let path = format!("{}/../../data/scenarios/{name}.ron", env!("CARGO_MANIFEST_DIR"));
+    let loaded = LoadedScenario::load(&path).expect("scenario loads");
+    let mut records = Records::default();
+    let summary = hagfish_sim::run(&loaded, &mut records, &mut |_| {})
+        .unwrap_or_else(|e| panic!("{name}: run failed (a failed solve stops the run): {e}"));
+    (records.0, summary)
+}
+
+fn phase<'a>(records: &'a [Record], name: &str) -> Vec<&'a Record> {
+    let frames: Vec<&Record> = records.iter().filter(|r| r.phase == name).collect();
+    assert!(frames.len() > 5, "phase {name} has {} frames", frames.len());
+    frames
+}
+
+/// Mean span (cm) of the frames with contacts in `[from, to]` s.
+fn mean_span(frames: &[&Record], from: f64, to: f64) -> f64 {
+    let spans: Vec<f64> = frames
+        .iter()
+        .filter(|r| r.time >= from - 1e-9 && r.time <= to + 1e-9)
+        .filter_map(|r| r.span.map(|s| s.length_cm()))
+        .collect();
+    assert!(!spans.is_empty(), "no contacts in [{from}, {to}] s");
+    spans.iter().sum::<f64>() / spans.len() as f64
+}
+
+/// Relative span change over a phase: the last 0.5 s against the first 0.5 s.
+fn span_change(frames: &[&Record]) -> (f64, f64) {
+    let (t0, t1) = (frames[0].time, frames[frames.len() - 1].time);
+    (mean_span(frames, t0, t0 + 0.5), mean_span(frames, t1 - 0.5, t1))
+}
+
+/// Largest tail-ward move of the knot's midpoint within any 1 s window (cm).
+fn worst_tailward_move(frames: &[&Record]) -> f64 {
+    let mids: Vec<(f64, f64)> =
+        frames.iter().filter_map(|r| r.span.map(|s| (r.time, s.midpoint_cm()))).collect();
+    let mut worst = 0.0_f64;
+    for (i, &(t, m)) in mids.iter().enumerate() {
+        for &(_, later) in mids[i..].iter().take_while(|(t2, _)| *t2 <= t + 1.0 + 1e-9) {
+            worst = worst.max(later - m);
+        }
+    }
+    worst
+}
+
+fn trefoil_fraction(frames: &[&Record]) -> f64 {
+    frames.iter().filter(|r| r.trefoil).count() as f64 / frames.len() as f64
+}
+
+fn max_penetration(records: &[Record]) -> f64 {
+    records.iter().map(|r| r.penetration_relative).fold(0.0, f64::max)
+}
+
+fn head_drift(records: &[Record]) -> f64 {
+    records.iter().map(|r| (r.head - records[0].head).length()).fold(0.0, f64::max)
+}
+
+#[test]
+fn thesis_tightens_then_slides_the_knot_to_the_head() {
+    let (records, summary) = run("thesis");
+
+    let tighten = phase(&records, "tighten");
+    let (before, after) = span_change(&tighten);
+    println!(
+        "tighten: span {before:.2} → {after:.2} cm ({:+.1} %)",
+        100.0 * (after / before - 1.0)
+    );
+    assert!(after <= 0.8 * before, "tightening shrinks the span by ≥ 20 %: {before} → {after}");
+
+    let slide = phase(&records, "slide");
+    let start = |r: &Record| r.span.map(|s| s.start_cm);
+    let (t0, t1) = (slide[0].time, slide[slide.len() - 1].time);
+    let from = start(slide[0]).expect("contacts at the start of the slide");
+    let to = slide.iter().rev().find_map(|r| start(r)).expect("contacts at its end");
+    let mid = |r: &Record| r.span.map(|s| s.midpoint_cm());
+    let speed = (mid(slide[0]).expect("contacts")
+        - slide.iter().rev().find_map(|r| mid(r)).expect("contacts"))
+        / (t1 - t0);
+    let head_region = 3.0;
+    let covered = (from - to) / (from - head_region);
+    let worst = worst_tailward_move(&slide);
+    let checked: Vec<&Record> = tighten.iter().chain(&slide).copied().collect();
+    let trefoil = trefoil_fraction(&checked);
+    let slack_frames = slide.iter().filter(|r| r.slack_rows > 0).count();
+    println!(
+        "slide: knot start {from:.2} → {to:.2} cm in {:.1} s ({:.0} % of the way to {head_region} cm), \
+         midpoint speed {speed:.2} cm/s, worst 1 s tail-ward move {worst:.2} cm, trefoil in {:.1} % \
+         of {} frames, frames using slack {slack_frames}/{}",
+        t1 - t0,
+        100.0 * covered,
+        100.0 * trefoil,
+        checked.len(),
+        slide.len()
+    );
+    assert!(covered >= 0.5, "the knot covers ≥ 50 % of the way to the head: {covered}");
+    assert!((1.0..=4.0).contains(&speed), "mean speed within 2× of 2 cm/s: {speed}");
+    assert!(worst <= 0.5, "no 1 s window moves the knot tail-ward by > 0.5 cm: {worst}");
+    assert!(trefoil >= 0.99, "trefoil in ≥ 99 % of checked frames: {trefoil}");
+
+    let penetration = max_penetration(&records);
+    let drift = head_drift(&records);
+    println!(
+        "whole run: max penetration {:.2} % of r, head drift {drift:.2e} cm",
+        100.0 * penetration
+    );
+    assert!(penetration < 0.02, "penetration {penetration} of the radius");
+    assert!(drift < 1e-6, "the head stays fixed: {drift} cm");
+
+    // Force field (thesis §6.3).
+    let stats = summary.force_field.stats("slide").expect("slide frames");
+    println!("force field over the slide: {stats:?}");
+    assert!(stats.tailward_samples > 0, "the knot has joints tail-ward of it");
+    assert!(
+        stats.tailward_zero_fraction >= 0.95,
+        "zero force tail-ward of the knot in ≥ 95 % of samples: {}",
+        stats.tailward_zero_fraction
+    );
+    assert!(
+        stats.last_quarter_mean_dyn_cm > stats.first_quarter_mean_dyn_cm,
+        "the force grows as the knot nears the head: {stats:?}"
+    );
+}
+
+#[test]
+fn loosening_grows_the_span() {
+    let (records, _) = run("loosen");
+    let loosen = phase(&records, "loosen");
+    let (before, after) = span_change(&loosen);
+    println!("loosen: span {before:.2} → {after:.2} cm ({:+.1} %)", 100.0 * (after / before - 1.0));
+    assert!(after >= 1.2 * before, "loosening grows the span by ≥ 20 %: {before} → {after}");
+    assert!(trefoil_fraction(&loosen) >= 0.99, "still a trefoil");
+    assert!(max_penetration(&records) < 0.02, "penetration {}", max_penetration(&records));
+}
+
+#[test]
+fn negative_targets_slide_the_knot_tail_ward() {
+    let (records, _) = run("reverse");
+    let reverse = phase(&records, "reverse");
+    let mid = |r: &&Record| r.span.map(|s| s.midpoint_cm());
+    let from = reverse.iter().find_map(mid).expect("contacts");
+    let to = reverse.iter().rev().find_map(mid).expect("contacts");
+    let trefoil = trefoil_fraction(&reverse);
+    println!("reverse: knot midpoint {from:.2} → {to:.2} cm, trefoil in {:.1} %", 100.0 * trefoil);
+    assert!(to - from >= 5.0, "the knot slides ≥ 5 cm tail-ward: {from} → {to}");
+    assert!(trefoil >= 0.99, "trefoil kept: {trefoil}");
+    assert!(max_penetration(&records) < 0.02, "penetration {}", max_penetration(&records));
+}
+
+/// Thigmotaxis alone, as a controller.
+struct Thigmo(ThigmoParameters);
+
+impl Controller for Thigmo {
+    fn control(&mut self, context: &ControlContext<'_>, out: &mut Actuation) {
+        self.0.actuate(context, out);
+    }
+}
+
+/// Row signs: in a freshly tied knot (form.ron at 17 s), one step of thigmotaxis on the first
+/// and last contact, with positive and with negative targets, achieves each row's relative
+/// tangential speed `cᵀq̇ ≥ |v|` (a row the solver could not satisfy must report slack) with
+/// λ ≥ 0; and a negative target's row is exactly the positive one's negated (the strands slide
+/// head-ward relative to each other instead of tail-ward).
+#[test]
+fn thigmo_rows_reach_their_speeds_with_nonnegative_multipliers() {
+    let path = format!("{}/../../data/scenarios/form.ron", env!("CARGO_MANIFEST_DIR"));
+    let loaded = LoadedScenario::load(&path).expect("form.ron loads");
+    let (mut world, mut forming) = loaded.build().expect("world builds");
+    while world.state().t < 17.0 {
+        world.step(&mut forming).expect("forming step");
+    }
+    let knotted = world.state().clone();
+    let mut positive_rows: Vec<Vec<f64>> = Vec::new();
+    for speed in [1.0, -1.0] {
+        world.set_state(knotted.clone()).expect("state restores");
+        let targets = SlidingTargets { v_a: speed, v_b: speed };
+        let parameters = ThigmoParameters {
+            head: targets,
+            tail: targets,
+            tail_pull_dyn: 0.0,
+            max_force_dyn: 1e6,
+        };
+        let report = *world.step(&mut Thigmo(parameters)).expect("thigmo step");
+        let data = world.data();
+        let (qdot, lambda) = (data.solver.velocity(), data.solver.multipliers());
+        let mut thigmo_rows = 0;
+        for (i, group) in data.rows.groups().iter().enumerate() {
+            if *group != RowGroup::Thigmo {
+                continue;
+            }
+            thigmo_rows += 1;
+            let row = data.rows.coefficients(i).expect("row exists");
+            if speed > 0.0 {
+                positive_rows.push(row.to_vec());
+            } else {
+                let positive = &positive_rows[thigmo_rows - 1];
+                assert!(row.iter().zip(positive).all(|(n, p)| *n == -*p), "row {i} is not negated");
+            }
+            let achieved: f64 = row.iter().zip(qdot).map(|(c, v)| c * v).sum();
+            println!("v = {speed:+}: row {i}: achieved {achieved:.4} cm/s, λ = {:.3e}", lambda[i]);
+            assert_eq!(data.rows.rhs()[i], speed.abs());
+            assert!(lambda[i] >= 0.0, "λ = {} < 0", lambda[i]);
+            assert!(
+                achieved >= speed.abs() - 1e-6 || report.solve.slack.count > 0,
+                "row {i} reaches only {achieved} cm/s of {} without reporting slack",
+                speed.abs()
+            );
+        }
+        assert_eq!(thigmo_rows, 4, "two rows on each of the first and last contact");
+        assert_eq!(report.solve.slack.count, 0, "a 10⁶ dyn cap needs no slack");
+    }
+}
