@@ -158,3 +158,31 @@ impl Controller for PhasedController {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn span(start_cm: f64, end_cm: f64) -> KnotSpan {
+        KnotSpan { start_cm, end_cm, first_contact_cm: start_cm, last_contact_cm: start_cm }
+    }
+
+    #[test]
+    fn until_ends_at_the_first_condition_that_holds() {
+        let until = Until {
+            seconds: 5.0,
+            knot_start_below_cm: Some(3.0),
+            knot_start_above_cm: None,
+            span_below_cm: Some(20.0),
+            span_above_cm: None,
+        };
+        assert!(!until.reached(1.0, Some(&span(10.0, 35.0))));
+        assert!(until.reached(5.0, Some(&span(10.0, 35.0))), "duration");
+        assert!(until.reached(1.0, Some(&span(2.5, 35.0))), "knot start near the head");
+        assert!(until.reached(1.0, Some(&span(10.0, 29.5))), "span tight enough");
+        assert!(!until.reached(1.0, None), "without contacts only the duration counts");
+        let loosen = Until { span_above_cm: Some(27.0), span_below_cm: None, ..until };
+        assert!(loosen.reached(1.0, Some(&span(10.0, 37.0))));
+        assert!(!loosen.reached(1.0, Some(&span(10.0, 29.5))));
+    }
+}
