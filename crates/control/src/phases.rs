@@ -62,8 +62,12 @@ pub struct Until {
 impl Until {
     /// True once the phase that started `elapsed` seconds ago with the knot at `span` is over.
     pub fn reached(&self, elapsed: f64, span: Option<&KnotSpan>) -> bool {
-        let at_most = |limit: Option<f64>, value: Option<f64>| matches!((limit, value), (Some(l), Some(v)) if v <= l);
-        let at_least = |limit: Option<f64>, value: Option<f64>| matches!((limit, value), (Some(l), Some(v)) if v >= l);
+        let at_most = |limit: Option<f64>, value: Option<f64>| {
+            limit.zip(value).is_some_and(|(limit, value)| value <= limit)
+        };
+        let at_least = |limit: Option<f64>, value: Option<f64>| {
+            limit.zip(value).is_some_and(|(limit, value)| value >= limit)
+        };
         let start = span.map(|s| s.start_cm);
         let length = span.map(KnotSpan::length_cm);
         elapsed >= self.seconds

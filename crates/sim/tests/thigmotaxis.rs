@@ -87,6 +87,13 @@ fn worst_tailward_move(frames: &[&Record]) -> f64 {
     worst
 }
 
+/// `measure` of the knot span in the first and in the last frame with contacts.
+fn first_and_last(frames: &[&Record], measure: impl Fn(&KnotSpan) -> f64) -> (f64, f64) {
+    let first = frames.iter().find_map(|r| r.span.as_ref().map(&measure));
+    let last = frames.iter().rev().find_map(|r| r.span.as_ref().map(&measure));
+    first.zip(last).expect("the phase has frames with contacts")
+}
+
 fn trefoil_fraction(frames: &[&Record]) -> f64 {
     frames.iter().filter(|r| r.trefoil).count() as f64 / frames.len() as f64
 }
@@ -112,14 +119,10 @@ fn thesis_tightens_then_slides_the_knot_to_the_head() {
     assert!(after <= 0.8 * before, "tightening shrinks the span by ≥ 20 %: {before} → {after}");
 
     let slide = phase(&records, "slide");
-    let start = |r: &Record| r.span.map(|s| s.start_cm);
     let (t0, t1) = (slide[0].time, slide[slide.len() - 1].time);
-    let from = start(slide[0]).expect("contacts at the start of the slide");
-    let to = slide.iter().rev().find_map(|r| start(r)).expect("contacts at its end");
-    let mid = |r: &Record| r.span.map(|s| s.midpoint_cm());
-    let speed = (mid(slide[0]).expect("contacts")
-        - slide.iter().rev().find_map(|r| mid(r)).expect("contacts"))
-        / (t1 - t0);
+    let (from, to) = first_and_last(&slide, |s| s.start_cm);
+    let (mid_from, mid_to) = first_and_last(&slide, KnotSpan::midpoint_cm);
+    let speed = (mid_from - mid_to) / (t1 - t0);
     let head_region = 3.0;
     let covered = (from - to) / (from - head_region);
     let worst = worst_tailward_move(&slide);
@@ -180,9 +183,7 @@ fn loosening_grows_the_span() {
 fn negative_targets_slide_the_knot_tail_ward() {
     let (records, _) = run("reverse");
     let reverse = phase(&records, "reverse");
-    let mid = |r: &&Record| r.span.map(|s| s.midpoint_cm());
-    let from = reverse.iter().find_map(mid).expect("contacts");
-    let to = reverse.iter().rev().find_map(mid).expect("contacts");
+    let (from, to) = first_and_last(&reverse, KnotSpan::midpoint_cm);
     let trefoil = trefoil_fraction(&reverse);
     println!("reverse: knot midpoint {from:.2} → {to:.2} cm, trefoil in {:.1} %", 100.0 * trefoil);
     assert!(to - from >= 5.0, "the knot slides ≥ 5 cm tail-ward: {from} → {to}");
