@@ -42,13 +42,20 @@ pub(crate) fn crossings(vertices: &[DVec3], view: DVec3) -> Option<Vec<Crossing>
             Edge { start, end, start_height, end_height, min: start.min(end), max: start.max(end) }
         })
         .collect();
+    // Sweep along x: edges sorted by their leftmost x; each edge meets only the edges that
+    // start before it ends (most of the n²/2 pairs are never looked at).
+    let mut by_left: Vec<usize> = (0..n).collect();
+    by_left.sort_by(|&a, &b| edges[a].min.x.total_cmp(&edges[b].min.x).then(a.cmp(&b)));
+    let adjacent = |i: usize, j: usize| j == i + 1 || (i == 0 && j + 1 == n);
     let mut found = Vec::new();
-    for i in 0..n {
-        // Edge n − 1 is adjacent to edge 0: skip that pair.
-        let last = if i == 0 { n.saturating_sub(1) } else { n };
-        for j in i + 2..last {
+    for (k, &a) in by_left.iter().enumerate() {
+        for &b in &by_left[k + 1..] {
+            if edges[b].min.x > edges[a].max.x {
+                break;
+            }
+            let (i, j) = (a.min(b), a.max(b));
             let (p, q) = (&edges[i], &edges[j]);
-            if p.max.x < q.min.x || q.max.x < p.min.x || p.max.y < q.min.y || q.max.y < p.min.y {
+            if adjacent(i, j) || p.max.y < q.min.y || q.max.y < p.min.y {
                 continue;
             }
             if let Some(crossing) = crossing(p, i, q, j)? {
