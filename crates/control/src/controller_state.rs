@@ -1,0 +1,59 @@
+//! What a [`PhasedController`] carries from one step to the next, as plain data, so a run can
+//! be checkpointed and resumed bit for bit. Water drag and thigmotaxis keep no state of their
+//! own; the phases and the forming script do.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::ControlError;
+use crate::forming::{FormingController, ScriptProgress};
+use crate::phases::{Phase, PhaseProgress, PhasedController};
+
+/// The state of a [`PhasedController`]: which phase, since when, and where the forming script
+/// (of the latest `Form` phase so far) is.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ControllerState {
+    /// Phase index and its start time.
+    pub phases: PhaseProgress,
+    /// Progress of the forming script, if a `Form` phase has started.
+    pub forming: Option<ScriptProgress>,
+}
+
+impl PhasedController {
+    /// The state to save.
+    pub fn state(&self) -> ControllerState {
+        ControllerState {
+            phases: self.progress,
+            forming: self.forming.as_ref().map(|f| *f.progress()),
+        }
+    }
+
+    /// Continues from a saved `state` of a controller built from the same phases: the forming
+    /// script is the one of the latest `Form` phase up to the current phase.
+    pub fn restore(&mut self, state: &ControllerState) -> Result<(), ControlError> {
+        let mismatch = ControlError::StateMismatch {
+            phase: state.phases.phase,
+            phases: self.phases.len(),
+            forming: state.forming.is_some(),
+        };
+        if state.phases.phase > self.phases.len() {
+            return Err(mismatch);
+        }
+        let script = self.phases[..(state.phases.phase + 1).min(self.phases.len())]
+            .iter()
+            .rev()
+            .find_map(|p| match p {
+                Phase::Form(script) => Some(script),
+                _ => None,
+            });
+        self.forming = match (script, state.forming) {
+            (Some(script), Some(progress)) if progress.step <= script.steps.len() => {
+                Some(FormingController { script: script.clone(), progress })
+            }
+            (None, None) => None,
+            _ => return Err(mismatch),
+        };
+        self.progress = state.phases;
+        Ok(())
+    }
+}
