@@ -41,7 +41,7 @@ impl NpyWriter {
     /// Creates the file at `path` with zero rows of `columns` values.
     pub(crate) fn create(path: &Path, columns: usize) -> Result<Self, SimError> {
         let mut file = OutputFile::create(path)?;
-        file.bytes(&header(0, columns))?;
+        file.bytes(&header(0, columns));
         file.flush()?;
         Ok(Self { file, columns, rows: 0, buffer: Vec::new() })
     }
@@ -51,7 +51,6 @@ impl NpyWriter {
         let length = (HEADER_BYTES + 8 * rows * columns) as u64;
         let mut file = OutputFile::reopen(path, length)?;
         file.overwrite(0, &header(rows, columns))?;
-        file.flush()?;
         Ok(Self { file, columns, rows, buffer: Vec::new() })
     }
 
@@ -63,15 +62,14 @@ impl NpyWriter {
         for v in padded.take(self.columns) {
             self.buffer.extend_from_slice(&v.to_le_bytes());
         }
-        self.file.bytes(&self.buffer)?;
+        self.file.bytes(&self.buffer);
         self.file.flush()?;
         self.rows += 1;
-        self.file.overwrite(0, &header(self.rows, self.columns))?;
-        self.file.flush()
+        self.file.overwrite(0, &header(self.rows, self.columns))
     }
 
     /// The file's length in bytes.
-    pub(crate) fn len(&mut self) -> Result<u64, SimError> {
+    pub(crate) fn len(&self) -> u64 {
         self.file.len()
     }
 

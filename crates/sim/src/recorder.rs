@@ -214,24 +214,13 @@ impl Recorder {
         })
     }
 
-    /// The output directory.
-    pub fn directory(&self) -> &Path {
-        &self.directory
-    }
-
     /// Every output file with its current length.
-    pub fn files(&mut self) -> Result<Vec<RecordedFile>, SimError> {
-        let mut files = Vec::with_capacity(CSV_FILES.len() + NPY_FILES.len());
-        for file in [&mut self.centreline, &mut self.metrics, &mut self.forces, &mut self.contacts]
-        {
-            let bytes = file.len()?;
-            files.push(RecordedFile { name: file_name(file.path()), bytes });
-        }
-        for npy in [&mut self.q, &mut self.qdot, &mut self.thigmo] {
-            let bytes = npy.len()?;
-            files.push(RecordedFile { name: file_name(npy.path()), bytes });
-        }
-        Ok(files)
+    pub fn files(&self) -> Vec<RecordedFile> {
+        let csv = [&self.centreline, &self.metrics, &self.forces, &self.contacts]
+            .map(|f| RecordedFile { name: file_name(f.path()), bytes: f.len() });
+        let npy = [&self.q, &self.qdot, &self.thigmo]
+            .map(|f| RecordedFile { name: file_name(f.path()), bytes: f.len() });
+        csv.into_iter().chain(npy).collect()
     }
 
     fn write_centreline(&mut self, frame: &Frame<'_>) -> Result<(), SimError> {
@@ -319,7 +308,7 @@ impl Recorder {
 }
 
 impl FrameSink for Recorder {
-    /// Appends one frame to every file and flushes them.
+    /// Appends one frame to every file, each file's rows in one write.
     fn record(&mut self, frame: &Frame<'_>) -> Result<(), SimError> {
         self.write_centreline(frame)?;
         self.write_metrics(frame)?;
@@ -337,7 +326,7 @@ impl FrameSink for Recorder {
 
     /// Writes `checkpoint.ron` (atomically) with the current file lengths.
     fn checkpoint(&mut self, checkpoint: &mut Checkpoint) -> Result<(), SimError> {
-        checkpoint.files = self.files()?;
+        checkpoint.files = self.files();
         checkpoint.write(&self.directory.join(CHECKPOINT_FILE))
     }
 }

@@ -65,7 +65,16 @@ impl LoadedScenario {
     /// Reads the scenario at `path`, checks its values (each error at its `file:line:column`)
     /// and loads the biometrics it names.
     pub fn load(path: impl AsRef<Path>) -> Result<Self, SimError> {
-        let file = DataFile::<Scenario>::read(path.as_ref())?;
+        Self::checked(DataFile::<Scenario>::read(path.as_ref())?)
+    }
+
+    /// Parses scenario `bytes` as if read from `path` (which names the source in messages and
+    /// locates the body file), then checks it as [`load`](Self::load) does.
+    pub fn parse(bytes: &[u8], path: &Path) -> Result<Self, SimError> {
+        Self::checked(DataFile::<Scenario>::parse(bytes, path)?)
+    }
+
+    fn checked(file: DataFile<Scenario>) -> Result<Self, SimError> {
         validate(&file)?;
         let directory = file.path.parent().unwrap_or(Path::new("."));
         let body = directory.join(&file.value.body);
