@@ -1,0 +1,141 @@
+//! Checkpoint and resume, end to end on `data/scenarios/form.ron` (3000 steps, 301 frames):
+//!
+//! - stopped after frame 200 (`--stop-after-frames`, status `interrupted`) and resumed, the run
+//!   gives the same bytes in every output and the same final-state hash as a straight run;
+//! - killed with SIGKILL mid-way, it leaves CSV files of complete rows and whole frames, frame
+//!   counts that agree across files (up to the frame being written) and cover the checkpoint,
+//!   and resumed from there it again ends bit for bit as the straight run.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
+use std::time::{Duration, Instant};
+
+use common::{
+    ROOT, code_and_stderr, csv_rows, frames_of, fresh_dir, hagfish, manifest, run_hagfish,
+};
+
+const OUTPUTS: [&str; 7] = [
+    "centreline.csv",
+    "metrics.csv",
+    "forces.csv",
+    "contacts.csv",
+    "q.npy",
+    "qdot.npy",
+    "thigmo_force.npy",
+];
+
+fn scenario() -> String {
+    format!("{ROOT}/data/scenarios/form.ron")
+}
+
+/// Runs form.ron straight once per test binary.
+fn straight() -> &'static Path {
+    static DIR: OnceLock<PathBuf> = OnceLock::new();
+    DIR.get_or_init(|| {
+        let dir = fresh_dir("resume_straight");
+        let output = run_hagfish(["run", &scenario(), "--quiet", "--out", &dir.to_string_lossy()]);
+        assert!(output.status.success(), "{}", code_and_stderr(&output).1);
+        dir
+    })
+}
+
+fn resume(dir: &Path) {
+    let output = run_hagfish(["run", "--resume", &dir.to_string_lossy(), "--quiet"]);
+    assert!(output.status.success(), "{}", code_and_stderr(&output).1);
+}
+
+/// Every output file and the manifest's counts and final-state hash are identical.
+fn assert_same_as_straight(dir: &Path) {
+    let reference = straight();
+    for file in OUTPUTS {
+        let a = std::fs::read(reference.join(file)).expect(file);
+        let b = std::fs::read(dir.join(file)).expect(file);
+        assert!(a.len() > 128 && a == b, "{file} differs from the straight run");
+    }
+    let (a, b) = (manifest(reference), manifest(dir));
+    assert_eq!(b["status"], "completed");
+    for key in ["steps", "frames", "final_state_hash", "scenario_hash"] {
+        assert_eq!(a[key], b[key], "{key}");
+    }
+    assert_eq!(a["steps"], 3000);
+}
+
+#[test]
+fn stop_and_resume_gives_the_straight_run_bit_for_bit() {
+    let dir = fresh_dir("resume_stopped");
+    let dir_arg = dir.to_string_lossy().into_owned();
+    let output = run_hagfish([
+        "run",
+        &scenario(),
+        "--quiet",
+        "--out",
+        &dir_arg,
+        "--stop-after-frames",
+        "200",
+    ]);
+    assert!(output.status.success(), "{}", code_and_stderr(&output).1);
+    let stopped = manifest(&dir);
+    assert_eq!(stopped["status"], "interrupted");
+    assert_eq!((stopped["frames"].as_u64(), stopped["steps"].as_u64()), (Some(201), Some(2000)));
+    assert_eq!(frames_of(&csv_rows(&dir.join("metrics.csv"))).last(), Some(&200));
+    resume(&dir);
+    assert_same_as_straight(&dir);
+    assert_eq!(manifest(&dir)["resumed_at_frames"], serde_json::json!([201]));
+
+    let again = run_hagfish(["run", "--resume", &dir_arg]);
+    let (code, stderr) = code_and_stderr(&again);
+    assert_eq!(code, Some(2));
+    assert!(stderr.contains("the run is completed: nothing to resume"), "{stderr}");
+}
+
+/// Number of lines of a file (0 if it does not exist yet).
+fn line_count(path: &Path) -> usize {
+    std::fs::read_to_string(path).map_or(0, |t| t.lines().count())
+}
+
+#[test]
+fn a_killed_run_keeps_whole_frames_and_resumes_bit_for_bit() {
+    let dir = fresh_dir("resume_killed");
+    let mut child = hagfish(["run", &scenario(), "--quiet", "--out", &dir.to_string_lossy()])
+        .stdout(std::process::Stdio::null())
+        .spawn()
+        .expect("hagfish starts");
+    let started = Instant::now();
+    while line_count(&dir.join("metrics.csv")) < 1 + 150 {
+        assert!(started.elapsed() < Duration::from_secs(120), "no frames after 120 s");
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    child.kill().expect("SIGKILL");
+    child.wait().expect("the killed run is reaped");
+    assert_eq!(manifest(&dir)["status"], "running", "the run ended before it was killed");
+
+    let metrics = frames_of(&csv_rows(&dir.join("metrics.csv")));
+    let frames = metrics.len();
+    assert_eq!(metrics, (0..frames).collect::<Vec<_>>(), "metrics.csv: frames 0, 1, …");
+    let centreline = frames_of(&csv_rows(&dir.join("centreline.csv")));
+    assert_eq!(centreline.len() % 100, 0, "centreline.csv holds whole frames");
+    let forces = frames_of(&csv_rows(&dir.join("forces.csv")));
+    assert_eq!(forces.len() % (3 * 150), 0, "forces.csv holds whole frames");
+    let contacts = frames_of(&csv_rows(&dir.join("contacts.csv")));
+    let checkpoint = std::fs::read_to_string(dir.join("checkpoint.ron")).expect("checkpoint");
+    let saved: usize = checkpoint
+        .lines()
+        .find_map(|l| l.trim().strip_prefix("frames: "))
+        .and_then(|v| v.trim_end_matches(',').parse().ok())
+        .expect("frames in the checkpoint");
+    // Files are written in this order, each frame in one write: centreline, metrics, forces,
+    // contacts, then the arrays; a kill between two writes leaves one file a frame ahead.
+    let counts = [centreline.len() / 100, frames, forces.len() / 450];
+    assert!(counts.iter().all(|&c| c >= saved && c <= saved + 1), "{counts:?} vs {saved}");
+    assert!(contacts.last().is_none_or(|&f| f <= centreline.len() / 100));
+    for file in ["q.npy", "qdot.npy", "thigmo_force.npy"] {
+        let array = hagfish_sim::read_npy(&dir.join(file)).expect(file);
+        assert!(array.rows >= saved && array.rows <= saved + 1, "{file}: {}", array.rows);
+        assert_eq!(array.columns, 150);
+    }
+
+    resume(&dir);
+    assert_same_as_straight(&dir);
+}
