@@ -139,3 +139,30 @@ fn a_killed_run_keeps_whole_frames_and_resumes_bit_for_bit() {
     resume(&dir);
     assert_same_as_straight(&dir);
 }
+
+#[test]
+fn resume_flag_starts_a_missing_run_and_refuses_another_scenario() {
+    let dir = fresh_dir("resume_flag");
+    let dir_arg = dir.to_string_lossy().into_owned();
+    let short = format!("{ROOT}/tests/data/form.ron");
+    let args = |scenario: &str, extra: &[&str]| {
+        let mut args = vec!["run", "--quiet", "--resume", "--out", &dir_arg];
+        args.insert(1, scenario);
+        args.extend_from_slice(extra);
+        args.into_iter().map(str::to_owned).collect::<Vec<_>>()
+    };
+    let first = run_hagfish(args(&short, &["--stop-after-frames", "5"]));
+    assert!(first.status.success(), "{}", code_and_stderr(&first).1);
+    assert_eq!(manifest(&dir)["status"], "interrupted");
+
+    let other = run_hagfish(args(&scenario(), &[]));
+    let (code, stderr) = code_and_stderr(&other);
+    assert_eq!(code, Some(2));
+    assert!(stderr.contains("the run is of another scenario"), "{stderr}");
+
+    let second = run_hagfish(args(&short, &[]));
+    assert!(second.status.success(), "{}", code_and_stderr(&second).1);
+    let done = manifest(&dir);
+    assert_eq!((done["status"].as_str(), done["frames"].as_u64()), (Some("completed"), Some(16)));
+    assert_eq!(done["resumed_at_frames"], serde_json::json!([6]));
+}

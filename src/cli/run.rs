@@ -14,7 +14,7 @@ use hagfish_sim::{
 };
 
 use super::CliError;
-use super::manifest::{Manifest, Status};
+use super::manifest::{MANIFEST_FILE, Manifest, Status};
 use super::progress::Reporter;
 
 /// The resolved scenario in a run directory.
@@ -27,15 +27,15 @@ const DIVERGED_FILE: &str = "diverged.ron";
 #[derive(Debug, Args)]
 pub struct RunArgs {
     /// The scenario file (RON), e.g. data/scenarios/form.ron.
-    #[arg(required_unless_present = "resume", conflicts_with = "resume")]
     scenario: Option<PathBuf>,
-    /// Output directory (created if missing; its outputs are replaced).
-    #[arg(long, required_unless_present = "resume", conflicts_with = "resume")]
-    out: Option<PathBuf>,
-    /// Continue the stopped (interrupted, killed or diverged) run in this directory from its
-    /// checkpoint.
+    /// Output directory (created if missing; its outputs are replaced unless --resume).
     #[arg(long, value_name = "DIR")]
-    resume: Option<PathBuf>,
+    out: Option<PathBuf>,
+    /// Continue the stopped (interrupted, killed or diverged) run in DIR from its checkpoint:
+    /// `--resume DIR`, or `SCENARIO --out DIR --resume`, which checks that DIR holds a run of
+    /// SCENARIO and starts one if DIR has none yet (for job scripts that are simply rerun).
+    #[arg(long, value_name = "DIR", num_args = 0..=1)]
+    resume: Option<Option<PathBuf>>,
     /// No progress on stderr; only the final summary on stdout.
     #[arg(long)]
     quiet: bool,
@@ -51,14 +51,22 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let started = Instant::now();
     let (loaded, directory, checkpoint, mut manifest) =
         match (&args.resume, &args.scenario, &args.out) {
-            (Some(directory), _, _) => open_stopped(directory)?,
-            (None, Some(scenario), Some(directory)) => {
+            (Some(Some(directory)), None, None) => open_stopped(directory, None)?,
+            (Some(None), Some(scenario), Some(directory))
+                if directory.join(MANIFEST_FILE).exists() =>
+            {
+                open_stopped(directory, Some(&LoadedScenario::load(scenario)?.hash()))?
+            }
+            (Some(None) | None, Some(scenario), Some(directory)) => {
                 let loaded = LoadedScenario::load(scenario)?;
                 let manifest = Manifest::start(scenario, &loaded.scenario.name, loaded.hash());
                 (loaded, directory.clone(), None, manifest)
             }
-            // clap requires a scenario and --out unless --resume is given.
-            _ => return Err(CliError::Usage("give SCENARIO and --out DIR, or --resume DIR")),
+            _ => {
+                return Err(CliError::Usage(
+                    "give SCENARIO --out DIR [--resume], or --resume DIR alone",
+                ));
+            }
         };
     let dofs = loaded.biometrics.to_model()?.dof_count();
     let mut recorder = match &checkpoint {
@@ -97,9 +105,11 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     }
 }
 
-/// The scenario, checkpoint and manifest of the stopped run in `directory`.
+/// The scenario, checkpoint and manifest of the stopped run in `directory`, which must be of
+/// the scenario with hash `expected` if one is given.
 fn open_stopped(
     directory: &Path,
+    expected: Option<&str>,
 ) -> Result<(LoadedScenario, PathBuf, Option<Checkpoint>, Manifest), CliError> {
     let manifest = Manifest::read(directory)?;
     if manifest.status == Status::Completed {
@@ -111,13 +121,14 @@ fn open_stopped(
     let loaded = LoadedScenario::load(directory.join(SCENARIO_FILE))?;
     let path = directory.join(CHECKPOINT_FILE);
     let checkpoint = Checkpoint::read(&path)?;
-    if checkpoint.scenario_hash != loaded.hash() || manifest.scenario_hash != loaded.hash() {
+    let hash = loaded.hash();
+    let hashes = [Some(checkpoint.scenario_hash.as_str()), Some(&manifest.scenario_hash), expected];
+    if let Some(other) = hashes.into_iter().flatten().find(|h| *h != hash) {
         return Err(CliError::RunDirectory {
             path,
             reason: format!(
-                "scenario hash {} of the checkpoint does not match {} of {SCENARIO_FILE}",
-                checkpoint.scenario_hash,
-                loaded.hash()
+                "the run is of another scenario: hash {other} (checkpoint, manifest or the \
+                 scenario given) differs from {hash} of {SCENARIO_FILE}"
             ),
         });
     }
