@@ -57,3 +57,53 @@ impl PhasedController {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::forming::{FormingScript, ScriptStep};
+    use crate::tail_pd::TailGains;
+
+    fn controller(phases: Vec<Phase>) -> PhasedController {
+        PhasedController::new(None, phases)
+    }
+
+    fn form() -> Phase {
+        Phase::Form(FormingScript {
+            gains: TailGains::default(),
+            steps: vec![ScriptStep::Hold(1.0)],
+        })
+    }
+
+    #[test]
+    fn a_saved_state_comes_back_and_a_foreign_one_is_refused() {
+        let phases = vec![form(), Phase::Hold(1.0)];
+        let saved = ControllerState {
+            phases: PhaseProgress { phase: 1, started_at: 2.5 },
+            forming: Some(ScriptProgress {
+                step: 1,
+                started_at: Some(1.5),
+                from: [1.0, 2.0, 3.0],
+                to: [1.0, 2.0, 3.0],
+                duration: 1.0,
+            }),
+        };
+        let mut restored = controller(phases.clone());
+        assert_eq!(restored.restore(&saved), Ok(()));
+        assert_eq!(restored.state(), saved);
+        assert_eq!(restored.phase_name(), "hold");
+
+        let mismatch = |state: &ControllerState| controller(phases.clone()).restore(state).is_err();
+        assert!(
+            mismatch(&ControllerState { forming: None, ..saved }),
+            "Form phase without progress"
+        );
+        let beyond = PhaseProgress { phase: 3, started_at: 0.0 };
+        assert!(mismatch(&ControllerState { phases: beyond, ..saved }), "phase beyond the last");
+        let passive = controller(vec![Phase::Hold(1.0)]).restore(&saved);
+        assert!(passive.is_err(), "forming progress without a Form phase");
+        let finished =
+            ControllerState { phases: PhaseProgress { phase: 2, started_at: 3.5 }, ..saved };
+        assert!(!mismatch(&finished), "after the last phase the forming script is kept");
+    }
+}
