@@ -2,7 +2,8 @@
 //! head (CGS units). The subcommands live in [`cli`], one file each.
 //!
 //! Exit codes: 0 on success (a run that completed or was stopped on request), 3 when a run
-//! diverged (its outputs are kept), 2 on any other error (bad input file, unwritable output,
+//! diverged (its outputs are kept), 130 when SIGINT or SIGTERM stopped a run (after a frame,
+//! resumable), 2 on any other error (bad input file, unwritable output,
 //! or a usage error reported by clap), with an `error: file:line:column: what` message on
 //! stderr.
 

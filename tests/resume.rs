@@ -4,7 +4,9 @@
 //!   gives the same bytes in every output and the same final-state hash as a straight run;
 //! - killed with SIGKILL mid-way, it leaves CSV files of complete rows and whole frames, frame
 //!   counts that agree across files (up to the frame being written) and cover the checkpoint,
-//!   and resumed from there it again ends bit for bit as the straight run.
+//!   and resumed from there it again ends bit for bit as the straight run;
+//! - stopped by SIGTERM, it ends after a frame with exit code 130, status `interrupted`, and
+//!   resumes bit for bit.
 
 mod common;
 
@@ -165,4 +167,36 @@ fn resume_flag_starts_a_missing_run_and_refuses_another_scenario() {
     let done = manifest(&dir);
     assert_eq!((done["status"].as_str(), done["frames"].as_u64()), (Some("completed"), Some(16)));
     assert_eq!(done["resumed_at_frames"], serde_json::json!([6]));
+}
+
+#[test]
+fn sigterm_stops_after_a_frame_with_a_resumable_run() {
+    let dir = fresh_dir("resume_sigterm");
+    let child = hagfish(["run", &scenario(), "--quiet", "--out", &dir.to_string_lossy()])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("hagfish starts");
+    let started = Instant::now();
+    while line_count(&dir.join("metrics.csv")) < 1 + 100 {
+        assert!(started.elapsed() < Duration::from_secs(120), "no frames after 120 s");
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    let term = std::process::Command::new("kill")
+        .args(["-TERM", &child.id().to_string()])
+        .status()
+        .expect("kill runs");
+    assert!(term.success());
+    let output = child.wait_with_output().expect("the run ends");
+    let (code, stderr) = code_and_stderr(&output);
+    assert_eq!(code, Some(130), "{stderr}");
+    assert!(stderr.contains("interrupted by a signal after"), "{stderr}");
+    let stopped = manifest(&dir);
+    assert_eq!(stopped["status"], "interrupted");
+    let frames = stopped["frames"].as_u64().expect("frames");
+    assert!((101..301).contains(&frames), "{frames}");
+    assert_eq!(csv_rows(&dir.join("metrics.csv")).len() as u64, frames);
+
+    resume(&dir);
+    assert_same_as_straight(&dir);
 }

@@ -1,5 +1,6 @@
 //! The error of any subcommand; `main` prints it as one line and exits with its
-//! [`exit_code`](CliError::exit_code): 3 for a diverged run, 2 for everything else.
+//! [`exit_code`](CliError::exit_code): 3 for a diverged run, 130 for a run stopped by a
+//! signal, 2 for everything else.
 
 use std::path::PathBuf;
 
@@ -26,6 +27,20 @@ pub enum CliError {
         /// What failed.
         reason: String,
     },
+    /// SIGINT or SIGTERM stopped the run after a frame; it is resumable.
+    #[error(
+        "interrupted by a signal after {frames} frames; continue with: hagfish run --resume {}",
+        directory.display()
+    )]
+    Interrupted {
+        /// The run directory.
+        directory: PathBuf,
+        /// Frames recorded.
+        frames: usize,
+    },
+    /// The handler of SIGINT and SIGTERM could not be installed.
+    #[error("cannot handle interrupts: {0}")]
+    Signal(#[from] ctrlc::Error),
     /// A run directory (manifest, checkpoint, scenario copy) that cannot be used.
     #[error("{}: {reason}", path.display())]
     RunDirectory {
@@ -55,10 +70,12 @@ pub enum CliError {
 }
 
 impl CliError {
-    /// The process exit code: 3 when the run diverged, 2 for any other error.
+    /// The process exit code: 3 when the run diverged, 130 (as for Ctrl-C) when a signal
+    /// stopped it, 2 for any other error.
     pub fn exit_code(&self) -> u8 {
         match self {
             CliError::Diverged { .. } => 3,
+            CliError::Interrupted { .. } => 130,
             _ => 2,
         }
     }

@@ -24,7 +24,7 @@ pub enum Status {
     Completed,
     /// A step failed; the outputs hold every frame before it.
     Diverged,
-    /// Stopped on request (`--stop-after-frames`); resumable.
+    /// Stopped on request (`--stop-after-frames`, SIGINT, SIGTERM); resumable.
     Interrupted,
 }
 

@@ -5,6 +5,8 @@
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 use clap::Args;
@@ -46,7 +48,8 @@ pub struct RunArgs {
 }
 
 /// Runs or resumes, then prints the summary. A diverged run is an error (exit code 3) after
-/// its outputs, checkpoint and manifest are written.
+/// its outputs, checkpoint and manifest are written; so is a run stopped by SIGINT or SIGTERM
+/// (exit code 130), which stops after the next frame, resumable.
 pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let started = Instant::now();
     let (loaded, directory, checkpoint, mut manifest) =
@@ -90,18 +93,27 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     }
     manifest.write(&directory)?;
 
+    let signalled = Arc::new(AtomicBool::new(false));
+    let flag = Arc::clone(&signalled);
+    ctrlc::set_handler(move || flag.store(true, Ordering::Relaxed))?;
     let mut reporter = Reporter::new(args.quiet, loaded.scenario.duration_s);
-    let options =
-        RunOptions { resume: checkpoint.as_ref(), stop_after_frame: args.stop_after_frames };
+    let options = RunOptions {
+        resume: checkpoint.as_ref(),
+        stop_after_frame: args.stop_after_frames,
+        stop: Some(&signalled),
+    };
     let outcome = hagfish_sim::run(&loaded, options, &mut recorder, &mut |p| reporter.update(p))?;
     reporter.finish();
     let wall = started.elapsed().as_secs_f64();
     let diverged = finish(&outcome, &directory, &mut manifest, wall)?;
     let steps_run = outcome.summary.steps - checkpoint.as_ref().map_or(0, |c| c.steps);
     summarise(&loaded, &directory, &outcome, manifest.status, wall, steps_run, out)?;
-    match diverged {
-        Some(reason) => Err(CliError::Diverged { directory, reason }),
-        None => Ok(()),
+    match (diverged, &outcome.end) {
+        (Some(reason), _) => Err(CliError::Diverged { directory, reason }),
+        (None, RunEnd::Interrupted) if signalled.load(Ordering::Relaxed) => {
+            Err(CliError::Interrupted { directory, frames: outcome.summary.frames })
+        }
+        (None, _) => Ok(()),
     }
 }
 

@@ -3,6 +3,8 @@
 //! [`Checkpoint`], and ends completed, interrupted (asked to stop after a frame) or diverged
 //! (a step failed: the state is kept as it was before that step).
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use glam::DVec3;
 use hagfish_control::{KnotSpan, PhasedController};
 use hagfish_knots::{KnotOptions, KnotReport, analyse_knot};
@@ -64,6 +66,8 @@ pub struct RunOptions<'a> {
     pub resume: Option<&'a Checkpoint>,
     /// Stop once the frame with this index has been recorded (before the scenario's end).
     pub stop_after_frame: Option<usize>,
+    /// Stop after the next recorded frame once this flag is set (by a signal handler).
+    pub stop: Option<&'a AtomicBool>,
 }
 
 /// How a run ended.
@@ -71,7 +75,8 @@ pub struct RunOptions<'a> {
 pub enum RunEnd {
     /// The scenario's whole duration was simulated.
     Completed,
-    /// Stopped after the frame given by [`RunOptions::stop_after_frame`].
+    /// Stopped after the frame given by [`RunOptions::stop_after_frame`] or after the flag
+    /// [`RunOptions::stop`] was set.
     Interrupted,
     /// A step failed (non-finite state, failed solve, …); the outputs hold every frame before.
     Diverged {
@@ -163,7 +168,8 @@ pub fn run(
             progress,
             scenario.duration_s,
         )?;
-        let stop = options.stop_after_frame.is_some_and(|k| summary.frames > k);
+        let stop = options.stop_after_frame.is_some_and(|k| summary.frames > k)
+            || options.stop.is_some_and(|flag| flag.load(Ordering::Relaxed));
         if stop && world.steps() < steps {
             break RunEnd::Interrupted;
         }
