@@ -139,4 +139,11 @@ fn a_diverging_run_keeps_its_outputs_and_exits_with_3() {
     assert!(diverged.contains("steps: 35,"));
     let checkpoint = std::fs::read_to_string(dir.join("checkpoint.ron")).expect("checkpoint.ron");
     assert!(checkpoint.contains("steps: 30,") && checkpoint.contains("frames: 4,"));
+
+    // Resumed from its last frame, the run fails again at the same step.
+    let again = run_hagfish(["run".as_ref(), "--resume".as_ref(), dir.as_os_str()]);
+    let (code, stderr) = code_and_stderr(&again);
+    assert_eq!(code, Some(3), "{stderr}");
+    assert!(stderr.starts_with("error: the run diverged: step 35 (t = 0.35"), "{stderr}");
+    assert_eq!(common::manifest(&dir)["resumed_at_frames"], serde_json::json!([4]));
 }

@@ -91,6 +91,16 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
         manifest.ended_utc = None;
         manifest.error = None;
     }
+    // The failing state of an earlier part of this run no longer describes the directory.
+    match std::fs::remove_file(directory.join(DIVERGED_FILE)) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+            return Err(CliError::RunDirectory {
+                path: directory.join(DIVERGED_FILE),
+                reason: e.to_string(),
+            });
+        }
+        _ => {}
+    }
     manifest.write(&directory)?;
 
     let signalled = Arc::new(AtomicBool::new(false));
