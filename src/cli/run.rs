@@ -52,56 +52,8 @@ pub struct RunArgs {
 /// (exit code 130), which stops after the next frame, resumable.
 pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let started = Instant::now();
-    let (loaded, directory, checkpoint, mut manifest) =
-        match (&args.resume, &args.scenario, &args.out) {
-            (Some(Some(directory)), None, None) => open_stopped(directory, None)?,
-            (Some(None), Some(scenario), Some(directory))
-                if directory.join(MANIFEST_FILE).exists() =>
-            {
-                open_stopped(directory, Some(&LoadedScenario::load(scenario)?.hash()))?
-            }
-            (Some(None) | None, Some(scenario), Some(directory)) => {
-                let loaded = LoadedScenario::load(scenario)?;
-                let manifest = Manifest::start(scenario, &loaded.scenario.name, loaded.hash());
-                (loaded, directory.clone(), None, manifest)
-            }
-            _ => {
-                return Err(CliError::Usage(
-                    "give SCENARIO --out DIR [--resume], or --resume DIR alone",
-                ));
-            }
-        };
-    let dofs = loaded.biometrics.to_model()?.dof_count();
-    let mut recorder = match &checkpoint {
-        Some(checkpoint) => Recorder::reopen(&directory, dofs, checkpoint)?,
-        None => {
-            let recorder = Recorder::create(&directory, dofs)?;
-            std::fs::write(directory.join(SCENARIO_FILE), loaded.resolved_text()).map_err(|e| {
-                CliError::RunDirectory {
-                    path: directory.join(SCENARIO_FILE),
-                    reason: e.to_string(),
-                }
-            })?;
-            recorder
-        }
-    };
-    if let Some(checkpoint) = &checkpoint {
-        manifest.resumed_at_frames.push(checkpoint.frames);
-        manifest.status = Status::Running;
-        manifest.ended_utc = None;
-        manifest.error = None;
-    }
-    // The failing state of an earlier part of this run no longer describes the directory.
-    match std::fs::remove_file(directory.join(DIVERGED_FILE)) {
-        Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
-            return Err(CliError::RunDirectory {
-                path: directory.join(DIVERGED_FILE),
-                reason: e.to_string(),
-            });
-        }
-        _ => {}
-    }
-    manifest.write(&directory)?;
+    let (loaded, directory, checkpoint, mut manifest) = open(args)?;
+    let mut recorder = prepare(&loaded, &directory, checkpoint.as_ref(), &mut manifest)?;
 
     let signalled = Arc::new(AtomicBool::new(false));
     let flag = Arc::clone(&signalled);
@@ -127,12 +79,70 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     }
 }
 
+/// What a run or resume starts from.
+type Opened = (LoadedScenario, PathBuf, Option<Checkpoint>, Manifest);
+
+/// The scenario, run directory, checkpoint (when resuming) and manifest the arguments name.
+fn open(args: &RunArgs) -> Result<Opened, CliError> {
+    match (&args.resume, &args.scenario, &args.out) {
+        (Some(Some(directory)), None, None) => open_stopped(directory, None),
+        (Some(None), Some(scenario), Some(directory)) if directory.join(MANIFEST_FILE).exists() => {
+            open_stopped(directory, Some(&LoadedScenario::load(scenario)?.hash()))
+        }
+        (Some(None) | None, Some(scenario), Some(directory)) => {
+            let loaded = LoadedScenario::load(scenario)?;
+            let manifest = Manifest::start(scenario, &loaded.scenario.name, loaded.hash());
+            Ok((loaded, directory.clone(), None, manifest))
+        }
+        _ => Err(CliError::Usage("give SCENARIO --out DIR [--resume], or --resume DIR alone")),
+    }
+}
+
+/// Opens the output files (cut to the checkpoint when resuming; new, with `scenario.ron`,
+/// otherwise), removes a stale `diverged.ron` and writes the manifest of the starting part.
+fn prepare(
+    loaded: &LoadedScenario,
+    directory: &Path,
+    checkpoint: Option<&Checkpoint>,
+    manifest: &mut Manifest,
+) -> Result<Recorder, CliError> {
+    let dofs = loaded.biometrics.to_model()?.dof_count();
+    let recorder = match checkpoint {
+        Some(checkpoint) => Recorder::reopen(directory, dofs, checkpoint)?,
+        None => {
+            let recorder = Recorder::create(directory, dofs)?;
+            std::fs::write(directory.join(SCENARIO_FILE), loaded.resolved_text()).map_err(|e| {
+                CliError::RunDirectory {
+                    path: directory.join(SCENARIO_FILE),
+                    reason: e.to_string(),
+                }
+            })?;
+            recorder
+        }
+    };
+    if let Some(checkpoint) = checkpoint {
+        manifest.resumed_at_frames.push(checkpoint.frames);
+        manifest.status = Status::Running;
+        manifest.ended_utc = None;
+        manifest.error = None;
+    }
+    // The failing state of an earlier part of this run no longer describes the directory.
+    match std::fs::remove_file(directory.join(DIVERGED_FILE)) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+            return Err(CliError::RunDirectory {
+                path: directory.join(DIVERGED_FILE),
+                reason: e.to_string(),
+            });
+        }
+        _ => {}
+    }
+    manifest.write(directory)?;
+    Ok(recorder)
+}
+
 /// The scenario, checkpoint and manifest of the stopped run in `directory`, which must be of
 /// the scenario with hash `expected` if one is given.
-fn open_stopped(
-    directory: &Path,
-    expected: Option<&str>,
-) -> Result<(LoadedScenario, PathBuf, Option<Checkpoint>, Manifest), CliError> {
+fn open_stopped(directory: &Path, expected: Option<&str>) -> Result<Opened, CliError> {
     let manifest = Manifest::read(directory)?;
     if manifest.status == Status::Completed {
         return Err(CliError::RunDirectory {
