@@ -64,6 +64,26 @@ fn assert_same_as_straight(dir: &Path) {
     assert_eq!(a["steps"], 3000);
 }
 
+/// The arrays have one row per frame, and the last rows of q and q̇ are the state saved in the
+/// final checkpoint, bit for bit.
+fn assert_arrays_end_at_the_checkpoint(dir: &Path) {
+    let checkpoint = std::fs::read_to_string(dir.join("checkpoint.ron")).expect("checkpoint");
+    for (file, key) in [("q.npy", "q: "), ("qdot.npy", "qdot: ")] {
+        let array = hagfish_sim::read_npy(&dir.join(file)).expect(file);
+        assert_eq!((array.rows, array.columns), (301, 150), "{file}");
+        let saved: Vec<u64> = checkpoint
+            .lines()
+            .find_map(|l| l.trim().strip_prefix(key))
+            .expect(key)
+            .trim_matches(|c| c == '"' || c == ',')
+            .split_whitespace()
+            .map(|w| u64::from_str_radix(w, 16).expect("hex"))
+            .collect();
+        let last: Vec<u64> = array.values[300 * 150..].iter().map(|v| v.to_bits()).collect();
+        assert_eq!(saved, last, "{file}");
+    }
+}
+
 #[test]
 fn stop_and_resume_gives_the_straight_run_bit_for_bit() {
     let dir = fresh_dir("resume_stopped");
@@ -84,6 +104,7 @@ fn stop_and_resume_gives_the_straight_run_bit_for_bit() {
     assert_eq!(frames_of(&csv_rows(&dir.join("metrics.csv"))).last(), Some(&200));
     resume(&dir);
     assert_same_as_straight(&dir);
+    assert_arrays_end_at_the_checkpoint(&dir);
     assert_eq!(manifest(&dir)["resumed_at_frames"], serde_json::json!([201]));
 
     let again = run_hagfish(["run", "--resume", &dir_arg]);
