@@ -1,8 +1,11 @@
 //! `hagfish`: simulates a hagfish tying an overhand knot in its body and sliding it to the
 //! head (CGS units). The subcommands live in [`cli`], one file each.
 //!
-//! Exit codes: 0 on success, 2 on any error (bad input file, unwritable output, or a usage
-//! error reported by clap), with one `error: file:line:column: what` line on stderr.
+//! Exit codes: 0 on success (a run that completed or was stopped on request), 3 when a run
+//! diverged (its outputs are kept), 130 when SIGINT or SIGTERM stopped a run (after a frame,
+//! resumable), 2 on any other error (bad input file, unwritable output,
+//! or a usage error reported by clap), with an `error: file:line:column: what` message on
+//! stderr.
 
 mod cli;
 
@@ -17,7 +20,7 @@ fn main() -> ExitCode {
         Err(e) => {
             // Nothing sensible is left to do if stderr itself is closed.
             let _ = writeln!(std::io::stderr(), "error: {e}");
-            ExitCode::from(2)
+            ExitCode::from(e.exit_code())
         }
     }
 }

@@ -1,4 +1,8 @@
-//! The error of any subcommand; `main` prints it as one line and exits with code 2.
+//! The error of any subcommand; `main` prints it as one line and exits with its
+//! [`exit_code`](CliError::exit_code): 3 for a diverged run, 130 for a run stopped by a
+//! signal, 2 for everything else.
+
+use std::path::PathBuf;
 
 use hagfish_anatomy::AnatomyError;
 
@@ -9,10 +13,70 @@ pub enum CliError {
     /// The biometrics file could not be read, parsed, validated or turned into a model.
     #[error(transparent)]
     Anatomy(#[from] AnatomyError),
-    /// The scenario could not be loaded or the run stopped.
+    /// The scenario could not be loaded, or the run could not be set up or recorded.
     #[error(transparent)]
     Sim(#[from] hagfish_sim::SimError),
+    /// A step of the run failed; everything up to the last frame is kept.
+    #[error(
+        "the run diverged: {reason}\n(outputs up to the last frame, checkpoint.ron and the failing state in diverged.ron are in {})",
+        directory.display()
+    )]
+    Diverged {
+        /// The run directory.
+        directory: PathBuf,
+        /// What failed.
+        reason: String,
+    },
+    /// SIGINT or SIGTERM stopped the run after a frame; it is resumable.
+    #[error(
+        "interrupted by a signal after {frames} frames; continue with: hagfish run --resume {}",
+        directory.display()
+    )]
+    Interrupted {
+        /// The run directory.
+        directory: PathBuf,
+        /// Frames recorded.
+        frames: usize,
+    },
+    /// The handler of SIGINT and SIGTERM could not be installed.
+    #[error("cannot handle interrupts: {0}")]
+    Signal(#[from] ctrlc::Error),
+    /// A run directory (manifest, checkpoint, scenario copy) that cannot be used.
+    #[error("{}: {reason}", path.display())]
+    RunDirectory {
+        /// The file or directory.
+        path: PathBuf,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A malformed CSV file, at `file:line:column`.
+    #[error("{}:{line}:{column}: {message}", path.display())]
+    Csv {
+        /// The file.
+        path: PathBuf,
+        /// Line, from 1.
+        line: usize,
+        /// Column in characters, from 1.
+        column: usize,
+        /// What is wrong and what was expected.
+        message: String,
+    },
+    /// Arguments that do not go together.
+    #[error("{0}")]
+    Usage(&'static str),
     /// Writing the report to stdout failed (e.g. a closed pipe).
     #[error("cannot write the output: {0}")]
     Output(#[from] std::io::Error),
+}
+
+impl CliError {
+    /// The process exit code: 3 when the run diverged, 130 (as for Ctrl-C) when a signal
+    /// stopped it, 2 for any other error.
+    pub fn exit_code(&self) -> u8 {
+        match self {
+            CliError::Diverged { .. } => 3,
+            CliError::Interrupted { .. } => 130,
+            _ => 2,
+        }
+    }
 }

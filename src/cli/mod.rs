@@ -1,9 +1,14 @@
-//! The command line: one [`Command`] variant and one file per subcommand (`body` now; `run`,
-//! `params`, `knot`, `render` and `report` to follow), all sharing [`CliError`].
+//! The command line: one [`Command`] variant and one file per subcommand (`body`, `run`,
+//! `params`, `knot`; `render` and `report` to follow), all sharing [`CliError`].
 
 mod body;
 mod error;
+mod knot;
+mod manifest;
+mod params;
+mod progress;
 mod run;
+mod utc;
 
 use std::io::{BufWriter, Write};
 
@@ -25,8 +30,12 @@ pub struct Cli {
 enum Command {
     /// Print the bodies derived from a biometrics file: radius, mass, joint and limits.
     Body(body::BodyArgs),
-    /// Run a scenario and write centreline.csv and metrics.csv into the output directory.
+    /// Run a scenario into a run directory (CSV, .npy, manifest, checkpoint), or resume one.
     Run(run::RunArgs),
+    /// Print every scenario parameter: name, unit, default and meaning.
+    Params,
+    /// Print the knot type of every frame of a centreline CSV.
+    Knot(knot::KnotArgs),
 }
 
 /// Runs the chosen subcommand, writing its report to stdout (buffered, flushed at the end).
@@ -35,6 +44,8 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
     match cli.command {
         Command::Body(args) => body::run(&args, &mut out)?,
         Command::Run(args) => run::run(&args, &mut out)?,
+        Command::Params => params::run(&mut out)?,
+        Command::Knot(args) => knot::run(&args, &mut out)?,
     }
     out.flush()?;
     Ok(())

@@ -1,57 +1,220 @@
-//! `hagfish run SCENARIO --out DIR`: runs a scenario and writes its outputs as it goes.
+//! `hagfish run SCENARIO --out DIR`: runs a scenario and writes its run directory as it goes
+//! (`docs/outputs.md`): `scenario.ron` (resolved), `manifest.json`, the CSV and `.npy` outputs
+//! and `checkpoint.ron` after every frame. `hagfish run --resume DIR` continues a stopped run
+//! from its checkpoint, bit for bit.
 
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant;
 
 use clap::Args;
-use hagfish_sim::{LoadedScenario, Progress, Recorder};
+use hagfish_sim::{
+    CHECKPOINT_FILE, Checkpoint, LoadedScenario, Recorder, RunEnd, RunOptions, RunOutcome,
+    state_hash,
+};
 
 use super::CliError;
+use super::manifest::{MANIFEST_FILE, Manifest, Status};
+use super::progress::Reporter;
+
+/// The resolved scenario in a run directory.
+const SCENARIO_FILE: &str = "scenario.ron";
+
+/// The state at which a run diverged.
+const DIVERGED_FILE: &str = "diverged.ron";
 
 /// Arguments of `hagfish run`.
 #[derive(Debug, Args)]
 pub struct RunArgs {
     /// The scenario file (RON), e.g. data/scenarios/form.ron.
-    scenario: PathBuf,
-    /// Output directory (created if missing).
-    #[arg(long)]
-    out: PathBuf,
-    /// Print only the final summary.
+    scenario: Option<PathBuf>,
+    /// Output directory (created if missing; its outputs are replaced unless --resume).
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// Continue the stopped (interrupted, killed or diverged) run in DIR from its checkpoint:
+    /// `--resume DIR`, or `SCENARIO --out DIR --resume`, which checks that DIR holds a run of
+    /// SCENARIO and starts one if DIR has none yet (for job scripts that are simply rerun).
+    #[arg(long, value_name = "DIR", num_args = 0..=1)]
+    resume: Option<Option<PathBuf>>,
+    /// No progress on stderr; only the final summary on stdout.
     #[arg(long)]
     quiet: bool,
+    /// Stop after recording the frame with this index and leave a resumable run (status
+    /// `interrupted`); for tests and for cluster time limits.
+    #[arg(long, value_name = "K")]
+    stop_after_frames: Option<usize>,
 }
 
-/// Runs the scenario, printing one progress line per simulated second unless `--quiet`.
+/// Runs or resumes, then prints the summary. A diverged run is an error (exit code 3) after
+/// its outputs, checkpoint and manifest are written; so is a run stopped by SIGINT or SIGTERM
+/// (exit code 130), which stops after the next frame, resumable.
 pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
-    let loaded = LoadedScenario::load(&args.scenario)?;
-    let started = std::time::Instant::now();
-    let mut last_second = -1.0;
-    let mut report = |p: &Progress<'_>| {
-        if args.quiet || p.time.floor() <= last_second {
-            return;
-        }
-        last_second = p.time.floor();
-        let knot = p.knot.map_or("?".to_string(), |k| format!("{} ({:.2})", k.knot, k.agreement));
-        // Progress lines go to stderr so stdout stays the summary.
-        let _ = writeln!(
-            std::io::stderr(),
-            "t = {:6.2} / {:.2} s  phase {:5}  knot {knot}",
-            p.time,
-            p.duration,
-            p.phase
-        );
+    let started = Instant::now();
+    let (loaded, directory, checkpoint, mut manifest) = open(args)?;
+    let mut recorder = prepare(&loaded, &directory, checkpoint.as_ref(), &mut manifest)?;
+
+    let signalled = Arc::new(AtomicBool::new(false));
+    let flag = Arc::clone(&signalled);
+    ctrlc::set_handler(move || flag.store(true, Ordering::Relaxed))?;
+    let mut reporter = Reporter::new(args.quiet, loaded.scenario.duration_s);
+    let options = RunOptions {
+        resume: checkpoint.as_ref(),
+        stop_after_frame: args.stop_after_frames,
+        stop: Some(&signalled),
     };
-    let mut recorder = Recorder::create(&args.out)?;
-    let summary = hagfish_sim::run(&loaded, &mut recorder, &mut report)?;
+    let outcome = hagfish_sim::run(&loaded, options, &mut recorder, &mut |p| reporter.update(p))?;
+    reporter.finish();
+    let wall = started.elapsed().as_secs_f64();
+    let diverged = finish(&outcome, &directory, &mut manifest, wall)?;
+    let steps_run = outcome.summary.steps - checkpoint.as_ref().map_or(0, |c| c.steps);
+    summarise(&loaded, &directory, &outcome, manifest.status, wall, steps_run, out)?;
+    match (diverged, &outcome.end) {
+        (Some(reason), _) => Err(CliError::Diverged { directory, reason }),
+        (None, RunEnd::Interrupted) if signalled.load(Ordering::Relaxed) => {
+            Err(CliError::Interrupted { directory, frames: outcome.summary.frames })
+        }
+        (None, _) => Ok(()),
+    }
+}
+
+/// What a run or resume starts from.
+type Opened = (LoadedScenario, PathBuf, Option<Checkpoint>, Manifest);
+
+/// The scenario, run directory, checkpoint (when resuming) and manifest the arguments name.
+fn open(args: &RunArgs) -> Result<Opened, CliError> {
+    match (&args.resume, &args.scenario, &args.out) {
+        (Some(Some(directory)), None, None) => open_stopped(directory, None),
+        (Some(None), Some(scenario), Some(directory)) if directory.join(MANIFEST_FILE).exists() => {
+            open_stopped(directory, Some(&LoadedScenario::load(scenario)?.hash()))
+        }
+        (Some(None) | None, Some(scenario), Some(directory)) => {
+            let loaded = LoadedScenario::load(scenario)?;
+            let manifest = Manifest::start(scenario, &loaded.scenario.name, loaded.hash());
+            Ok((loaded, directory.clone(), None, manifest))
+        }
+        _ => Err(CliError::Usage("give SCENARIO --out DIR [--resume], or --resume DIR alone")),
+    }
+}
+
+/// Opens the output files (cut to the checkpoint when resuming; new, with `scenario.ron`,
+/// otherwise), removes a stale `diverged.ron` and writes the manifest of the starting part.
+fn prepare(
+    loaded: &LoadedScenario,
+    directory: &Path,
+    checkpoint: Option<&Checkpoint>,
+    manifest: &mut Manifest,
+) -> Result<Recorder, CliError> {
+    let dofs = loaded.biometrics.to_model()?.dof_count();
+    let recorder = match checkpoint {
+        Some(checkpoint) => Recorder::reopen(directory, dofs, checkpoint)?,
+        None => {
+            let recorder = Recorder::create(directory, dofs)?;
+            std::fs::write(directory.join(SCENARIO_FILE), loaded.resolved_text()).map_err(|e| {
+                CliError::RunDirectory {
+                    path: directory.join(SCENARIO_FILE),
+                    reason: e.to_string(),
+                }
+            })?;
+            recorder
+        }
+    };
+    if let Some(checkpoint) = checkpoint {
+        manifest.resumed_at_frames.push(checkpoint.frames);
+        manifest.status = Status::Running;
+        manifest.ended_utc = None;
+        manifest.error = None;
+    }
+    // The failing state of an earlier part of this run no longer describes the directory.
+    match std::fs::remove_file(directory.join(DIVERGED_FILE)) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+            return Err(CliError::RunDirectory {
+                path: directory.join(DIVERGED_FILE),
+                reason: e.to_string(),
+            });
+        }
+        _ => {}
+    }
+    manifest.write(directory)?;
+    Ok(recorder)
+}
+
+/// The scenario, checkpoint and manifest of the stopped run in `directory`, which must be of
+/// the scenario with hash `expected` if one is given.
+fn open_stopped(directory: &Path, expected: Option<&str>) -> Result<Opened, CliError> {
+    let manifest = Manifest::read(directory)?;
+    if manifest.status == Status::Completed {
+        return Err(CliError::RunDirectory {
+            path: directory.to_path_buf(),
+            reason: "the run is completed: nothing to resume".into(),
+        });
+    }
+    let loaded = LoadedScenario::load(directory.join(SCENARIO_FILE))?;
+    let path = directory.join(CHECKPOINT_FILE);
+    let checkpoint = Checkpoint::read(&path)?;
+    let hash = loaded.hash();
+    let hashes = [Some(checkpoint.scenario_hash.as_str()), Some(&manifest.scenario_hash), expected];
+    if let Some(other) = hashes.into_iter().flatten().find(|h| *h != hash) {
+        return Err(CliError::RunDirectory {
+            path,
+            reason: format!(
+                "the run is of another scenario: hash {other} (checkpoint, manifest or the \
+                 scenario given) differs from {hash} of {SCENARIO_FILE}"
+            ),
+        });
+    }
+    Ok((loaded, directory.to_path_buf(), Some(checkpoint), manifest))
+}
+
+/// Writes the end of the run into the manifest (and `diverged.ron` for a diverged run);
+/// returns the error of a diverged run.
+fn finish(
+    outcome: &RunOutcome,
+    directory: &Path,
+    manifest: &mut Manifest,
+    wall: f64,
+) -> Result<Option<String>, CliError> {
+    let (status, error) = match &outcome.end {
+        RunEnd::Completed => (Status::Completed, None),
+        RunEnd::Interrupted => (Status::Interrupted, None),
+        RunEnd::Diverged { error, at } => {
+            at.write(&directory.join(DIVERGED_FILE))?;
+            (Status::Diverged, Some(error.to_string()))
+        }
+    };
+    manifest.stop(status, wall);
+    manifest.steps = outcome.summary.steps;
+    manifest.frames = outcome.summary.frames;
+    manifest.time_s = outcome.state.t;
+    manifest.final_state_hash = Some(state_hash(&outcome.state));
+    manifest.error.clone_from(&error);
+    manifest.write(directory)?;
+    Ok(error)
+}
+
+/// The summary on stdout.
+fn summarise(
+    loaded: &LoadedScenario,
+    directory: &Path,
+    outcome: &RunOutcome,
+    status: Status,
+    wall: f64,
+    steps_run: u64,
+    out: &mut dyn Write,
+) -> Result<(), CliError> {
+    let summary = &outcome.summary;
     let last = summary.knots.last().and_then(|k| k.knot.as_ref());
     writeln!(
         out,
-        "scenario {} → {}\nsteps {}  frames {}  wall time {:.2} s\nfinal knot {}  max self penetration {:.2} % of the local radius  max wall penetration {:.4} cm  max limit excess {:.3}°",
+        "scenario {} → {}  ({})\nsteps {}  frames {}  t = {:.2} s  wall time {:.2} s\nfinal knot {}  max self penetration {:.2} % of the local radius  max wall penetration {:.4} cm  max limit excess {:.3}°",
         loaded.scenario.name,
-        args.out.display(),
+        directory.display(),
+        status.name(),
         summary.steps,
         summary.frames,
-        started.elapsed().as_secs_f64(),
+        outcome.state.t,
+        wall,
         last.map_or("?".to_string(), |k| format!("{} (agreement {:.2})", k.knot, k.agreement)),
         100.0 * summary.maxima.self_penetration_relative,
         summary.maxima.wall_penetration,
@@ -72,7 +235,7 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
             stats.temporal_roughness,
         )?;
     }
-    let steps = summary.steps.max(1) as f64;
+    let steps = steps_run.max(1) as f64;
     let stages: Vec<String> = summary
         .timings
         .stages()

@@ -75,8 +75,8 @@ pub struct ScriptProgress {
 /// Follows a [`FormingScript`] with the tail.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FormingController {
-    script: FormingScript,
-    progress: ScriptProgress,
+    pub(crate) script: FormingScript,
+    pub(crate) progress: ScriptProgress,
 }
 
 impl FormingController {

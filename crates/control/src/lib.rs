@@ -11,7 +11,9 @@
 //! CGS units throughout.
 
 mod controller;
+mod controller_state;
 mod drag;
+mod error;
 mod forming;
 mod knot_span;
 mod loops;
@@ -20,7 +22,9 @@ mod tail_pd;
 mod thigmotaxis;
 
 pub use controller::{Actuation, ControlContext, Controller, Passive, PointDamper, PointForce};
+pub use controller_state::ControllerState;
 pub use drag::WaterDrag;
+pub use error::ControlError;
 pub use forming::{FormingController, FormingScript, ScriptProgress, ScriptStep, Waypoint};
 pub use knot_span::KnotSpan;
 pub use loops::{ProjectedLoop, largest_projected_loop};

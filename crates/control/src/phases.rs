@@ -91,9 +91,9 @@ pub struct PhaseProgress {
 #[derive(Clone, Debug)]
 pub struct PhasedController {
     drag: Option<WaterDrag>,
-    phases: Vec<Phase>,
-    progress: PhaseProgress,
-    forming: Option<FormingController>,
+    pub(crate) phases: Vec<Phase>,
+    pub(crate) progress: PhaseProgress,
+    pub(crate) forming: Option<FormingController>,
 }
 
 impl PhasedController {

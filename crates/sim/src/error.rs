@@ -10,6 +10,14 @@ pub enum SimError {
     /// A scenario or biometrics file is unreadable or invalid (message has file:line:column).
     #[error(transparent)]
     DataFile(#[from] hagfish_anatomy::AnatomyError),
+    /// The body file a scenario names cannot be read (the position is the scenario's `body`).
+    #[error("{at}: body: {source}")]
+    BodyFile {
+        /// Where the scenario names the body file.
+        at: hagfish_anatomy::Origin,
+        /// The underlying error.
+        source: Box<hagfish_anatomy::AnatomyError>,
+    },
     /// The model could not be built.
     #[error("building the model: {0}")]
     Model(#[from] TreeError),
@@ -20,6 +28,22 @@ pub enum SimError {
         path: std::path::PathBuf,
         /// The underlying error.
         source: std::io::Error,
+    },
+    /// An `.npy` file that is not a 2-D f64 array as the recorder writes them.
+    #[error("{}: not a readable .npy array: {what}", path.display())]
+    InvalidNpy {
+        /// The file.
+        path: std::path::PathBuf,
+        /// What is wrong.
+        what: String,
+    },
+    /// A run cannot be resumed from its checkpoint (unreadable, or not of this scenario).
+    #[error("{}: cannot resume: {reason}", path.display())]
+    Checkpoint {
+        /// The checkpoint file.
+        path: std::path::PathBuf,
+        /// Why not.
+        reason: String,
     },
     /// Invalid options (non-positive time step, negative margin, …).
     #[error("invalid option {name} = {value}: {expected}")]

@@ -20,7 +20,7 @@ struct FieldFrame {
 }
 
 /// The thigmotaxic force of every recorded frame, with where each DOF sits along the body.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 pub struct ForceFieldLog {
     labels: Vec<DofLabel>,
     /// Arc length of each DOF's joint from the head body's centre, on the straight body (cm),

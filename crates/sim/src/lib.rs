@@ -8,10 +8,15 @@
 //! [`rows`]) → velocity solve (Cholesky / KKT / QP, `hagfish-solver`) → integration.
 //! CGS units throughout.
 
+mod checkpoint;
 mod error;
 mod force_field;
 mod forces;
+mod hash;
+mod npy;
 mod options;
+mod output_file;
+mod parameters;
 pub mod pipeline;
 mod recorder;
 mod report;
@@ -21,15 +26,20 @@ mod scenario;
 mod step_data;
 mod world;
 
+pub use checkpoint::{CHECKPOINT_FILE, CHECKPOINT_FORMAT, Checkpoint, ExactF64s};
 pub use error::SimError;
 pub use force_field::{ForceFieldLog, ForceFieldStats};
 pub use forces::{DofLabel, GroupForces, RECORDED_GROUPS, dof_labels};
+pub use hash::{fnv1a64, state_hash};
+pub use npy::{NpyArray, read_npy};
 pub use options::StepOptions;
+pub use parameters::{PARAMETERS, Parameter};
 pub use recorder::{
-    CENTRELINE_HEADER, FORCES_HEADER, Frame, FrameSink, IntervalMaxima, METRICS_HEADER, Recorder,
+    CENTRELINE_HEADER, CONTACTS_HEADER, FORCES_HEADER, Frame, FrameSink, IntervalMaxima,
+    METRICS_HEADER, RecordedFile, Recorder,
 };
 pub use report::{StageTimings, StepReport};
-pub use run::{KnotSample, Progress, RunSummary, run};
+pub use run::{KnotSample, Progress, RunEnd, RunOptions, RunOutcome, RunSummary, run};
 pub use scenario::{LoadedScenario, Scenario};
 pub use step_data::StepData;
 pub use world::World;

@@ -4,17 +4,24 @@
 //! - `centreline.csv`: `frame,time_s,body,x_cm,y_cm,z_cm`, one row per body per frame.
 //! - `metrics.csv`: one row per frame (see [`METRICS_HEADER`]).
 //! - `forces.csv`: `frame,time_s,joint,axis,group,value_dyn_cm`, per DOF and recorded group.
+//! - `contacts.csv`: one row per self contact per frame (see [`CONTACTS_HEADER`]).
+//! - `q.npy`, `qdot.npy`, `thigmo_force.npy`: frames × DOFs (f64, see `npy.rs`).
+//! - `checkpoint.ron`: the latest frame's [`Checkpoint`], replaced atomically.
 
-use std::fs::File;
-use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 use hagfish_control::KnotSpan;
+use hagfish_geometry::{Centreline, SelfContact};
 use hagfish_knots::KnotReport;
+use hagfish_tree::State;
+use serde::{Deserialize, Serialize};
 
+use crate::checkpoint::{CHECKPOINT_FILE, Checkpoint};
 use crate::error::SimError;
 use crate::forces::{DofLabel, GroupForces, RECORDED_GROUPS};
+use crate::npy::NpyWriter;
+use crate::output_file::OutputFile;
 use crate::report::StepReport;
 
 /// Header of `forces.csv`: generalized constraint forces per joint, axis and group over the
@@ -33,8 +40,13 @@ max_self_penetration_cm,max_self_penetration_rel,max_wall_penetration_cm,max_lim
 contacts_start_cm,contacts_end_cm,first_contact_cm,last_contact_cm,\
 solver_path,solver_status,solver_iterations,slack_rows,slack_max_cm_s";
 
+/// Header of `contacts.csv`: the self contacts of the step that ended at the frame (detected
+/// at its start): spline parameters, arc lengths from the head, gap and the two points.
+pub const CONTACTS_HEADER: &str = "frame,time_s,contact,u_a,u_b,arc_a_cm,arc_b_cm,gap_cm,\
+a_x_cm,a_y_cm,a_z_cm,b_x_cm,b_y_cm,b_z_cm";
+
 /// Worst values over the steps between two frames.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct IntervalMaxima {
     /// Deepest self penetration (cm).
     pub self_penetration: f64,
@@ -70,6 +82,11 @@ impl IntervalMaxima {
 pub trait FrameSink {
     /// Takes one frame.
     fn record(&mut self, frame: &Frame<'_>) -> Result<(), SimError>;
+
+    /// Takes the checkpoint of the frame just recorded (files keep it; memory sinks need not).
+    fn checkpoint(&mut self, _checkpoint: &mut Checkpoint) -> Result<(), SimError> {
+        Ok(())
+    }
 }
 
 /// What one frame records.
@@ -81,6 +98,8 @@ pub struct Frame<'a> {
     pub time: f64,
     /// Name of the controller phase.
     pub phase: &'a str,
+    /// The state at the frame.
+    pub state: &'a State,
     /// Body centres (cm).
     pub centres: &'a [DVec3],
     /// The report of the step that ended at this frame (default for frame 0).
@@ -91,49 +110,130 @@ pub struct Frame<'a> {
     pub knot: Option<&'a KnotReport>,
     /// The stretch of body the self contacts span (of the step that ended at the frame).
     pub span: Option<KnotSpan>,
+    /// Self contacts of the step that ended at the frame (none for frame 0).
+    pub contacts: &'a [SelfContact],
+    /// The centreline those contacts were found on (for arc lengths).
+    pub centreline: &'a Centreline,
     /// Labels of the DOFs (joint, axis).
     pub labels: &'a [DofLabel],
     /// Generalized constraint forces of the step that ended at the frame.
     pub forces: &'a GroupForces,
 }
 
+/// An output file and its length in bytes at a checkpoint.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RecordedFile {
+    /// File name inside the run directory.
+    pub name: String,
+    /// Length (bytes).
+    pub bytes: u64,
+}
+
 /// The open output files of a run.
 #[derive(Debug)]
 pub struct Recorder {
-    centreline: (PathBuf, BufWriter<File>),
-    metrics: (PathBuf, BufWriter<File>),
-    forces: (PathBuf, BufWriter<File>),
+    directory: PathBuf,
+    centreline: OutputFile,
+    metrics: OutputFile,
+    forces: OutputFile,
+    contacts: OutputFile,
+    q: NpyWriter,
+    qdot: NpyWriter,
+    thigmo: NpyWriter,
 }
+
+/// The CSV files and their headers, in the order of [`Recorder::files`].
+const CSV_FILES: [(&str, &str); 4] = [
+    ("centreline.csv", CENTRELINE_HEADER),
+    ("metrics.csv", METRICS_HEADER),
+    ("forces.csv", FORCES_HEADER),
+    ("contacts.csv", CONTACTS_HEADER),
+];
+
+/// The `.npy` files, in the order of [`Recorder::files`].
+const NPY_FILES: [&str; 3] = ["q.npy", "qdot.npy", "thigmo_force.npy"];
 
 impl Recorder {
-    /// Creates `directory` (and parents) and the output files with their headers.
-    pub fn create(directory: &Path) -> Result<Self, SimError> {
+    /// Creates `directory` (and parents) and the output files (CSV with their headers, `.npy`
+    /// with `dofs` columns and no rows).
+    pub fn create(directory: &Path, dofs: usize) -> Result<Self, SimError> {
         std::fs::create_dir_all(directory)
             .map_err(|source| SimError::Output { path: directory.to_path_buf(), source })?;
-        let mut recorder = Self {
-            centreline: open(&directory.join("centreline.csv"))?,
-            metrics: open(&directory.join("metrics.csv"))?,
-            forces: open(&directory.join("forces.csv"))?,
+        let csv = |(name, header): (&str, &str)| -> Result<OutputFile, SimError> {
+            let mut file = OutputFile::create(&directory.join(name))?;
+            file.line(format_args!("{header}"))?;
+            file.flush()?;
+            Ok(file)
         };
-        write_line(&mut recorder.forces, format_args!("{FORCES_HEADER}"))?;
-        write_line(&mut recorder.centreline, format_args!("{CENTRELINE_HEADER}"))?;
-        write_line(&mut recorder.metrics, format_args!("{METRICS_HEADER}"))?;
-        Ok(recorder)
+        let [centreline, metrics, forces, contacts] = CSV_FILES.map(csv);
+        let [q, qdot, thigmo] =
+            NPY_FILES.map(|name| NpyWriter::create(&directory.join(name), dofs));
+        Ok(Self {
+            directory: directory.to_path_buf(),
+            centreline: centreline?,
+            metrics: metrics?,
+            forces: forces?,
+            contacts: contacts?,
+            q: q?,
+            qdot: qdot?,
+            thigmo: thigmo?,
+        })
     }
-}
 
-impl FrameSink for Recorder {
-    /// Appends one frame to every file and flushes them.
-    fn record(&mut self, frame: &Frame<'_>) -> Result<(), SimError> {
+    /// Reopens the output files in `directory` as they were at `checkpoint`: every file is cut
+    /// to its length then (dropping frames recorded after it) and appended to.
+    pub fn reopen(
+        directory: &Path,
+        dofs: usize,
+        checkpoint: &Checkpoint,
+    ) -> Result<Self, SimError> {
+        let length = |name: &str| {
+            checkpoint.files.iter().find(|f| f.name == name).map(|f| f.bytes).ok_or_else(|| {
+                SimError::Checkpoint {
+                    path: directory.join(CHECKPOINT_FILE),
+                    reason: format!("no length of {name}"),
+                }
+            })
+        };
+        let [centreline, metrics, forces, contacts] = CSV_FILES.map(|(name, _)| {
+            length(name).and_then(|l| OutputFile::reopen(&directory.join(name), l))
+        });
+        let frames = checkpoint.frames;
+        let [q, qdot, thigmo] =
+            NPY_FILES.map(|name| NpyWriter::reopen(&directory.join(name), dofs, frames));
+        Ok(Self {
+            directory: directory.to_path_buf(),
+            centreline: centreline?,
+            metrics: metrics?,
+            forces: forces?,
+            contacts: contacts?,
+            q: q?,
+            qdot: qdot?,
+            thigmo: thigmo?,
+        })
+    }
+
+    /// Every output file with its current length.
+    pub fn files(&self) -> Vec<RecordedFile> {
+        let csv = [&self.centreline, &self.metrics, &self.forces, &self.contacts]
+            .map(|f| RecordedFile { name: file_name(f.path()), bytes: f.len() });
+        let npy = [&self.q, &self.qdot, &self.thigmo]
+            .map(|f| RecordedFile { name: file_name(f.path()), bytes: f.len() });
+        csv.into_iter().chain(npy).collect()
+    }
+
+    fn write_centreline(&mut self, frame: &Frame<'_>) -> Result<(), SimError> {
         for (body, c) in frame.centres.iter().enumerate() {
-            write_line(
-                &mut self.centreline,
-                format_args!(
-                    "{},{:.4},{body},{:.6},{:.6},{:.6}",
-                    frame.index, frame.time, c.x, c.y, c.z
-                ),
-            )?;
+            self.centreline.line(format_args!(
+                "{},{:.4},{body},{:.6},{:.6},{:.6}",
+                frame.index, frame.time, c.x, c.y, c.z
+            ))?;
         }
+        Ok(())
+    }
+
+    fn write_metrics(&mut self, frame: &Frame<'_>) -> Result<(), SimError> {
         let (knot, agreement, first, last, position) = match frame.knot {
             Some(k) => (
                 k.knot.to_string(),
@@ -151,57 +251,86 @@ impl FrameSink for Recorder {
                 k.start_cm, k.end_cm, k.first_contact_cm, k.last_contact_cm
             )
         });
-        write_line(
-            &mut self.metrics,
-            format_args!(
-                "{},{:.4},{},{},{},{knot},{agreement},{first},{last},{position},{:.6},{:.6},{:.6},{:.4},{span},{:?},{:?},{},{},{:.3e}",
-                frame.index,
-                frame.time,
-                frame.phase,
-                s.self_contacts,
-                s.wall_contacts,
-                m.self_penetration,
-                m.self_penetration_relative,
-                m.wall_penetration,
-                m.limit_excess.to_degrees(),
-                s.solve.path,
-                s.solve.status,
-                s.solve.iterations,
-                s.solve.slack.count,
-                s.solve.slack.max,
-            ),
-        )?;
+        self.metrics.line(format_args!(
+            "{},{:.4},{},{},{},{knot},{agreement},{first},{last},{position},{:.6},{:.6},{:.6},{:.4},{span},{:?},{:?},{},{},{:.3e}",
+            frame.index,
+            frame.time,
+            frame.phase,
+            s.self_contacts,
+            s.wall_contacts,
+            m.self_penetration,
+            m.self_penetration_relative,
+            m.wall_penetration,
+            m.limit_excess.to_degrees(),
+            s.solve.path,
+            s.solve.status,
+            s.solve.iterations,
+            s.solve.slack.count,
+            s.solve.slack.max,
+        ))
+    }
+
+    fn write_forces(&mut self, frame: &Frame<'_>) -> Result<(), SimError> {
         for (values, group) in frame.forces.values.iter().zip(RECORDED_GROUPS) {
             let name = GroupForces::group_name(group);
             for (label, value) in frame.labels.iter().zip(values) {
-                write_line(
-                    &mut self.forces,
-                    format_args!(
-                        "{},{:.4},{},{},{name},{value:.6e}",
-                        frame.index, frame.time, label.joint, label.axis
-                    ),
-                )?;
+                self.forces.line(format_args!(
+                    "{},{:.4},{},{},{name},{value:.6e}",
+                    frame.index, frame.time, label.joint, label.axis
+                ))?;
             }
         }
-        flush(&mut self.centreline)?;
-        flush(&mut self.forces)?;
-        flush(&mut self.metrics)
+        Ok(())
+    }
+
+    fn write_contacts(&mut self, frame: &Frame<'_>) -> Result<(), SimError> {
+        for (k, c) in frame.contacts.iter().enumerate() {
+            let (a, b) = (c.point_a, c.point_b);
+            self.contacts.line(format_args!(
+                "{},{:.4},{k},{:.6},{:.6},{:.4},{:.4},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6}",
+                frame.index,
+                frame.time,
+                c.u_a,
+                c.u_b,
+                frame.centreline.arc_length(c.u_a),
+                frame.centreline.arc_length(c.u_b),
+                c.gap,
+                a.x,
+                a.y,
+                a.z,
+                b.x,
+                b.y,
+                b.z,
+            ))?;
+        }
+        Ok(())
     }
 }
 
-fn open(path: &Path) -> Result<(PathBuf, BufWriter<File>), SimError> {
-    File::create(path)
-        .map(|f| (path.to_path_buf(), BufWriter::new(f)))
-        .map_err(|source| SimError::Output { path: path.to_path_buf(), source })
+impl FrameSink for Recorder {
+    /// Appends one frame to every file, each file's rows in one write.
+    fn record(&mut self, frame: &Frame<'_>) -> Result<(), SimError> {
+        self.write_centreline(frame)?;
+        self.write_metrics(frame)?;
+        self.write_forces(frame)?;
+        self.write_contacts(frame)?;
+        for file in [&mut self.centreline, &mut self.metrics, &mut self.forces, &mut self.contacts]
+        {
+            file.flush()?;
+        }
+        self.q.append(&frame.state.q)?;
+        self.qdot.append(&frame.state.qdot)?;
+        let thigmo = RECORDED_GROUPS.iter().position(|g| *g == hagfish_solver::RowGroup::Thigmo);
+        self.thigmo.append(thigmo.map_or(&[][..], |g| &frame.forces.values[g]))
+    }
+
+    /// Writes `checkpoint.ron` (atomically) with the current file lengths.
+    fn checkpoint(&mut self, checkpoint: &mut Checkpoint) -> Result<(), SimError> {
+        checkpoint.files = self.files();
+        checkpoint.write(&self.directory.join(CHECKPOINT_FILE))
+    }
 }
 
-fn write_line(
-    file: &mut (PathBuf, BufWriter<File>),
-    line: std::fmt::Arguments<'_>,
-) -> Result<(), SimError> {
-    writeln!(file.1, "{line}").map_err(|source| SimError::Output { path: file.0.clone(), source })
-}
-
-fn flush(file: &mut (PathBuf, BufWriter<File>)) -> Result<(), SimError> {
-    file.1.flush().map_err(|source| SimError::Output { path: file.0.clone(), source })
+fn file_name(path: &Path) -> String {
+    path.file_name().map_or_else(String::new, |n| n.to_string_lossy().into_owned())
 }

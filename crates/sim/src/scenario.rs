@@ -30,7 +30,7 @@ use crate::world::World;
 pub struct Scenario {
     /// A short name, used in outputs.
     pub name: String,
-    /// The biometrics file, relative to the scenario file.
+    /// The biometrics file, relative to the scenario file (absolute once loaded).
     pub body: PathBuf,
     /// Time step h (s), > 0.
     pub time_step_s: f64,
@@ -53,7 +53,7 @@ fn default_record_every() -> f64 {
 /// A scenario with its biometrics loaded and checked.
 #[derive(Clone, Debug)]
 pub struct LoadedScenario {
-    /// The scenario as read.
+    /// The scenario as read, with the body path made absolute.
     pub scenario: Scenario,
     /// The body's biometrics.
     pub biometrics: Biometrics,
@@ -65,11 +65,42 @@ impl LoadedScenario {
     /// Reads the scenario at `path`, checks its values (each error at its `file:line:column`)
     /// and loads the biometrics it names.
     pub fn load(path: impl AsRef<Path>) -> Result<Self, SimError> {
-        let file = DataFile::<Scenario>::read(path.as_ref())?;
+        Self::checked(DataFile::<Scenario>::read(path.as_ref())?)
+    }
+
+    /// Parses scenario `bytes` as if read from `path` (which names the source in messages and
+    /// locates the body file), then checks it as [`load`](Self::load) does.
+    pub fn parse(bytes: &[u8], path: &Path) -> Result<Self, SimError> {
+        Self::checked(DataFile::<Scenario>::parse(bytes, path)?)
+    }
+
+    fn checked(file: DataFile<Scenario>) -> Result<Self, SimError> {
         validate(&file)?;
         let directory = file.path.parent().unwrap_or(Path::new("."));
-        let biometrics = Biometrics::load(directory.join(&file.value.body))?;
-        Ok(Self { scenario: file.value, biometrics, path: file.path })
+        let body = directory.join(&file.value.body);
+        let biometrics = Biometrics::load(&body).map_err(|source| match source {
+            AnatomyError::Io { .. } => SimError::BodyFile {
+                at: file.locate(&Field::whole("body")),
+                source: Box::new(source),
+            },
+            other => SimError::DataFile(other),
+        })?;
+        let body = std::fs::canonicalize(&body).unwrap_or(body);
+        let resolved = Scenario { body, ..file.value };
+        Ok(Self { scenario: resolved, biometrics, path: file.path })
+    }
+
+    /// The scenario as RON text with every default filled in and the body file as an absolute
+    /// path: the `scenario.ron` of a run directory, loadable from anywhere.
+    pub fn resolved_text(&self) -> String {
+        let config = ron::ser::PrettyConfig::default().struct_names(true);
+        // Serializing plain data (strings, numbers, enums, sequences) into a string cannot fail.
+        ron::ser::to_string_pretty(&self.scenario, config).unwrap_or_default()
+    }
+
+    /// FNV-1a hash of [`resolved_text`](Self::resolved_text), as 16 hex digits.
+    pub fn hash(&self) -> String {
+        format!("{:016x}", crate::hash::fnv1a64(self.resolved_text().as_bytes()))
     }
 
     /// The world at rest and the scenario's controller, ready to run.

@@ -72,6 +72,20 @@ impl World {
         Ok(())
     }
 
+    /// Continues from a checkpoint: the state, the step counter and the velocity solve's warm
+    /// start (the multipliers of the last solve before the checkpoint).
+    pub fn resume(
+        &mut self,
+        state: State,
+        steps: u64,
+        multipliers: &[f64],
+    ) -> Result<(), SimError> {
+        self.set_state(state)?;
+        self.steps = steps;
+        self.data.solver.set_multipliers(multipliers);
+        Ok(())
+    }
+
     /// Writes the body centres of the current state into `out` (cm). Recomputes the
     /// kinematics of the current state into the step data.
     pub fn body_centres(&mut self, out: &mut Vec<glam::DVec3>) {

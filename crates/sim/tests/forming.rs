@@ -26,7 +26,9 @@ fn form_scenario() -> LoadedScenario {
 /// 2 s and limits within 0.5°; returns the largest penetration relative to the radius.
 fn assert_ties_trefoil(loaded: &LoadedScenario, label: &str) -> f64 {
     let mut knots = Knots::default();
-    let summary = hagfish_sim::run(loaded, &mut knots, &mut |_| {}).expect("run succeeds");
+    let options = hagfish_sim::RunOptions::default();
+    let outcome = hagfish_sim::run(loaded, options, &mut knots, &mut |_| {}).expect("run starts");
+    let summary = outcome.finished().expect("run succeeds");
     let end = loaded.scenario.duration_s;
     let first_trefoil = knots.0.iter().find(|(_, k)| matches!(k, Some((KnotType::Trefoil, _))));
     let IntervalMaxima { self_penetration_relative, limit_excess, .. } = summary.maxima;

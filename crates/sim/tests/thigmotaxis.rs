@@ -9,7 +9,7 @@ use hagfish_control::{
     Actuation, ControlContext, Controller, KnotSpan, SlidingTargets, ThigmoParameters,
 };
 use hagfish_knots::KnotType;
-use hagfish_sim::{Frame, FrameSink, LoadedScenario, RunSummary, SimError};
+use hagfish_sim::{Frame, FrameSink, LoadedScenario, RunOptions, RunSummary, SimError};
 use hagfish_solver::RowGroup;
 
 /// What the checks need of one frame.
@@ -46,8 +46,11 @@ fn run(name: &str) -> (Vec<Record>, RunSummary) {
     let path = format!("{}/../../data/scenarios/{name}.ron", env!("CARGO_MANIFEST_DIR"));
     let loaded = LoadedScenario::load(&path).expect("scenario loads");
     let mut records = Records::default();
-    let summary = hagfish_sim::run(&loaded, &mut records, &mut |_| {})
-        .unwrap_or_else(|e| panic!("{name}: run failed (a failed solve stops the run): {e}"));
+    let outcome = hagfish_sim::run(&loaded, RunOptions::default(), &mut records, &mut |_| {})
+        .unwrap_or_else(|e| panic!("{name}: run does not start: {e}"));
+    let summary = outcome
+        .finished()
+        .unwrap_or_else(|e| panic!("{name}: run diverged (a failed solve stops the run): {e}"));
     (records.0, summary)
 }
 

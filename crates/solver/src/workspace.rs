@@ -195,6 +195,13 @@ impl SolverWorkspace {
         &self.multipliers
     }
 
+    /// Replaces the multipliers of the last solve, which the next warm-started solve starts
+    /// from: to continue a run saved with [`multipliers`](Self::multipliers) exactly.
+    pub fn set_multipliers(&mut self, lambda: &[f64]) {
+        self.multipliers.clear();
+        self.multipliers.extend_from_slice(lambda);
+    }
+
     /// C_gᵀλ_g of the last solve (n): the generalized impulse of `group`'s rows; divide by h
     /// for the generalized force (dyn·cm per rotational DOF).
     pub fn group_impulse(&self, group: RowGroup) -> &[f64] {

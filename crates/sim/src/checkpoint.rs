@@ -1,0 +1,155 @@
+//! Checkpoints: everything a run carries from one step to the next, so that a stopped run
+//! continues bit for bit (`docs/outputs.md`).
+//!
+//! A step depends on the state (t, q, q̇), the controller's state (phase, its start, the
+//! forming script's progress), the step counter (it only labels reports) and the velocity
+//! solve's warm start: the active-set method starts from the previous step's multipliers,
+//! and a different start can end in a different rounding of the same answer, so they are
+//! saved too. Everything else in the step data is recomputed from the state at the start of
+//! every step. Floating-point vectors are stored as the hexadecimal bits of each value, so
+//! they come back exactly.
+
+use std::path::Path;
+
+use hagfish_anatomy::DataFile;
+use hagfish_control::ControllerState;
+use hagfish_tree::State;
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+use crate::error::SimError;
+use crate::recorder::{IntervalMaxima, RecordedFile};
+
+/// Name of the checkpoint file in a run directory.
+pub const CHECKPOINT_FILE: &str = "checkpoint.ron";
+
+/// Version of the checkpoint format.
+pub const CHECKPOINT_FORMAT: u32 = 1;
+
+/// f64 values stored exactly: the 16 hexadecimal digits of each value's bits, separated by
+/// spaces.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ExactF64s(pub Vec<f64>);
+
+impl Serialize for ExactF64s {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let words: Vec<String> = self.0.iter().map(|v| format!("{:016x}", v.to_bits())).collect();
+        serializer.serialize_str(&words.join(" "))
+    }
+}
+
+impl<'de> Deserialize<'de> for ExactF64s {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let text = String::deserialize(deserializer)?;
+        text.split_whitespace()
+            .map(|word| {
+                u64::from_str_radix(word, 16).map(f64::from_bits).map_err(|_| {
+                    serde::de::Error::custom(format!("`{word}` is not 16 hexadecimal digits"))
+                })
+            })
+            .collect::<Result<_, _>>()
+            .map(ExactF64s)
+    }
+}
+
+/// The saved run: enough to continue it exactly, and the lengths of its output files at the
+/// frame it was taken.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Checkpoint {
+    /// [`CHECKPOINT_FORMAT`].
+    pub format: u32,
+    /// Hash of the resolved scenario ([`crate::LoadedScenario::hash`]), to refuse another's.
+    pub scenario_hash: String,
+    /// Frames recorded (the next frame's index).
+    pub frames: usize,
+    /// Steps taken.
+    pub steps: u64,
+    /// Simulation time t (s).
+    pub t: ExactF64s,
+    /// Joint angles q (rad).
+    pub q: ExactF64s,
+    /// Joint rates q̇ (rad/s).
+    pub qdot: ExactF64s,
+    /// Multipliers of the last velocity solve (the next solve's warm start).
+    pub multipliers: ExactF64s,
+    /// The controller's state.
+    pub controller: ControllerState,
+    /// Worst penetrations and limit excess of the run so far.
+    pub maxima: IntervalMaxima,
+    /// Output files and their lengths at this frame (empty when not written by a recorder).
+    pub files: Vec<RecordedFile>,
+}
+
+impl Checkpoint {
+    /// The saved state.
+    pub fn state(&self) -> State {
+        State {
+            t: self.t.0.first().copied().unwrap_or(0.0),
+            q: self.q.0.clone(),
+            qdot: self.qdot.0.clone(),
+        }
+    }
+
+    /// Reads a checkpoint (errors at their `file:line:column`).
+    pub fn read(path: &Path) -> Result<Self, SimError> {
+        let checkpoint = DataFile::<Checkpoint>::read(path)?.value;
+        if checkpoint.format != CHECKPOINT_FORMAT || checkpoint.t.0.len() != 1 {
+            return Err(SimError::Checkpoint {
+                path: path.to_path_buf(),
+                reason: format!(
+                    "format {} with {} time values (expected format {CHECKPOINT_FORMAT}, one)",
+                    checkpoint.format,
+                    checkpoint.t.0.len()
+                ),
+            });
+        }
+        Ok(checkpoint)
+    }
+
+    /// Writes the checkpoint to `path` atomically: to a temporary file beside it, then renamed
+    /// over it, so a killed run leaves either the old or the new checkpoint.
+    pub fn write(&self, path: &Path) -> Result<(), SimError> {
+        let fail = |source| SimError::Output { path: path.to_path_buf(), source };
+        let text = ron::ser::to_string_pretty(self, ron::ser::PrettyConfig::default())
+            .map_err(|e| fail(std::io::Error::other(e)))?;
+        let temporary = path.with_extension("ron.partial");
+        std::fs::write(&temporary, text).map_err(fail)?;
+        std::fs::rename(&temporary, path).map_err(fail)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_checkpoint_comes_back_bit_for_bit() -> Result<(), SimError> {
+        let awkward = vec![0.1, -0.0, f64::MIN_POSITIVE, 1.0 / 3.0, f64::MAX, f64::NAN];
+        let checkpoint = Checkpoint {
+            format: CHECKPOINT_FORMAT,
+            scenario_hash: "0123456789abcdef".into(),
+            frames: 7,
+            steps: 70,
+            t: ExactF64s(vec![0.7000000000000005]),
+            q: ExactF64s(awkward.clone()),
+            qdot: ExactF64s(awkward.iter().map(|v| -v).collect()),
+            multipliers: ExactF64s(Vec::new()),
+            controller: ControllerState::default(),
+            maxima: IntervalMaxima { self_penetration: 0.1 + 0.2, ..IntervalMaxima::default() },
+            files: vec![RecordedFile { name: "q.npy".into(), bytes: 128 }],
+        };
+        let dir = std::env::temp_dir().join(format!("hagfish-checkpoint-{}", std::process::id()));
+        std::fs::create_dir_all(&dir)
+            .map_err(|source| SimError::Output { path: dir.clone(), source })?;
+        let path = dir.join(CHECKPOINT_FILE);
+        checkpoint.write(&path)?;
+        let back = Checkpoint::read(&path)?;
+        let bits = |v: &ExactF64s| v.0.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&back.q), bits(&checkpoint.q));
+        assert_eq!(bits(&back.qdot), bits(&checkpoint.qdot));
+        assert_eq!(back.state().t.to_bits(), 0.7000000000000005f64.to_bits());
+        assert_eq!(back.maxima, checkpoint.maxima);
+        assert_eq!(back.files, checkpoint.files);
+        Ok(())
+    }
+}

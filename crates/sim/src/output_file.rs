@@ -1,0 +1,96 @@
+//! One output file of a run: its path, the file and the bytes of the frame being written,
+//! created empty or reopened at a given length (to resume a run from a checkpoint), with
+//! every I/O error naming the file.
+//!
+//! Lines are gathered in memory and written by [`OutputFile::flush`] in one `write` call per
+//! frame, so a run killed between two frames leaves complete rows only.
+
+use std::fs::{File, OpenOptions};
+use std::io::{Seek, SeekFrom, Write};
+use std::path::{Path, PathBuf};
+
+use crate::error::SimError;
+
+/// An output file being appended to.
+#[derive(Debug)]
+pub(crate) struct OutputFile {
+    path: PathBuf,
+    file: File,
+    /// Bytes in the file.
+    written: u64,
+    /// Bytes gathered since the last flush.
+    pending: Vec<u8>,
+}
+
+impl OutputFile {
+    /// Creates (or empties) the file at `path`.
+    pub(crate) fn create(path: &Path) -> Result<Self, SimError> {
+        let file = File::create(path).map_err(|source| output(path, source))?;
+        Ok(Self { path: path.to_path_buf(), file, written: 0, pending: Vec::new() })
+    }
+
+    /// Opens the existing file at `path`, cuts it to `length` bytes and appends from there.
+    pub(crate) fn reopen(path: &Path, length: u64) -> Result<Self, SimError> {
+        let fail = |source| output(path, source);
+        let mut file = OpenOptions::new().write(true).open(path).map_err(fail)?;
+        let actual = file.metadata().map_err(fail)?.len();
+        if actual < length {
+            return Err(output(
+                path,
+                std::io::Error::new(
+                    std::io::ErrorKind::UnexpectedEof,
+                    format!("{actual} bytes, the checkpoint expects at least {length}"),
+                ),
+            ));
+        }
+        file.set_len(length).map_err(fail)?;
+        file.seek(SeekFrom::End(0)).map_err(fail)?;
+        Ok(Self { path: path.to_path_buf(), file, written: length, pending: Vec::new() })
+    }
+
+    /// The file's path.
+    pub(crate) fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Appends `line` and a newline (in memory until the next flush).
+    pub(crate) fn line(&mut self, line: std::fmt::Arguments<'_>) -> Result<(), SimError> {
+        writeln!(self.pending, "{line}").map_err(|source| output(&self.path, source))
+    }
+
+    /// Appends raw bytes (in memory until the next flush).
+    pub(crate) fn bytes(&mut self, bytes: &[u8]) {
+        self.pending.extend_from_slice(bytes);
+    }
+
+    /// Writes what was gathered, then `bytes` at `offset` from the start, and returns to the
+    /// end.
+    pub(crate) fn overwrite(&mut self, offset: u64, bytes: &[u8]) -> Result<(), SimError> {
+        self.flush()?;
+        let fail = |source| output(&self.path, source);
+        self.file.seek(SeekFrom::Start(offset)).map_err(fail)?;
+        self.file.write_all(bytes).map_err(fail)?;
+        self.file.seek(SeekFrom::End(0)).map_err(fail)?;
+        Ok(())
+    }
+
+    /// Writes everything gathered to the file in one call.
+    pub(crate) fn flush(&mut self) -> Result<(), SimError> {
+        if self.pending.is_empty() {
+            return Ok(());
+        }
+        self.file.write_all(&self.pending).map_err(|source| output(&self.path, source))?;
+        self.written += self.pending.len() as u64;
+        self.pending.clear();
+        Ok(())
+    }
+
+    /// The file's length in bytes, gathered bytes included.
+    pub(crate) fn len(&self) -> u64 {
+        self.written + self.pending.len() as u64
+    }
+}
+
+fn output(path: &Path, source: std::io::Error) -> SimError {
+    SimError::Output { path: path.to_path_buf(), source }
+}

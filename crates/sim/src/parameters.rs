@@ -1,0 +1,325 @@
+//! Every parameter of a scenario file, with its unit, default and meaning: the one table that
+//! `hagfish params` prints. A test keeps it true to the scenario types: every field and variant
+//! of a serialized scenario has a row, and every row names a field or variant that exists.
+//!
+//! Names are paths in the file: `drag.quadratic_g_per_cm3` is a field of `drag`,
+//! `Form.steps[].Move.speed` a field of a `Move` step in a `Form` phase's `steps`.
+
+/// One scenario parameter.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Parameter {
+    /// Path of the field or variant in the scenario file.
+    pub name: &'static str,
+    /// Unit (CGS), or `-` for names, paths, lists and variants.
+    pub unit: &'static str,
+    /// The default when the field is left out, or `required`.
+    pub default: &'static str,
+    /// What it does.
+    pub meaning: &'static str,
+}
+
+const fn p(
+    name: &'static str,
+    unit: &'static str,
+    default: &'static str,
+    meaning: &'static str,
+) -> Parameter {
+    Parameter { name, unit, default, meaning }
+}
+
+/// The scenario parameters, in file order.
+pub const PARAMETERS: &[Parameter] = &[
+    p("name", "-", "required", "short name of the scenario, used in outputs"),
+    p("body", "path", "required", "biometrics RON file, relative to the scenario file"),
+    p("time_step_s", "s", "required", "time step h of the implicit integrator, > 0"),
+    p("duration_s", "s", "required", "simulated time, > 0"),
+    p(
+        "record_every_s",
+        "s",
+        "0.1",
+        "interval between recorded frames; frame 0 is the initial state",
+    ),
+    p("drag", "-", "None", "water drag on every body: Some((...)) or None for vacuum"),
+    p(
+        "drag.linear_dyn_s_per_cm3",
+        "dyn·s/cm³",
+        "required in drag",
+        "linear (viscous) drag per projected area 2rℓ, ≥ 0",
+    ),
+    p(
+        "drag.quadratic_g_per_cm3",
+        "g/cm³",
+        "required in drag",
+        "quadratic drag ½ρC_d per projected area, ≥ 0 (water: 0.5)",
+    ),
+    p("phases", "-", "required", "the phases of control, in order; passive after the last"),
+    p(
+        "phases[].Form",
+        "-",
+        "-",
+        "phase: scripted knot forming with a PD pull on the tail; ends after its last step",
+    ),
+    p("Form.gains", "-", "required", "gains and cap of the PD pull on the last body"),
+    p(
+        "Form.gains.kp_dyn_per_cm",
+        "dyn/cm",
+        "required",
+        "proportional gain of the tail pull (typical 200)",
+    ),
+    p(
+        "Form.gains.kd_dyn_s_per_cm",
+        "dyn·s/cm",
+        "required",
+        "derivative gain of the tail pull, implicit (typical 20)",
+    ),
+    p(
+        "Form.gains.max_force_dyn",
+        "dyn",
+        "required",
+        "cap on the explicit tail force (typical 2000)",
+    ),
+    p(
+        "Form.steps",
+        "-",
+        "required",
+        "the script: Move and Hold steps; the target is held after the last",
+    ),
+    p(
+        "Form.steps[].Move",
+        "-",
+        "-",
+        "step: move the tail target in a straight line at constant speed",
+    ),
+    p(
+        "Form.steps[].Move.to",
+        "-",
+        "required",
+        "waypoint, resolved from the body's shape when the move starts",
+    ),
+    p("Form.steps[].Move.speed", "cm/s", "required", "speed of the target, > 0"),
+    p("Form.steps[].Hold", "s", "-", "step: keep the target still for this long"),
+    p("Move.to.Point", "cm", "-", "waypoint: a fixed world point (x, y, z)"),
+    p("Move.to.FromBody", "-", "-", "waypoint: an offset from the centre of a body"),
+    p("Move.to.FromBody.body", "-", "required", "body index, 0 = head"),
+    p("Move.to.FromBody.offset", "cm", "required", "offset (x, y, z) from that body's centre"),
+    p(
+        "Move.to.FromTarget",
+        "cm",
+        "-",
+        "waypoint: an offset (x, y, z) from the end of the previous move",
+    ),
+    p(
+        "Move.to.FromLoopCentroid",
+        "cm",
+        "-",
+        "waypoint: an offset from the centroid of the largest loop seen from above",
+    ),
+    p(
+        "phases[].Hold",
+        "s",
+        "-",
+        "phase: keep the last forming target for this long; otherwise passive",
+    ),
+    p(
+        "phases[].Thigmotaxis",
+        "-",
+        "-",
+        "phase: thigmotaxic inverse dynamics on the first and last self contact",
+    ),
+    p(
+        "Thigmotaxis.name",
+        "-",
+        "\"thigmo\"",
+        "name in the phase column of the outputs, e.g. tighten, loosen, slide",
+    ),
+    p("Thigmotaxis.parameters", "-", "required", "targets, tail pull and force cap"),
+    p(
+        "Thigmotaxis.parameters.head",
+        "-",
+        "required",
+        "sliding targets at the first (head-most) contact",
+    ),
+    p(
+        "Thigmotaxis.parameters.tail",
+        "-",
+        "required",
+        "sliding targets at the last (tail-most) contact",
+    ),
+    p(
+        "Thigmotaxis.parameters.{head,tail}.v_a",
+        "cm/s",
+        "required",
+        "anterior strand slides tail-ward relative to the other at least this fast \
+         (negative: head-ward, the knot moves tail-ward)",
+    ),
+    p(
+        "Thigmotaxis.parameters.{head,tail}.v_b",
+        "cm/s",
+        "required",
+        "posterior strand slides tail-ward relative to the other at least this fast \
+         (negative: head-ward)",
+    ),
+    p(
+        "Thigmotaxis.parameters.tail_pull_dyn",
+        "dyn",
+        "required",
+        "force on the last body along its tangent, tail-ward",
+    ),
+    p(
+        "Thigmotaxis.parameters.max_force_dyn",
+        "dyn",
+        "required",
+        "largest force of one thigmotaxis row (its slack penalty)",
+    ),
+    p(
+        "Thigmotaxis.until",
+        "-",
+        "required",
+        "end conditions; the phase ends at the first that holds",
+    ),
+    p("Thigmotaxis.until.seconds", "s", "required", "longest duration of the phase"),
+    p(
+        "Thigmotaxis.until.knot_start_below_cm",
+        "cm",
+        "None",
+        "end once the knot's anterior end is this close to the head",
+    ),
+    p(
+        "Thigmotaxis.until.knot_start_above_cm",
+        "cm",
+        "None",
+        "end once the knot's anterior end is this far from the head",
+    ),
+    p(
+        "Thigmotaxis.until.span_below_cm",
+        "cm",
+        "None",
+        "end once the knot's contact span is at most this long (tightening)",
+    ),
+    p(
+        "Thigmotaxis.until.span_above_cm",
+        "cm",
+        "None",
+        "end once the knot's contact span is at least this long (loosening)",
+    ),
+];
+
+#[cfg(test)]
+mod tests {
+    use std::collections::BTreeSet;
+
+    use hagfish_control::{
+        FormingScript, Phase, ScriptStep, SlidingTargets, TailGains, ThigmoParameters, ThigmoPhase,
+        Until, WaterDrag, Waypoint,
+    };
+
+    use super::*;
+    use crate::scenario::Scenario;
+
+    /// The key a row documents: the last segment of its name (`v_a` for `…{head,tail}.v_a`).
+    fn parameter_key(name: &str) -> &str {
+        name.rsplit('.').next().unwrap_or(name)
+    }
+
+    /// A scenario using every field and every variant.
+    fn everything() -> Scenario {
+        let targets = SlidingTargets { v_a: 1.0, v_b: 2.0 };
+        let step = |to| ScriptStep::Move { to, speed: 5.0 };
+        Scenario {
+            name: "all".into(),
+            body: "body.ron".into(),
+            time_step_s: 0.01,
+            duration_s: 1.0,
+            record_every_s: 0.1,
+            drag: Some(WaterDrag::default()),
+            phases: vec![
+                Phase::Form(FormingScript {
+                    gains: TailGains::default(),
+                    steps: vec![
+                        step(Waypoint::Point([1.0, 2.0, 3.0])),
+                        step(Waypoint::FromBody { body: 3, offset: [0.0; 3] }),
+                        step(Waypoint::FromTarget([0.0; 3])),
+                        step(Waypoint::FromLoopCentroid([0.0; 3])),
+                        ScriptStep::Hold(1.0),
+                    ],
+                }),
+                Phase::Hold(1.0),
+                Phase::Thigmotaxis(ThigmoPhase {
+                    name: "slide".into(),
+                    parameters: ThigmoParameters {
+                        head: targets,
+                        tail: targets,
+                        tail_pull_dyn: 20.0,
+                        max_force_dyn: 2000.0,
+                    },
+                    until: Until {
+                        seconds: 1.0,
+                        knot_start_below_cm: Some(3.0),
+                        knot_start_above_cm: Some(30.0),
+                        span_below_cm: Some(20.0),
+                        span_above_cm: Some(30.0),
+                    },
+                }),
+            ],
+        }
+    }
+
+    /// Identifiers followed by `:` (fields) or `(` (variants and struct names) in RON text.
+    fn identifiers(text: &str) -> BTreeSet<String> {
+        let mut found = BTreeSet::new();
+        let mut word = String::new();
+        for c in text.chars() {
+            if c.is_alphanumeric() || c == '_' {
+                word.push(c);
+                continue;
+            }
+            if (c == ':' || c == '(') && word.starts_with(|w: char| w.is_alphabetic()) {
+                found.insert(std::mem::take(&mut word));
+            }
+            word.clear();
+        }
+        found
+    }
+
+    #[test]
+    fn every_field_and_variant_has_a_row_and_every_row_exists() {
+        let text = ron::ser::to_string(&everything()).expect("plain data serializes");
+        let keys: BTreeSet<&str> = PARAMETERS.iter().map(|p| parameter_key(p.name)).collect();
+        let found = identifiers(&text);
+        assert!(found.len() > 20, "{found:?}");
+        for identifier in found.iter().filter(|i| *i != "Some") {
+            assert!(keys.contains(identifier.as_str()), "{identifier} has no row in PARAMETERS");
+        }
+        for key in &keys {
+            assert!(found.contains(*key), "row {key} names no field or variant");
+        }
+    }
+
+    #[test]
+    fn the_defaults_in_the_table_are_the_loaders() {
+        let text = "(name: \"x\", body: \"b.ron\", time_step_s: 0.01, duration_s: 1.0, \
+                    phases: [Thigmotaxis((parameters: (head: (v_a: 0.0, v_b: 0.0), \
+                    tail: (v_a: 0.0, v_b: 0.0), tail_pull_dyn: 0.0, max_force_dyn: 1.0), \
+                    until: (seconds: 1.0)))])";
+        let scenario: Scenario = ron::from_str(text).expect("a minimal scenario parses");
+        let default =
+            |name: &str| PARAMETERS.iter().find(|p| p.name == name).map(|p| p.default).expect(name);
+        assert_eq!(default("record_every_s").parse::<f64>().ok(), Some(scenario.record_every_s));
+        assert_eq!(default("drag"), "None");
+        assert!(scenario.drag.is_none());
+        let Some(Phase::Thigmotaxis(phase)) = scenario.phases.first() else {
+            panic!("one thigmotaxis phase")
+        };
+        assert_eq!(default("Thigmotaxis.until.knot_start_below_cm"), "None");
+        assert_eq!(phase.until.knot_start_below_cm, None);
+        assert_eq!(default("Thigmotaxis.until.knot_start_above_cm"), "None");
+        assert_eq!(phase.until.knot_start_above_cm, None);
+        assert_eq!(default("Thigmotaxis.until.span_below_cm"), "None");
+        assert_eq!(phase.until.span_below_cm, None);
+        assert_eq!(default("Thigmotaxis.until.span_above_cm"), "None");
+        assert_eq!(phase.until.span_above_cm, None);
+        assert_eq!(default("Thigmotaxis.name"), format!("{:?}", phase.name));
+        let drag = WaterDrag::default();
+        assert_eq!(drag.quadratic_g_per_cm3, 0.5);
+    }
+}

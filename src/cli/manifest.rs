@@ -1,0 +1,161 @@
+//! `manifest.json` of a run directory: what ran (program, version, scenario and its hash),
+//! when (UTC, ISO 8601), how it ended, how long it took, and the files with their sizes.
+//! Written when the run starts (status `running`) and again when it stops, each time to a
+//! temporary file renamed over the old one; a killed run keeps `running`.
+
+use std::path::{Path, PathBuf};
+use std::time::SystemTime;
+
+use serde::{Deserialize, Serialize};
+
+use super::CliError;
+use super::utc::iso8601;
+
+/// Name of the manifest in a run directory.
+pub const MANIFEST_FILE: &str = "manifest.json";
+
+/// How a run stands.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Status {
+    /// Started and not stopped (or killed).
+    Running,
+    /// The whole duration was simulated.
+    Completed,
+    /// A step failed; the outputs hold every frame before it.
+    Diverged,
+    /// Stopped on request (`--stop-after-frames`, SIGINT, SIGTERM); resumable.
+    Interrupted,
+}
+
+impl Status {
+    /// The name written in the manifest.
+    pub fn name(self) -> &'static str {
+        match self {
+            Status::Running => "running",
+            Status::Completed => "completed",
+            Status::Diverged => "diverged",
+            Status::Interrupted => "interrupted",
+        }
+    }
+}
+
+/// A file of the run directory and its size.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct FileEntry {
+    /// Name inside the run directory.
+    pub name: String,
+    /// Size (bytes).
+    pub bytes: u64,
+}
+
+/// The content of `manifest.json`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Manifest {
+    /// Always `hagfish`.
+    pub program: String,
+    /// The program's version.
+    pub version: String,
+    /// The scenario file as given on the command line (the resolved copy is `scenario.ron`).
+    pub scenario: PathBuf,
+    /// The scenario's name.
+    pub scenario_name: String,
+    /// FNV-1a hash of `scenario.ron` (16 hex digits).
+    pub scenario_hash: String,
+    /// When the run first started.
+    pub started_utc: String,
+    /// When it last stopped (`null` while running).
+    pub ended_utc: Option<String>,
+    /// How it stands.
+    pub status: Status,
+    /// Wall-clock seconds over all its parts (resumes included).
+    pub wall_time_s: f64,
+    /// Steps taken.
+    pub steps: u64,
+    /// Frames recorded.
+    pub frames: usize,
+    /// Simulation time reached (s).
+    pub time_s: f64,
+    /// FNV-1a hash of the bits of t, q and q̇ at the end (16 hex digits).
+    pub final_state_hash: Option<String>,
+    /// The error that made the run diverge.
+    pub error: Option<String>,
+    /// Frame counts at which the run was resumed, in order.
+    pub resumed_at_frames: Vec<usize>,
+    /// Every other file of the run directory with its size, by name.
+    pub files: Vec<FileEntry>,
+}
+
+impl Manifest {
+    /// The manifest of a run starting now.
+    pub fn start(scenario: &Path, name: &str, hash: String) -> Self {
+        Self {
+            program: env!("CARGO_PKG_NAME").into(),
+            version: env!("CARGO_PKG_VERSION").into(),
+            scenario: scenario.to_path_buf(),
+            scenario_name: name.into(),
+            scenario_hash: hash,
+            started_utc: iso8601(SystemTime::now()),
+            ended_utc: None,
+            status: Status::Running,
+            wall_time_s: 0.0,
+            steps: 0,
+            frames: 0,
+            time_s: 0.0,
+            final_state_hash: None,
+            error: None,
+            resumed_at_frames: Vec::new(),
+            files: Vec::new(),
+        }
+    }
+
+    /// Reads the manifest of the run in `directory`.
+    pub fn read(directory: &Path) -> Result<Self, CliError> {
+        let path = directory.join(MANIFEST_FILE);
+        let text = std::fs::read_to_string(&path)
+            .map_err(|e| CliError::RunDirectory { path: path.clone(), reason: e.to_string() })?;
+        serde_json::from_str(&text)
+            .map_err(|e| CliError::RunDirectory { path, reason: e.to_string() })
+    }
+
+    /// Lists the files of `directory` and writes the manifest there (atomically).
+    pub fn write(&mut self, directory: &Path) -> Result<(), CliError> {
+        self.files = list_files(directory)?;
+        let path = directory.join(MANIFEST_FILE);
+        let fail = |e: std::io::Error| CliError::RunDirectory {
+            path: path.clone(),
+            reason: e.to_string(),
+        };
+        let text =
+            serde_json::to_string_pretty(self).map_err(|e| fail(std::io::Error::other(e)))?;
+        let temporary = path.with_extension("json.partial");
+        std::fs::write(&temporary, text + "\n").map_err(fail)?;
+        std::fs::rename(&temporary, &path).map_err(fail)
+    }
+
+    /// Marks the end of one part of the run.
+    pub fn stop(&mut self, status: Status, wall_time_s: f64) {
+        self.status = status;
+        self.ended_utc = Some(iso8601(SystemTime::now()));
+        self.wall_time_s += wall_time_s;
+    }
+}
+
+/// The regular files of `directory` except the manifest and temporary files, by name.
+fn list_files(directory: &Path) -> Result<Vec<FileEntry>, CliError> {
+    let fail = |e: std::io::Error| CliError::RunDirectory {
+        path: directory.to_path_buf(),
+        reason: e.to_string(),
+    };
+    let mut files = Vec::new();
+    for entry in std::fs::read_dir(directory).map_err(fail)? {
+        let entry = entry.map_err(fail)?;
+        let name = entry.file_name().to_string_lossy().into_owned();
+        let metadata = entry.metadata().map_err(fail)?;
+        if metadata.is_file() && name != MANIFEST_FILE && !name.ends_with(".partial") {
+            files.push(FileEntry { name, bytes: metadata.len() });
+        }
+    }
+    files.sort_by(|a, b| a.name.cmp(&b.name));
+    Ok(files)
+}

@@ -1,0 +1,70 @@
+//! Helpers shared by the end-to-end tests: running the built `hagfish`, fresh directories,
+//! and reading run directories.
+
+#![allow(dead_code)] // Each test binary uses a different subset.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// The repository root.
+pub const ROOT: &str = env!("CARGO_MANIFEST_DIR");
+
+/// A fresh (empty) directory `name` under the tests' temporary directory.
+pub fn fresh_dir(name: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temporary directory");
+    dir
+}
+
+/// The `hagfish` command with `args`.
+pub fn hagfish<I, S>(args: I) -> Command
+where
+    I: IntoIterator<Item = S>,
+    S: AsRef<std::ffi::OsStr>,
+{
+    let mut command = Command::new(env!("CARGO_BIN_EXE_hagfish"));
+    command.args(args);
+    command
+}
+
+/// Runs `hagfish` with `args` to the end.
+pub fn run_hagfish<I, S>(args: I) -> Output
+where
+    I: IntoIterator<Item = S>,
+    S: AsRef<std::ffi::OsStr>,
+{
+    hagfish(args).output().expect("hagfish runs")
+}
+
+/// The exit code and stderr of `output`.
+pub fn code_and_stderr(output: &Output) -> (Option<i32>, String) {
+    (output.status.code(), String::from_utf8_lossy(&output.stderr).into_owned())
+}
+
+/// `manifest.json` of a run directory.
+pub fn manifest(dir: &Path) -> serde_json::Value {
+    let text = std::fs::read_to_string(dir.join("manifest.json")).expect("manifest.json");
+    serde_json::from_str(&text).expect("manifest.json is JSON")
+}
+
+/// The rows of a CSV file, split at commas, without the header; asserts that the file ends
+/// with a newline and that every row has as many fields as the header.
+pub fn csv_rows(path: &Path) -> Vec<Vec<String>> {
+    let text = std::fs::read_to_string(path).expect("a CSV file");
+    assert!(text.ends_with('\n'), "{} ends in a partial row", path.display());
+    let mut lines = text.lines();
+    let width = lines.next().expect("a header").split(',').count();
+    lines
+        .map(|line| {
+            let row: Vec<String> = line.split(',').map(str::to_owned).collect();
+            assert_eq!(row.len(), width, "{}: row {line}", path.display());
+            row
+        })
+        .collect()
+}
+
+/// The frame index (first column) of every row.
+pub fn frames_of(rows: &[Vec<String>]) -> Vec<usize> {
+    rows.iter().map(|r| r[0].parse().expect("a frame index")).collect()
+}

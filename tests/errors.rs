@@ -1,0 +1,149 @@
+//! Exit codes and error messages of `hagfish run`: a malformed scenario is one `error:` line
+//! naming file, line and column and what was expected, exit code 2; a diverging run keeps its
+//! outputs, writes its checkpoint and the failing state, marks the manifest `diverged` and
+//! exits with 3. Never a panic.
+
+mod common;
+
+use common::{ROOT, code_and_stderr, csv_rows, fresh_dir, manifest, run_hagfish};
+
+/// Writes `tests/data/form.ron` with `edit` applied (and the body path made absolute) into a
+/// fresh directory, runs it, and returns the exit code and stderr.
+fn run_edited(name: &str, edit: impl Fn(&str) -> String) -> (Option<i32>, String, String) {
+    let dir = fresh_dir(name);
+    let text = std::fs::read_to_string(format!("{ROOT}/tests/data/form.ron")).expect("form.ron");
+    let text =
+        text.replace("../../data/hagfish/es103.ron", &format!("{ROOT}/data/hagfish/es103.ron"));
+    let scenario = dir.join("scenario.ron");
+    std::fs::write(&scenario, edit(&text)).expect("write the scenario");
+    let output = run_hagfish([
+        "run".as_ref(),
+        scenario.as_os_str(),
+        "--quiet".as_ref(),
+        "--out".as_ref(),
+        dir.join("out").as_os_str(),
+    ]);
+    let (code, stderr) = code_and_stderr(&output);
+    (code, stderr, scenario.display().to_string())
+}
+
+/// Asserts exit code 2 and exactly one line `error: FILE:LINE:COLUMN: MESSAGE…`.
+fn assert_user_error(name: &str, edit: impl Fn(&str) -> String, position: &str, message: &str) {
+    let (code, stderr, file) = run_edited(name, edit);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    let expected = format!("error: {file}:{position}: {message}");
+    assert!(stderr.starts_with(&expected), "expected `{expected}`, got `{stderr}`");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}
+
+#[test]
+fn syntax_error() {
+    assert_user_error(
+        "error_syntax",
+        |t| t.replace("duration_s: 1.5,", "duration_s: 1.5"),
+        "8:5",
+        "Expected comma",
+    );
+}
+
+#[test]
+fn unknown_field() {
+    assert_user_error(
+        "error_unknown_field",
+        |t| t.replace("record_every_s", "record_evry_s"),
+        "8:5",
+        "unknown field `record_evry_s`, expected one of: name, body, time_step_s, duration_s, record_every_s, drag, phases",
+    );
+}
+
+#[test]
+fn wrong_type() {
+    assert_user_error(
+        "error_wrong_type",
+        |t| t.replace("time_step_s: 0.01", "time_step_s: \"fast\""),
+        "6:17",
+        "Expected float",
+    );
+}
+
+#[test]
+fn negative_time_step() {
+    assert_user_error(
+        "error_negative_time_step",
+        |t| t.replace("time_step_s: 0.01", "time_step_s: -0.01"),
+        "6:18",
+        "time_step_s = -0.01 is out of range: expected finite and > 0",
+    );
+}
+
+#[test]
+fn unknown_phase() {
+    assert_user_error(
+        "error_unknown_phase",
+        |t| t.replace("Hold(0.5)", "Wait(0.5)"),
+        "18:9",
+        "Unexpected variant named `Wait` in enum `Phase`, expected one of `Form`, `Hold`, or `Thigmotaxis` instead",
+    );
+}
+
+#[test]
+fn missing_body_file() {
+    assert_user_error(
+        "error_missing_body",
+        |t| t.replace("es103.ron", "missing.ron"),
+        "5:11",
+        &format!("body: {ROOT}/data/hagfish/missing.ron: cannot read the file"),
+    );
+}
+
+#[test]
+fn missing_scenario_file() {
+    let dir = fresh_dir("error_missing_scenario");
+    let missing = dir.join("none.ron");
+    let output =
+        run_hagfish(["run".as_ref(), missing.as_os_str(), "--out".as_ref(), dir.as_os_str()]);
+    let (code, stderr) = code_and_stderr(&output);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(
+        stderr.starts_with(&format!("error: {}: cannot read the file", missing.display())),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn a_diverging_run_keeps_its_outputs_and_exits_with_3() {
+    let dir = fresh_dir("error_diverge");
+    let output = run_hagfish([
+        "run".as_ref(),
+        format!("{ROOT}/tests/data/diverge.ron").as_ref(),
+        "--quiet".as_ref(),
+        "--out".as_ref(),
+        dir.as_os_str(),
+    ]);
+    let (code, stderr) = code_and_stderr(&output);
+    assert_eq!(code, Some(3), "{stderr}");
+    assert!(stderr.starts_with("error: the run diverged: step 35 (t = 0.35"), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    let manifest = manifest(&dir);
+    assert_eq!(manifest["status"], "diverged");
+    assert_eq!(manifest["frames"], 4);
+    assert!(manifest["error"].as_str().is_some_and(|e| e.contains("not positive definite")));
+    let metrics = csv_rows(&dir.join("metrics.csv"));
+    assert_eq!(common::frames_of(&metrics), [0, 1, 2, 3]);
+    for file in ["checkpoint.ron", "diverged.ron"] {
+        let text = std::fs::read_to_string(dir.join(file)).expect(file);
+        assert!(text.contains("steps: "), "{file}: {text}");
+    }
+    let diverged = std::fs::read_to_string(dir.join("diverged.ron")).expect("diverged.ron");
+    assert!(diverged.contains("steps: 35,"));
+    let checkpoint = std::fs::read_to_string(dir.join("checkpoint.ron")).expect("checkpoint.ron");
+    assert!(checkpoint.contains("steps: 30,") && checkpoint.contains("frames: 4,"));
+
+    // Resumed from its last frame, the run fails again at the same step.
+    let again = run_hagfish(["run".as_ref(), "--resume".as_ref(), dir.as_os_str()]);
+    let (code, stderr) = code_and_stderr(&again);
+    assert_eq!(code, Some(3), "{stderr}");
+    assert!(stderr.starts_with("error: the run diverged: step 35 (t = 0.35"), "{stderr}");
+    assert_eq!(common::manifest(&dir)["resumed_at_frames"], serde_json::json!([4]));
+}
