@@ -12,6 +12,9 @@ pub enum CliError {
     /// The scenario could not be loaded or the run stopped.
     #[error(transparent)]
     Sim(#[from] hagfish_sim::SimError),
+    /// The run directory could not be read or its pictures, report or exports written.
+    #[error(transparent)]
+    Report(#[from] hagfish_report::ReportError),
     /// Writing the report to stdout failed (e.g. a closed pipe).
     #[error("cannot write the output: {0}")]
     Output(#[from] std::io::Error),

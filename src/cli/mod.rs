@@ -3,6 +3,8 @@
 
 mod body;
 mod error;
+mod render;
+mod report;
 mod run;
 
 use std::io::{BufWriter, Write};
@@ -27,6 +29,10 @@ enum Command {
     Body(body::BodyArgs),
     /// Run a scenario and write centreline.csv and metrics.csv into the output directory.
     Run(run::RunArgs),
+    /// Re-make a run directory's plots, animation.gif, ParaView frames and run.glb.
+    Render(render::RenderArgs),
+    /// Re-make a run directory's report.html (one offline page with a 3-D view).
+    Report(report::ReportArgs),
 }
 
 /// Runs the chosen subcommand, writing its report to stdout (buffered, flushed at the end).
@@ -35,6 +41,8 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
     match cli.command {
         Command::Body(args) => body::run(&args, &mut out)?,
         Command::Run(args) => run::run(&args, &mut out)?,
+        Command::Render(args) => render::run(&args, &mut out)?,
+        Command::Report(args) => report::run(&args, &mut out)?,
     }
     out.flush()?;
     Ok(())

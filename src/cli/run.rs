@@ -70,5 +70,7 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
         stages.join(", "),
         1e6 * summary.timings.total() / steps
     )?;
+    let written = hagfish_report::write_all(&args.out)?;
+    writeln!(out, "pictures, report and exports in {:.2} s", written.total_seconds())?;
     Ok(())
 }
