@@ -11,6 +11,9 @@ use crate::colour::diverging;
 use crate::font::FAMILY;
 use crate::forces::{AXES, ThigmoForces};
 
+/// The quantile of the non-zero magnitudes that sets the colour limits.
+pub const PERCENTILE: f64 = 0.99;
+
 /// Colour steps on each side of zero.
 const LEVELS: i32 = 16;
 
@@ -24,32 +27,37 @@ pub struct Kymograph<'a> {
 }
 
 impl Kymograph<'_> {
-    /// The colour-bar limit: the largest magnitude on the axis, or 1 if all are zero.
+    /// The colour-bar limit: the [`PERCENTILE`] of the non-zero magnitudes on the axis (a
+    /// few spikes would otherwise wash out the rest), or 1 if all are zero. Larger values
+    /// take the end colours.
     pub fn limit(&self) -> f64 {
-        let m = self.forces.max_abs(self.axis);
-        if m > 0.0 { m } else { 1.0 }
-    }
-
-    /// Colour level of `value` in -LEVELS..=LEVELS.
-    fn level(&self, value: f64) -> i32 {
-        ((value / self.limit()) * f64::from(LEVELS))
-            .round()
-            .clamp(-f64::from(LEVELS), f64::from(LEVELS)) as i32
+        let mut magnitudes: Vec<f64> =
+            self.forces.values[self.axis].iter().map(|v| v.abs()).filter(|v| *v > 0.0).collect();
+        if magnitudes.is_empty() {
+            return 1.0;
+        }
+        magnitudes.sort_unstable_by(f64::total_cmp);
+        magnitudes[((magnitudes.len() - 1) as f64 * PERCENTILE).floor() as usize]
     }
 
     /// Runs of equal colour along time, per joint: (first frame, last frame, joint, level).
     fn runs(&self) -> Vec<(usize, usize, usize, i32)> {
         let (frames, joints) = (self.forces.frames(), self.forces.joints);
         let values = &self.forces.values[self.axis];
+        let limit = self.limit();
+        let level = |value: f64| {
+            let l = f64::from(LEVELS);
+            ((value / limit) * l).round().clamp(-l, l) as i32
+        };
         let mut runs = Vec::new();
         for j in 0..joints {
             let mut f = 0;
             while f < frames {
-                let (start, level) = (f, self.level(values[f * joints + j]));
-                while f < frames && self.level(values[f * joints + j]) == level {
+                let (start, colour) = (f, level(values[f * joints + j]));
+                while f < frames && level(values[f * joints + j]) == colour {
                     f += 1;
                 }
-                runs.push((start, f - 1, j, level));
+                runs.push((start, f - 1, j, colour));
             }
         }
         runs
@@ -61,13 +69,13 @@ impl Kymograph<'_> {
             .margin_top(40)
             .margin_bottom(44)
             .margin_right(12)
-            .y_label_area_size(64)
+            .y_label_area_size(76)
             .build_cartesian_2d(0.0..1.0, -limit..limit)?;
         bar.configure_mesh()
             .disable_mesh()
             .disable_x_axis()
             .y_labels(5)
-            .y_label_formatter(&|v| format!("{v:.2e}"))
+            .y_label_formatter(&|v| format!("{v:.1e}"))
             .label_style((FAMILY, 11))
             .draw()?;
         let step = limit / f64::from(LEVELS);
@@ -80,7 +88,7 @@ impl Kymograph<'_> {
                 rgb(diverging(f64::from(l) / f64::from(LEVELS))).filled(),
             )
         }))?;
-        area.draw_text("dyn·cm", &(FAMILY, 12).into_text_style(area), (20, 16))?;
+        area.draw_text("dyn·cm, clipped", &(FAMILY, 11).into_text_style(area), (30, 16))?;
         Ok(())
     }
 }
@@ -91,7 +99,7 @@ impl Figure for Kymograph<'_> {
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<DB> {
-        let (main, bar) = root.split_horizontally(700);
+        let (main, bar) = root.split_horizontally(680);
         let edges = cell_edges(&self.forces.times);
         let joints = self.forces.joints.max(1) as f64;
         let all_zero = if self.forces.max_abs(self.axis) > 0.0 { "" } else { " (all zero)" };
@@ -106,6 +114,7 @@ impl Figure for Kymograph<'_> {
             .disable_mesh()
             .x_desc("time (s)")
             .y_desc("joint (0 = head)")
+            .y_label_formatter(&|v| format!("{v:.0}"))
             .label_style((FAMILY, 12))
             .axis_desc_style((FAMILY, 14))
             .draw()?;
@@ -157,6 +166,11 @@ mod tests {
         };
         let k = Kymograph { forces: &forces, axis: 0 };
         assert_eq!(k.limit(), 4.0);
+        let mut spiky = forces.clone();
+        spiky.values[0] = (1..=200).map(f64::from).collect();
+        spiky.values[0][7] = -1e6;
+        let limit = Kymograph { forces: &spiky, axis: 0 }.limit();
+        assert_eq!(limit, 199.0, "the 99th percentile of 1 … 200 without 8, and 1e6");
         assert_eq!(
             k.runs(),
             vec![(0, 1, 0, 0), (2, 2, 0, -LEVELS), (3, 3, 0, 0), (0, 3, 1, LEVELS)]
