@@ -99,3 +99,27 @@ pub fn report(dir: &Path) -> Result<Written, ReportError> {
 pub fn write_all(dir: &Path) -> Result<Written, ReportError> {
     make(dir, Parts { pictures: true, exports: true, report: true })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_files::synthetic;
+
+    #[test]
+    fn render_and_report_write_their_own_files_and_write_all_both() {
+        let dir = synthetic("outputs");
+        let rendered = render(&dir).expect("render");
+        assert_eq!(rendered.files.len(), 10 + 3, "plots ×2, gif, series, glb");
+        assert_eq!(rendered.vtk_frames, 3);
+        assert!(dir.join(VTK).join("frame_0002.vtk").exists());
+        assert!(!dir.join(REPORT).exists());
+        let names: Vec<&str> = rendered.timings.iter().map(|t| t.0).collect();
+        assert_eq!(names, ["read", "plots", "animation", "vtk", "glb"]);
+
+        let reported = report(&dir).expect("report");
+        assert_eq!(reported.files, vec![dir.join(REPORT)]);
+        let all = write_all(&dir).expect("write_all");
+        assert_eq!(all.files.len(), rendered.files.len() + 1);
+        assert!(all.total_seconds() > 0.0);
+    }
+}

@@ -72,3 +72,42 @@ fn describe_csv(path: &Path) -> String {
     });
     described.unwrap_or_else(|e| e.to_string())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_files::synthetic;
+
+    #[test]
+    fn reads_the_files_hagfish_run_writes_and_skips_absent_optional_ones() {
+        let dir = synthetic("plain");
+        let run = RunDir::read(&dir).expect("reads");
+        assert_eq!((run.centreline.frames(), run.centreline.bodies), (3, 4));
+        assert_eq!(run.metrics.self_contacts, vec![0.0, 1.0, 2.0]);
+        assert_eq!(run.metrics.knot_position, vec![None; 3]);
+        assert_eq!((run.forces.frames(), run.forces.joints), (3, 2));
+        assert_eq!(run.forces.values[1][2 * 2 + 1], 3.0, "frame 2, joint 1, Y");
+        assert_eq!((run.scenario, run.manifest, run.contacts), (None, None, None));
+        assert!(run.radii.source.starts_with("constant"), "{}", run.radii.source);
+
+        std::fs::write(dir.join("manifest.json"), "{\"version\": 1}").expect("write");
+        std::fs::write(dir.join("contacts.csv"), "frame,a\n0,1\n1,2\n").expect("write");
+        let run = RunDir::read(&dir).expect("reads");
+        assert_eq!(run.manifest.as_deref(), Some("{\"version\": 1}"));
+        assert_eq!(run.contacts.as_deref(), Some("2 rows; columns frame, a"));
+    }
+
+    #[test]
+    fn a_missing_file_or_column_is_an_error_naming_the_file() {
+        let dir = synthetic("broken");
+        let metrics = std::fs::read_to_string(dir.join("metrics.csv")).expect("read");
+        std::fs::write(dir.join("metrics.csv"), metrics.replacen("knot_position_cm", "kp", 1))
+            .expect("write");
+        let e = RunDir::read(&dir).expect_err("a column is missing").to_string();
+        assert!(e.contains("metrics.csv:1:") && e.contains("knot_position_cm"), "{e}");
+        std::fs::remove_file(dir.join("forces.csv")).expect("remove");
+        std::fs::write(dir.join("metrics.csv"), metrics).expect("write");
+        let e = RunDir::read(&dir).expect_err("forces.csv is missing").to_string();
+        assert!(e.contains("forces.csv") && e.contains("cannot read"), "{e}");
+    }
+}
