@@ -172,7 +172,7 @@
       count: 6
     };
 
-    var yaw = -1.0, pitch = 0.5, distance = 1.5 * size, frame = 0;
+    var yaw = -1.0, pitch = 0.5, distance = 1.2 * size, frame = 0;
 
     function bind(mesh) {
       [["position", mesh.position], ["normal", mesh.normal], ["colour", mesh.colour]].forEach(function (pair) {
@@ -205,7 +205,7 @@
       gl.drawElements(gl.TRIANGLES, body.count, gl.UNSIGNED_SHORT, 0);
       gl.enable(gl.BLEND);
       gl.blendFunc(gl.SRC_ALPHA, gl.ONE_MINUS_SRC_ALPHA);
-      gl.uniform1f(at.alpha, 0.4);
+      gl.uniform1f(at.alpha, 0.5);
       bind(wall);
       gl.drawElements(gl.TRIANGLES, wall.count, gl.UNSIGNED_SHORT, 0);
       label.textContent = "t = " + data.times[frame].toFixed(2) + " s (frame " + frame + " of " + (frames - 1) + ")";

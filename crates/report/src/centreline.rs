@@ -83,16 +83,6 @@ impl Centreline {
         &self.points[f * self.bodies..(f + 1) * self.bodies]
     }
 
-    /// Arc length from the head centre of each body in frame 0 (cm).
-    pub fn arc_length(&self) -> Vec<f64> {
-        let first = self.frame(0);
-        let mut s = vec![0.0; self.bodies];
-        for b in 1..self.bodies {
-            s[b] = s[b - 1] + distance(first[b - 1], first[b]);
-        }
-        s
-    }
-
     /// Smallest and largest coordinate per axis over all frames.
     pub fn bounds(&self) -> ([f64; 3], [f64; 3]) {
         let mut low = [f64::INFINITY; 3];
@@ -105,10 +95,6 @@ impl Centreline {
         }
         (low, high)
     }
-}
-
-fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
 #[cfg(test)]
@@ -129,7 +115,6 @@ mod tests {
         let c = read("ok.csv", &text).expect("reads");
         assert_eq!((c.frames(), c.bodies), (2, 2));
         assert_eq!(c.frame(1), &[[1.0, 0.0, 0.0], [2.0, 0.0, -1.0]]);
-        assert_eq!(c.arc_length(), vec![0.0, 5.0]);
         assert_eq!(c.bounds(), ([0.0, 0.0, -1.0], [3.0, 4.0, 0.0]));
     }
 

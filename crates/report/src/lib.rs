@@ -29,9 +29,9 @@ mod glb;
 mod html;
 mod metrics;
 mod outputs;
-pub mod plots;
+mod plots;
 mod radii;
-pub mod raster;
+mod raster;
 mod run_dir;
 mod summary;
 #[cfg(test)]

@@ -9,9 +9,9 @@ use std::path::Path;
 
 use plotters::style::RGBColor;
 
-pub use figure::{Figure, Plot, encode_png};
-pub use kymograph::Kymograph;
-pub use time_series::{Line, TimeSeries};
+pub use figure::Plot;
+use kymograph::Kymograph;
+use time_series::{Line, TimeSeries};
 
 use crate::colour::Rgb;
 use crate::error::ReportError;
