@@ -108,7 +108,11 @@ mod tests {
     #[test]
     fn render_and_report_write_their_own_files_and_write_all_both() {
         let dir = synthetic("outputs");
+        let stale = dir.join(VTK).join("frame_0099.vtk");
+        std::fs::create_dir_all(dir.join(VTK)).expect("vtk/");
+        std::fs::write(&stale, "from a longer run").expect("write");
         let rendered = render(&dir).expect("render");
+        assert!(!stale.exists(), "a frame of an earlier run lingers");
         assert_eq!(rendered.files.len(), 10 + 3, "plots ×2, gif, series, glb");
         assert_eq!(rendered.vtk_frames, 3);
         assert!(dir.join(VTK).join("frame_0002.vtk").exists());

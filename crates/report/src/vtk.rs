@@ -50,13 +50,20 @@ pub fn series_text(centreline: &Centreline) -> String {
     format!("{series:#}\n")
 }
 
-/// Writes every frame and the series index into `dir` (created if missing); returns the
-/// series index's path and the number of frame files.
+/// Writes every frame and the series index into `dir`, made afresh so that no frame of an
+/// earlier, longer run lingers; returns the series index's path and the number of frame
+/// files.
 pub fn write(
     centreline: &Centreline,
     radii: &[f64],
     dir: &Path,
 ) -> Result<(PathBuf, usize), ReportError> {
+    match std::fs::remove_dir_all(dir) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+            return Err(ReportError::write(dir)(e));
+        }
+        _ => {}
+    }
     std::fs::create_dir_all(dir).map_err(ReportError::write(dir))?;
     for f in 0..centreline.frames() {
         let path = dir.join(frame_name(f));
