@@ -145,16 +145,29 @@ pub fn encode(centreline: &Centreline, radii: &[f64]) -> Vec<u8> {
 
     let (t0, t1) = (centreline.times[0] as f32, centreline.times[frames - 1] as f32);
     let mut accessors = vec![
-        json!({ "bufferView": positions, "componentType": FLOAT, "count": vertices.len(), "type": "VEC3",
-                "min": [-1.0, -1.0, -1.0], "max": [1.0, 1.0, 1.0] }),
-        json!({ "bufferView": normals, "componentType": FLOAT, "count": vertices.len(), "type": "VEC3" }),
-        json!({ "bufferView": indices, "componentType": UNSIGNED_SHORT, "count": 3 * triangles.len(), "type": "SCALAR" }),
-        json!({ "bufferView": times, "componentType": FLOAT, "count": frames, "type": "SCALAR", "min": [t0], "max": [t1] }),
+        json!({
+            "bufferView": positions, "componentType": FLOAT, "count": vertices.len(),
+            "type": "VEC3", "min": [-1.0, -1.0, -1.0], "max": [1.0, 1.0, 1.0]
+        }),
+        json!({
+            "bufferView": normals, "componentType": FLOAT, "count": vertices.len(),
+            "type": "VEC3"
+        }),
+        json!({
+            "bufferView": indices, "componentType": UNSIGNED_SHORT,
+            "count": 3 * triangles.len(), "type": "SCALAR"
+        }),
+        json!({
+            "bufferView": times, "componentType": FLOAT, "count": frames, "type": "SCALAR",
+            "min": [t0], "max": [t1]
+        }),
     ];
     let first_track = accessors.len();
     accessors.extend((0..bodies).map(|b| {
-        json!({ "bufferView": translations, "byteOffset": 12 * frames * b, "componentType": FLOAT,
-                "count": frames, "type": "VEC3" })
+        json!({
+            "bufferView": translations, "byteOffset": 12 * frames * b,
+            "componentType": FLOAT, "count": frames, "type": "VEC3"
+        })
     }));
     let colour = |b: usize| {
         let c = sequential(b as f64 / (bodies - 1).max(1) as f64);
@@ -164,11 +177,17 @@ pub fn encode(centreline: &Centreline, radii: &[f64]) -> Vec<u8> {
         .map(|b| {
             let mut factor = colour(b);
             factor.push(1.0);
-            json!({ "pbrMetallicRoughness": { "baseColorFactor": factor, "metallicFactor": 0.0, "roughnessFactor": 0.6 } })
+            json!({ "pbrMetallicRoughness": {
+                "baseColorFactor": factor, "metallicFactor": 0.0, "roughnessFactor": 0.6
+            } })
         })
         .collect();
     let meshes: Vec<Value> = (0..bodies)
-        .map(|b| json!({ "primitives": [{ "attributes": { "POSITION": 0, "NORMAL": 1 }, "indices": 2, "material": b }] }))
+        .map(|b| {
+            json!({ "primitives": [{
+                "attributes": { "POSITION": 0, "NORMAL": 1 }, "indices": 2, "material": b
+            }] })
+        })
         .collect();
     let nodes: Vec<Value> = (0..bodies)
         .map(|b| {

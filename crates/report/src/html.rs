@@ -90,7 +90,8 @@ pub fn page(run: &RunDir, plots: &[Plot], gif: &[u8]) -> String {
     for plot in plots {
         let _ = writeln!(
             figures,
-            "<figure><img class=\"check\" alt=\"{0}\" src=\"data:image/png;base64,{1}\"><figcaption>{0} (plots/{2}.png, plots/{2}.svg)</figcaption></figure>",
+            "<figure><img class=\"check\" alt=\"{0}\" src=\"data:image/png;base64,{1}\">\
+             <figcaption>{0} (plots/{2}.png, plots/{2}.svg)</figcaption></figure>",
             escape(&plot.title),
             STANDARD.encode(&plot.png),
             escape(&plot.stem)

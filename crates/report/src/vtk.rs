@@ -16,7 +16,8 @@ pub fn frame_text(centreline: &Centreline, radii: &[f64], f: usize) -> String {
     let points = centreline.frame(f);
     let n = points.len();
     let mut text = format!(
-        "# vtk DataFile Version 3.0\nhagfish centreline, frame {f}, t = {} s (cm)\nASCII\nDATASET POLYDATA\nPOINTS {n} float\n",
+        "# vtk DataFile Version 3.0\nhagfish centreline, frame {f}, t = {} s (cm)\n\
+         ASCII\nDATASET POLYDATA\nPOINTS {n} float\n",
         centreline.times[f]
     );
     for p in points {

@@ -30,7 +30,8 @@ pub fn draw(run: &RunDir, plots: &Path) -> Result<Vec<Plot>, ReportError> {
     for (axis, name) in AXES.iter().enumerate() {
         let stem = format!("kymograph_{}", name.to_lowercase());
         let title = format!(
-            "Thigmotaxis force kymograph, axis {name} (joint × time, dyn·cm; colours clipped at the 99th percentile of |force|)"
+            "Thigmotaxis force kymograph, axis {name} (joint × time, dyn·cm; colours clipped \
+             at the 99th percentile of |force|)"
         );
         let figure = Kymograph { forces: &run.forces, axis };
         drawn.push(figure::render(&figure, &stem, &title, &plots.join(format!("{stem}.png")))?);
