@@ -76,9 +76,10 @@
 
     function point(f, b) { var i = 3 * (f * bodies + b); return [points[i], points[i + 1], points[i + 2]]; }
 
-    // Tube vertices of frame f: a ring of SIDES vertices per body, rotation-minimising frames.
+    // Tube vertices of frame f: a ring of SIDES vertices per body (rotation-minimising
+    // frames), then the centres of the head and tail caps.
     function tube(f, positions, normals) {
-      var n = null;
+      var n = null, ends = [];
       for (var b = 0; b < bodies; b++) {
         var p = point(f, b);
         var t = normalise(sub(point(f, Math.min(b + 1, bodies - 1)), point(f, Math.max(b - 1, 0))));
@@ -86,6 +87,8 @@
         var k = dot(n, t);
         n = normalise([n[0] - k * t[0], n[1] - k * t[1], n[2] - k * t[2]]);
         var m = cross(t, n), r = data.radii[b];
+        if (b === 0) ends.push([p, [-t[0], -t[1], -t[2]]]);
+        if (b === bodies - 1) ends.push([p, t]);
         for (var s = 0; s < SIDES; s++) {
           var a = 2 * Math.PI * s / SIDES, c = Math.cos(a), d = Math.sin(a);
           var dir = [c * n[0] + d * m[0], c * n[1] + d * m[1], c * n[2] + d * m[2]];
@@ -93,6 +96,10 @@
           for (var j = 0; j < 3; j++) { positions[i + j] = p[j] + r * dir[j]; normals[i + j] = dir[j]; }
         }
       }
+      ends.forEach(function (end, e) {
+        positions.set(end[0], 3 * (bodies * SIDES + e));
+        normals.set(end[1], 3 * (bodies * SIDES + e));
+      });
     }
 
 
@@ -144,8 +151,9 @@
       return b;
     }
     // The body: static colours and indices, positions and normals per frame.
-    var tubePositions = new Float32Array(3 * bodies * SIDES), tubeNormals = new Float32Array(3 * bodies * SIDES);
-    var tubeColours = new Float32Array(3 * bodies * SIDES), tubeIndices = [];
+    var vertices = bodies * SIDES + 2, head = bodies * SIDES, tail = head + 1;
+    var tubePositions = new Float32Array(3 * vertices), tubeNormals = new Float32Array(3 * vertices);
+    var tubeColours = new Float32Array(3 * vertices), tubeIndices = [];
     for (var b = 0; b < bodies; b++) {
       var c = viridis(b / Math.max(bodies - 1, 1));
       for (var s = 0; s < SIDES; s++) tubeColours.set(c, 3 * (b * SIDES + s));
@@ -153,6 +161,12 @@
         var p0 = b * SIDES + s, p1 = b * SIDES + (s + 1) % SIDES;
         tubeIndices.push(p0, p0 + SIDES, p1, p1, p0 + SIDES, p1 + SIDES);
       }
+    }
+    tubeColours.set(viridis(0), 3 * head);
+    tubeColours.set(viridis(1), 3 * tail);
+    for (s = 0; s < SIDES; s++) {
+      var next = (s + 1) % SIDES, last = (bodies - 1) * SIDES;
+      tubeIndices.push(head, next, s, tail, last + s, last + next);
     }
     var body = {
       position: buffer(gl.ARRAY_BUFFER, tubePositions, gl.DYNAMIC_DRAW),
