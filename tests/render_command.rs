@@ -199,4 +199,5 @@ fn report_html_renders_in_headless_chromium() {
     assert_eq!(body("data-status"), "ok");
     let pixels = attribute(&dom, "canvas", "data-drawn-pixels").and_then(|p| p.parse::<u32>().ok());
     assert!(pixels.is_some_and(|p| p > 1000), "the body covers the 3-D view: {pixels:?}");
+    assert!(dom.contains("t = 1.00 s (frame 10 of 10, phase form, knot 0_1)"), "the view's label");
 }

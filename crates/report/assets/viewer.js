@@ -222,7 +222,8 @@
       gl.uniform1f(at.alpha, 0.5);
       bind(wall);
       gl.drawElements(gl.TRIANGLES, wall.count, gl.UNSIGNED_SHORT, 0);
-      label.textContent = "t = " + data.times[frame].toFixed(2) + " s (frame " + frame + " of " + (frames - 1) + ")";
+      var state = frame < data.states.length ? ", " + data.states[frame] : "";
+      label.textContent = "t = " + data.times[frame].toFixed(2) + " s (frame " + frame + " of " + (frames - 1) + state + ")";
     }
 
     // Counts pixels that differ from the white background: the body must cover some.

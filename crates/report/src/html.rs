@@ -58,10 +58,17 @@ fn fill(template: &str, values: &HashMap<&str, String>) -> String {
     out
 }
 
-/// The run data the viewer reads: frames, bodies, times, radii and the body centres as
-/// base64 little-endian f32 (frame-major, x y z).
+/// The run data the viewer reads: frames, bodies, times, radii, the body centres as
+/// base64 little-endian f32 (frame-major, x y z), and per metrics frame its phase and knot.
 fn run_data(run: &RunDir) -> String {
     let c = &run.centreline;
+    let m = &run.metrics;
+    let states: Vec<String> = m
+        .phase
+        .iter()
+        .zip(&m.knot)
+        .map(|(phase, knot)| format!("phase {phase}, knot {knot}"))
+        .collect();
     let bytes: Vec<u8> =
         c.points.iter().flatten().flat_map(|v| (*v as f32).to_le_bytes()).collect();
     let data = serde_json::json!({
@@ -70,6 +77,7 @@ fn run_data(run: &RunDir) -> String {
         "times": c.times,
         "radii": run.radii.values,
         "points": STANDARD.encode(bytes),
+        "states": states,
     });
     // Inside <script>, "</" must not appear; JSON allows "<\/".
     data.to_string().replace("</", "<\\/")
