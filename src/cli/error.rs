@@ -64,6 +64,9 @@ pub enum CliError {
     /// Arguments that do not go together.
     #[error("{0}")]
     Usage(&'static str),
+    /// The run directory could not be read or its pictures, report or exports written.
+    #[error(transparent)]
+    Report(#[from] hagfish_report::ReportError),
     /// Writing the report to stdout failed (e.g. a closed pipe).
     #[error("cannot write the output: {0}")]
     Output(#[from] std::io::Error),

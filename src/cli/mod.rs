@@ -7,6 +7,8 @@ mod knot;
 mod manifest;
 mod params;
 mod progress;
+mod render;
+mod report;
 mod run;
 mod utc;
 
@@ -36,6 +38,10 @@ enum Command {
     Params,
     /// Print the knot type of every frame of a centreline CSV.
     Knot(knot::KnotArgs),
+    /// Re-make a run directory's plots, animation.gif, ParaView frames and run.glb.
+    Render(render::RenderArgs),
+    /// Re-make a run directory's report.html (one offline page with a 3-D view).
+    Report(report::ReportArgs),
 }
 
 /// Runs the chosen subcommand, writing its report to stdout (buffered, flushed at the end).
@@ -46,6 +52,8 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Run(args) => run::run(&args, &mut out)?,
         Command::Params => params::run(&mut out)?,
         Command::Knot(args) => knot::run(&args, &mut out)?,
+        Command::Render(args) => render::run(&args, &mut out)?,
+        Command::Report(args) => report::run(&args, &mut out)?,
     }
     out.flush()?;
     Ok(())

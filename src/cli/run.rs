@@ -70,6 +70,9 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let diverged = finish(&outcome, &directory, &mut manifest, wall)?;
     let steps_run = outcome.summary.steps - checkpoint.as_ref().map_or(0, |c| c.steps);
     summarise(&loaded, &directory, &outcome, manifest.status, wall, steps_run, out)?;
+    let written = hagfish_report::write_all(&directory)?;
+    writeln!(out, "pictures, report and exports in {:.2} s", written.total_seconds())?;
+    manifest.write(&directory)?; // again, to list the pictures and the report too
     match (diverged, &outcome.end) {
         (Some(reason), _) => Err(CliError::Diverged { directory, reason }),
         (None, RunEnd::Interrupted) if signalled.load(Ordering::Relaxed) => {

@@ -1,0 +1,90 @@
+//! `forces.csv`: the thigmotaxic force field (group `thigmo`) per frame, joint and axis.
+
+use std::path::Path;
+
+use crate::csv::CsvFile;
+use crate::error::ReportError;
+
+/// The axes of `forces.csv`, in the order of [`ThigmoForces::values`].
+pub const AXES: [&str; 3] = ["X", "Y", "Z"];
+
+/// The `thigmo` group of `forces.csv` (dyn·cm): per axis, a frames × joints matrix,
+/// frame-major (`values[a][f * joints + j]`); a DOF absent from a frame is 0.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ThigmoForces {
+    /// Simulation time of each frame (s).
+    pub times: Vec<f64>,
+    /// Joints per frame (0 = head).
+    pub joints: usize,
+    /// One matrix per axis of [`AXES`].
+    pub values: [Vec<f64>; 3],
+}
+
+impl ThigmoForces {
+    /// Reads the `thigmo` rows of `forces.csv`; frames must be numbered from 0 without gaps.
+    pub fn read(path: &Path) -> Result<Self, ReportError> {
+        let file = CsvFile::read(path)?;
+        let [frame, time, joint, axis, group, value] =
+            ["frame", "time_s", "joint", "axis", "group", "value_dyn_cm"].map(|c| file.column(c));
+        let (frame, time, joint, axis, group, value) =
+            (frame?, time?, joint?, axis?, group?, value?);
+        let mut times: Vec<f64> = Vec::new();
+        let mut entries = Vec::new();
+        for record in file.records() {
+            let record = record?;
+            if record.text(group) != "thigmo" {
+                continue;
+            }
+            let f = record.index(frame)?;
+            if f == times.len() {
+                times.push(record.number(time)?);
+            } else if f + 1 != times.len() {
+                return Err(record.error(frame, "is not the current or the next frame"));
+            }
+            let a = AXES
+                .iter()
+                .position(|name| *name == record.text(axis))
+                .ok_or_else(|| record.error(axis, "is not X, Y or Z"))?;
+            entries.push((f, record.index(joint)?, a, record.number(value)?));
+        }
+        let joints = entries.iter().map(|e| e.1 + 1).max().unwrap_or(0);
+        let mut values = [(); 3].map(|()| vec![0.0; times.len() * joints]);
+        for (f, j, a, v) in entries {
+            values[a][f * joints + j] = v;
+        }
+        Ok(Self { times, joints, values })
+    }
+
+    /// Number of frames.
+    pub fn frames(&self) -> usize {
+        self.times.len()
+    }
+
+    /// The largest magnitude on axis `a` (0 if there is none).
+    pub fn max_abs(&self, a: usize) -> f64 {
+        self.values[a].iter().fold(0.0, |m, v| m.max(v.abs()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn keeps_only_thigmo_rows_by_frame_joint_and_axis() {
+        let text = "frame,time_s,joint,axis,group,value_dyn_cm\n\
+            0,0,0,X,limit,9\n0,0,0,X,thigmo,1\n0,0,1,Z,thigmo,-2\n\
+            1,0.1,0,Y,thigmo,3e1\n1,0.1,1,X,contact,7\n";
+        let path = crate::test_files::write("forces.csv", text);
+        let f = ThigmoForces::read(&path).expect("reads");
+        assert_eq!((f.frames(), f.joints), (2, 2));
+        assert_eq!(f.values[0], vec![1.0, 0.0, 0.0, 0.0]);
+        assert_eq!(f.values[1], vec![0.0, 0.0, 30.0, 0.0]);
+        assert_eq!(f.values[2], vec![0.0, -2.0, 0.0, 0.0]);
+        assert_eq!((f.max_abs(0), f.max_abs(1), f.max_abs(2)), (1.0, 30.0, 2.0));
+        std::fs::write(&path, "frame,time_s,joint,axis,group,value_dyn_cm\n0,0,0,W,thigmo,1\n")
+            .expect("write");
+        let e = ThigmoForces::read(&path).expect_err("bad axis");
+        assert!(e.to_string().contains("forces.csv:2:"), "{e}");
+    }
+}

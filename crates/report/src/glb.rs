@@ -1,0 +1,342 @@
+//! glTF 2.0 binary export (`run.glb`), written by hand: one node per body, each an
+//! icosphere scaled to the body's radius and coloured by arc length, animated by one
+//! LINEAR translation sampler per node over the frames' times. glTF is in metres with +Y
+//! up, so a point (x, y, z) cm becomes (x, z, −y) / 100 m.
+
+use std::collections::HashMap;
+
+use serde_json::{Value, json};
+
+use crate::centreline::Centreline;
+use crate::colour::sequential;
+
+/// glTF component type of f32.
+const FLOAT: u32 = 5126;
+/// glTF component type of u16.
+const UNSIGNED_SHORT: u32 = 5123;
+/// bufferView targets.
+const ARRAY_BUFFER: u32 = 34962;
+const ELEMENT_ARRAY_BUFFER: u32 = 34963;
+/// Chunk types and the file magic.
+const MAGIC: u32 = 0x4654_6C67;
+const JSON_CHUNK: u32 = 0x4E4F_534A;
+const BIN_CHUNK: u32 = 0x004E_4942;
+
+/// A unit icosphere: vertices (also the normals) and triangles, counter-clockwise outside.
+pub fn icosphere(subdivisions: usize) -> (Vec<[f32; 3]>, Vec<[u16; 3]>) {
+    let t = (1.0 + 5f32.sqrt()) / 2.0;
+    let mut vertices: Vec<[f32; 3]> = [
+        [-1.0, t, 0.0],
+        [1.0, t, 0.0],
+        [-1.0, -t, 0.0],
+        [1.0, -t, 0.0],
+        [0.0, -1.0, t],
+        [0.0, 1.0, t],
+        [0.0, -1.0, -t],
+        [0.0, 1.0, -t],
+        [t, 0.0, -1.0],
+        [t, 0.0, 1.0],
+        [-t, 0.0, -1.0],
+        [-t, 0.0, 1.0],
+    ]
+    .map(normalise)
+    .to_vec();
+    let mut triangles: Vec<[u16; 3]> = vec![
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
+    ];
+    for _ in 0..subdivisions {
+        let mut midpoints: HashMap<(u16, u16), u16> = HashMap::new();
+        let mut midpoint = |a: u16, b: u16, vertices: &mut Vec<[f32; 3]>| {
+            *midpoints.entry((a.min(b), a.max(b))).or_insert_with(|| {
+                let (p, q) = (vertices[usize::from(a)], vertices[usize::from(b)]);
+                vertices.push(normalise([p[0] + q[0], p[1] + q[1], p[2] + q[2]]));
+                (vertices.len() - 1) as u16
+            })
+        };
+        triangles = triangles
+            .iter()
+            .flat_map(|&[a, b, c]| {
+                let ab = midpoint(a, b, &mut vertices);
+                let bc = midpoint(b, c, &mut vertices);
+                let ca = midpoint(c, a, &mut vertices);
+                [[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]
+            })
+            .collect();
+    }
+    (vertices, triangles)
+}
+
+fn normalise(v: [f32; 3]) -> [f32; 3] {
+    let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    [v[0] / n, v[1] / n, v[2] / n]
+}
+
+/// A point in cm, z up → glTF metres, y up.
+fn to_gltf(p: [f64; 3]) -> [f32; 3] {
+    [(p[0] / 100.0) as f32, (p[2] / 100.0) as f32, (-p[1] / 100.0) as f32]
+}
+
+/// The binary buffer being assembled, with its buffer views.
+#[derive(Default)]
+struct Buffer {
+    bytes: Vec<u8>,
+    views: Vec<Value>,
+}
+
+impl Buffer {
+    /// Appends `data` as a new buffer view (4-byte aligned) and returns its index.
+    fn view(&mut self, data: &[u8], target: Option<u32>) -> usize {
+        pad(&mut self.bytes, 0);
+        let mut view =
+            json!({ "buffer": 0, "byteOffset": self.bytes.len(), "byteLength": data.len() });
+        if let Some(target) = target {
+            view["target"] = json!(target);
+        }
+        self.bytes.extend_from_slice(data);
+        self.views.push(view);
+        self.views.len() - 1
+    }
+}
+
+/// Appends `with` until the length is a multiple of 4 (glTF's alignment).
+fn pad(bytes: &mut Vec<u8>, with: u8) {
+    while !bytes.len().is_multiple_of(4) {
+        bytes.push(with);
+    }
+}
+
+fn floats(values: impl IntoIterator<Item = f32>) -> Vec<u8> {
+    values.into_iter().flat_map(f32::to_le_bytes).collect()
+}
+
+/// The `.glb` bytes of the animated run: `radii` per body (cm).
+pub fn encode(centreline: &Centreline, radii: &[f64]) -> Vec<u8> {
+    let (vertices, triangles) = icosphere(1);
+    let (bodies, frames) = (centreline.bodies, centreline.frames());
+    let mut buffer = Buffer::default();
+    let positions = buffer.view(&floats(vertices.iter().flatten().copied()), Some(ARRAY_BUFFER));
+    let normals = buffer.view(&floats(vertices.iter().flatten().copied()), Some(ARRAY_BUFFER));
+    let index_bytes: Vec<u8> = triangles.iter().flatten().flat_map(|i| i.to_le_bytes()).collect();
+    let indices = buffer.view(&index_bytes, Some(ELEMENT_ARRAY_BUFFER));
+    let times = buffer.view(&floats(centreline.times.iter().map(|t| *t as f32)), None);
+    let tracks: Vec<u8> = floats(
+        (0..bodies).flat_map(|b| (0..frames).flat_map(move |f| to_gltf(centreline.frame(f)[b]))),
+    );
+    let translations = buffer.view(&tracks, None);
+
+    let (t0, t1) = (centreline.times[0] as f32, centreline.times[frames - 1] as f32);
+    let mut accessors = vec![
+        json!({
+            "bufferView": positions, "componentType": FLOAT, "count": vertices.len(),
+            "type": "VEC3", "min": [-1.0, -1.0, -1.0], "max": [1.0, 1.0, 1.0]
+        }),
+        json!({
+            "bufferView": normals, "componentType": FLOAT, "count": vertices.len(),
+            "type": "VEC3"
+        }),
+        json!({
+            "bufferView": indices, "componentType": UNSIGNED_SHORT,
+            "count": 3 * triangles.len(), "type": "SCALAR"
+        }),
+        json!({
+            "bufferView": times, "componentType": FLOAT, "count": frames, "type": "SCALAR",
+            "min": [t0], "max": [t1]
+        }),
+    ];
+    let first_track = accessors.len();
+    accessors.extend((0..bodies).map(|b| {
+        json!({
+            "bufferView": translations, "byteOffset": 12 * frames * b,
+            "componentType": FLOAT, "count": frames, "type": "VEC3"
+        })
+    }));
+    let colour = |b: usize| {
+        let c = sequential(b as f64 / (bodies - 1).max(1) as f64);
+        [c[0], c[1], c[2]].map(|v| (f64::from(v) / 255.0).powf(2.2)).to_vec()
+    };
+    let materials: Vec<Value> = (0..bodies)
+        .map(|b| {
+            let mut factor = colour(b);
+            factor.push(1.0);
+            json!({ "pbrMetallicRoughness": {
+                "baseColorFactor": factor, "metallicFactor": 0.0, "roughnessFactor": 0.6
+            } })
+        })
+        .collect();
+    let meshes: Vec<Value> = (0..bodies)
+        .map(|b| {
+            json!({ "primitives": [{
+                "attributes": { "POSITION": 0, "NORMAL": 1 }, "indices": 2, "material": b
+            }] })
+        })
+        .collect();
+    let nodes: Vec<Value> = (0..bodies)
+        .map(|b| {
+            let r = (radii[b] / 100.0) as f32;
+            json!({ "name": format!("body {b}"), "mesh": b, "scale": [r, r, r],
+                    "translation": to_gltf(centreline.frame(0)[b]) })
+        })
+        .collect();
+    let samplers: Vec<Value> = (0..bodies)
+        .map(|b| json!({ "input": 3, "output": first_track + b, "interpolation": "LINEAR" }))
+        .collect();
+    let channels: Vec<Value> = (0..bodies)
+        .map(|b| json!({ "sampler": b, "target": { "node": b, "path": "translation" } }))
+        .collect();
+    pad(&mut buffer.bytes, 0);
+    let document = json!({
+        "asset": { "version": "2.0", "generator": "hagfish-report" },
+        "scene": 0,
+        "scenes": [{ "name": "hagfish", "nodes": (0..bodies).collect::<Vec<_>>() }],
+        "nodes": nodes,
+        "meshes": meshes,
+        "materials": materials,
+        "accessors": accessors,
+        "bufferViews": buffer.views,
+        "buffers": [{ "byteLength": buffer.bytes.len() }],
+        "animations": [{ "name": "run", "samplers": samplers, "channels": channels }],
+    });
+    let mut json_bytes = document.to_string().into_bytes();
+    pad(&mut json_bytes, b' ');
+    let total = 12 + 8 + json_bytes.len() + 8 + buffer.bytes.len();
+    let mut glb = Vec::with_capacity(total);
+    for word in [MAGIC, 2, total as u32, json_bytes.len() as u32, JSON_CHUNK] {
+        glb.extend_from_slice(&word.to_le_bytes());
+    }
+    glb.extend_from_slice(&json_bytes);
+    for word in [buffer.bytes.len() as u32, BIN_CHUNK] {
+        glb.extend_from_slice(&word.to_le_bytes());
+    }
+    glb.extend_from_slice(&buffer.bytes);
+    glb
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_files::two_frames;
+
+    fn word(bytes: &[u8], at: usize) -> usize {
+        u32::from_le_bytes([bytes[at], bytes[at + 1], bytes[at + 2], bytes[at + 3]]) as usize
+    }
+
+    fn component_size(t: u64) -> usize {
+        match t {
+            5126 | 5125 => 4,
+            5123 | 5122 => 2,
+            _ => 1,
+        }
+    }
+
+    fn components(t: &str) -> usize {
+        match t {
+            "SCALAR" => 1,
+            "VEC2" => 2,
+            "VEC3" => 3,
+            "VEC4" | "MAT2" => 4,
+            _ => 16,
+        }
+    }
+
+    /// Parses a .glb and checks its structure; returns the JSON document and BIN chunk.
+    fn parse(glb: &[u8]) -> (Value, Vec<u8>) {
+        assert_eq!(word(glb, 0), MAGIC as usize, "magic");
+        assert_eq!(word(glb, 4), 2, "version");
+        assert_eq!(word(glb, 8), glb.len(), "total length");
+        let json_length = word(glb, 12);
+        assert_eq!(word(glb, 16), JSON_CHUNK as usize);
+        assert_eq!(json_length % 4, 0);
+        let document: Value =
+            serde_json::from_slice(&glb[20..20 + json_length]).expect("the JSON chunk parses");
+        let bin_at = 20 + json_length;
+        let bin_length = word(glb, bin_at);
+        assert_eq!(word(glb, bin_at + 4), BIN_CHUNK as usize);
+        assert_eq!(bin_length % 4, 0);
+        assert_eq!(bin_at + 8 + bin_length, glb.len(), "chunks fill the file");
+        let bin = glb[bin_at + 8..].to_vec();
+        assert_eq!(document["buffers"][0]["byteLength"].as_u64(), Some(bin.len() as u64));
+        let views = document["bufferViews"].as_array().expect("bufferViews");
+        for view in views {
+            let (offset, length) = (view["byteOffset"].as_u64(), view["byteLength"].as_u64());
+            let (offset, length) =
+                (offset.expect("offset") as usize, length.expect("length") as usize);
+            assert!(offset + length <= bin.len(), "view {view} beyond the buffer");
+            assert_eq!(offset % 4, 0);
+        }
+        for accessor in document["accessors"].as_array().expect("accessors") {
+            let view = &views[accessor["bufferView"].as_u64().expect("view") as usize];
+            let offset = accessor["byteOffset"].as_u64().unwrap_or(0) as usize;
+            let count = accessor["count"].as_u64().expect("count") as usize;
+            let size = component_size(accessor["componentType"].as_u64().expect("type"))
+                * components(accessor["type"].as_str().expect("type"));
+            let length = view["byteLength"].as_u64().expect("length") as usize;
+            assert!(
+                count > 0 && offset + count * size <= length,
+                "accessor {accessor} beyond its view"
+            );
+        }
+        (document, bin)
+    }
+
+    #[test]
+    fn an_icosphere_has_the_expected_counts_and_unit_vertices() {
+        let (v, t) = icosphere(1);
+        assert_eq!((v.len(), t.len()), (42, 80));
+        assert!(v.iter().all(|p| ((p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) - 1.0).abs() < 1e-6));
+        assert!(t.iter().flatten().all(|i| usize::from(*i) < v.len()));
+    }
+
+    #[test]
+    fn the_glb_parses_back_with_one_animated_node_per_body() {
+        let centreline = two_frames();
+        let glb = encode(&centreline, &[1.0, 0.5, 0.25]);
+        let (document, bin) = parse(&glb);
+        assert_eq!(document["asset"]["version"], "2.0");
+        assert_eq!(document["nodes"].as_array().map(Vec::len), Some(3));
+        assert_eq!(document["nodes"][1]["scale"][0].as_f64(), Some(f64::from(0.005f32)));
+        let animation = &document["animations"][0];
+        assert_eq!(animation["channels"].as_array().map(Vec::len), Some(3));
+        let accessors = document["accessors"].as_array().expect("accessors");
+        let times = &accessors[animation["samplers"][0]["input"].as_u64().expect("input") as usize];
+        assert_eq!(times["count"].as_u64(), Some(2));
+        assert_eq!(times["max"][0].as_f64(), Some(0.5));
+        // The last body's track at frame 1: (2, 1.5, −0.25) cm → (0.02, −0.0025, −0.015) m.
+        let track =
+            &accessors[animation["samplers"][2]["output"].as_u64().expect("output") as usize];
+        assert_eq!(track["count"].as_u64(), Some(2));
+        let view = &document["bufferViews"][track["bufferView"].as_u64().expect("view") as usize];
+        let at = view["byteOffset"].as_u64().expect("o") as usize
+            + track["byteOffset"].as_u64().expect("o") as usize
+            + 12;
+        let value: Vec<f32> = (0..3)
+            .map(|k| {
+                f32::from_le_bytes([
+                    bin[at + 4 * k],
+                    bin[at + 4 * k + 1],
+                    bin[at + 4 * k + 2],
+                    bin[at + 4 * k + 3],
+                ])
+            })
+            .collect();
+        assert_eq!(value, vec![0.02, -0.0025, -0.015]);
+    }
+}

@@ -1,0 +1,176 @@
+//! `report.html`: one self-contained page (no network): summary table, the 3-D view
+//! (hand-written WebGL over the embedded centreline, `assets/viewer.js`), the animation and
+//! plots as base64 images, the scenario and manifest texts. Scripts record errors
+//! (`assets/errors.js`) and set `<body data-status>` to `ok` once everything rendered.
+
+use std::collections::HashMap;
+use std::fmt::Write as _;
+
+use base64::Engine as _;
+use base64::engine::general_purpose::STANDARD;
+
+use crate::animation;
+use crate::plots::Plot;
+use crate::run_dir::RunDir;
+use crate::summary;
+
+const TEMPLATE: &str = include_str!("../assets/report.html");
+const ERRORS_JS: &str = include_str!("../assets/errors.js");
+const VIEWER_JS: &str = include_str!("../assets/viewer.js");
+
+/// Escapes text for HTML element content and attribute values.
+pub fn escape(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&#39;"),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+/// Replaces every `{{name}}` of `template` by `values[name]` in one pass (so replaced text is
+/// never scanned again); an unknown name is left as is.
+fn fill(template: &str, values: &HashMap<&str, String>) -> String {
+    let mut out =
+        String::with_capacity(template.len() + values.values().map(String::len).sum::<usize>());
+    let mut rest = template;
+    while let Some(start) = rest.find("{{") {
+        out.push_str(&rest[..start]);
+        let after = &rest[start + 2..];
+        match after.find("}}").and_then(|end| values.get(&after[..end]).map(|v| (end, v))) {
+            Some((end, value)) => {
+                out.push_str(value);
+                rest = &after[end + 2..];
+            }
+            None => {
+                out.push_str("{{");
+                rest = after;
+            }
+        }
+    }
+    out.push_str(rest);
+    out
+}
+
+/// The run data the viewer reads: frames, bodies, times, radii, the body centres as
+/// base64 little-endian f32 (frame-major, x y z), and per metrics frame its phase and knot.
+fn run_data(run: &RunDir) -> String {
+    let c = &run.centreline;
+    let m = &run.metrics;
+    let states: Vec<String> = m
+        .phase
+        .iter()
+        .zip(&m.knot)
+        .map(|(phase, knot)| format!("phase {phase}, knot {knot}"))
+        .collect();
+    let bytes: Vec<u8> =
+        c.points.iter().flatten().flat_map(|v| (*v as f32).to_le_bytes()).collect();
+    let data = serde_json::json!({
+        "frames": c.frames(),
+        "bodies": c.bodies,
+        "times": c.times,
+        "radii": run.radii.values,
+        "points": STANDARD.encode(bytes),
+        "states": states,
+    });
+    // Inside <script>, "</" must not appear; JSON allows "<\/".
+    data.to_string().replace("</", "<\\/")
+}
+
+fn preformatted(text: Option<&String>, missing: &str) -> String {
+    text.map_or_else(|| format!("<p>{missing}</p>"), |t| format!("<pre>{}</pre>", escape(t)))
+}
+
+/// The page for `run` with its drawn `plots` and `gif` animation.
+pub fn page(run: &RunDir, plots: &[Plot], gif: &[u8]) -> String {
+    let mut table = String::from("<table>\n");
+    for (key, value) in summary::rows(&run.metrics) {
+        let _ = writeln!(table, "<tr><th>{}</th><td>{}</td></tr>", escape(&key), escape(&value));
+    }
+    table.push_str("</table>");
+    let mut figures = String::new();
+    for plot in plots {
+        let _ = writeln!(
+            figures,
+            "<figure><img class=\"check\" alt=\"{0}\" src=\"data:image/png;base64,{1}\">\
+             <figcaption>{0} (plots/{2}.png, plots/{2}.svg)</figcaption></figure>",
+            escape(&plot.title),
+            STANDARD.encode(&plot.png),
+            escape(&plot.stem)
+        );
+    }
+    let files = format!(
+        "<ul><li>Body radii: {}.</li><li>contacts.csv: {}.</li></ul>",
+        escape(&run.radii.source),
+        escape(run.contacts.as_deref().unwrap_or("absent"))
+    );
+    let shown = animation::shown_frames(run.centreline.frames()).len();
+    let caption = format!(
+        "{shown} of {} frames at {} × real time (animation.gif).",
+        run.centreline.frames(),
+        animation::SPEED_UP
+    );
+    let values = HashMap::from([
+        ("title", escape(&run.dir.display().to_string())),
+        ("errors_js", ERRORS_JS.to_string()),
+        ("summary", table),
+        ("animation", STANDARD.encode(gif)),
+        ("animation_caption", escape(&caption)),
+        ("plots", figures),
+        ("scenario", preformatted(run.scenario.as_ref(), "No scenario.ron in the run directory.")),
+        ("manifest", preformatted(run.manifest.as_ref(), "No manifest.json in the run directory.")),
+        ("files", files),
+        ("data", run_data(run)),
+        ("viewer_js", VIEWER_JS.to_string()),
+    ]);
+    fill(TEMPLATE, &values)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn escape_covers_markup_characters() {
+        assert_eq!(
+            escape(r#"<a href="x">&'</a>"#),
+            "&lt;a href=&quot;x&quot;&gt;&amp;&#39;&lt;/a&gt;"
+        );
+    }
+
+    #[test]
+    fn fill_substitutes_once_and_keeps_unknown_names() {
+        let values = HashMap::from([("a", "{{b}}".to_string()), ("b", "B".to_string())]);
+        assert_eq!(fill("x{{a}}y{{b}}z{{c}}", &values), "x{{b}}yBz{{c}}");
+        assert_eq!(fill("{{a", &values), "{{a");
+    }
+
+    #[test]
+    fn every_placeholder_of_the_template_is_known() {
+        let names = [
+            "title",
+            "errors_js",
+            "summary",
+            "animation",
+            "animation_caption",
+            "plots",
+            "scenario",
+            "manifest",
+            "files",
+            "data",
+            "viewer_js",
+        ];
+        let values: HashMap<&str, String> = names.iter().map(|n| (*n, String::new())).collect();
+        let filled = fill(TEMPLATE, &values);
+        assert!(!filled.contains("{{"), "an unknown placeholder is left");
+        for name in names {
+            assert!(TEMPLATE.contains(&format!("{{{{{name}}}}}")), "{name} is unused");
+        }
+    }
+}

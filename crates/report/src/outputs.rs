@@ -1,0 +1,129 @@
+//! The three entry points — [`render`], [`report`], [`write_all`] — over one run directory,
+//! with what each wrote and how long each part took.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use crate::error::ReportError;
+use crate::run_dir::RunDir;
+use crate::{animation, glb, html, plots, vtk};
+
+/// Name of the animated GIF in the run directory.
+pub const ANIMATION: &str = "animation.gif";
+/// Name of the glTF binary in the run directory.
+pub const GLB: &str = "run.glb";
+/// Name of the report in the run directory.
+pub const REPORT: &str = "report.html";
+/// Directory of the plots in the run directory.
+pub const PLOTS: &str = "plots";
+/// Directory of the VTK frames in the run directory.
+pub const VTK: &str = "vtk";
+
+/// What one entry point wrote.
+#[derive(Clone, Debug, Default)]
+pub struct Written {
+    /// The files written (VTK frames counted in `vtk_frames`, not listed).
+    pub files: Vec<PathBuf>,
+    /// Number of VTK frame files written.
+    pub vtk_frames: usize,
+    /// Wall time of each part (name, seconds), in order.
+    pub timings: Vec<(&'static str, f64)>,
+}
+
+impl Written {
+    /// Runs `part`, recording its wall time under `name`.
+    fn time<T>(&mut self, name: &'static str, part: impl FnOnce() -> T) -> T {
+        let started = Instant::now();
+        let value = part();
+        self.timings.push((name, started.elapsed().as_secs_f64()));
+        value
+    }
+
+    /// Total wall time (s).
+    pub fn total_seconds(&self) -> f64 {
+        self.timings.iter().map(|t| t.1).sum()
+    }
+}
+
+/// Which outputs to make.
+#[derive(Clone, Copy, Debug)]
+struct Parts {
+    pictures: bool,
+    exports: bool,
+    report: bool,
+}
+
+fn make(dir: &Path, parts: Parts) -> Result<Written, ReportError> {
+    let mut written = Written::default();
+    let run = written.time("read", || RunDir::read(dir))?;
+    let plot_dir = dir.join(PLOTS);
+    let drawn = written.time("plots", || plots::draw(&run, &plot_dir))?;
+    let gif_path = dir.join(ANIMATION);
+    let gif = written.time("animation", || animation::encode(&run, &gif_path))?;
+    if parts.pictures {
+        written.files.extend(plots::write(&drawn, &plot_dir)?);
+        std::fs::write(&gif_path, &gif).map_err(ReportError::write(&gif_path))?;
+        written.files.push(gif_path);
+    }
+    if parts.exports {
+        let (series, frames) = written
+            .time("vtk", || vtk::write(&run.centreline, &run.radii.values, &dir.join(VTK)))?;
+        written.files.push(series);
+        written.vtk_frames = frames;
+        let path = dir.join(GLB);
+        let bytes = written.time("glb", || glb::encode(&run.centreline, &run.radii.values));
+        std::fs::write(&path, bytes).map_err(ReportError::write(&path))?;
+        written.files.push(path);
+    }
+    if parts.report {
+        let path = dir.join(REPORT);
+        let page = written.time("report", || html::page(&run, &drawn, &gif));
+        std::fs::write(&path, page).map_err(ReportError::write(&path))?;
+        written.files.push(path);
+    }
+    Ok(written)
+}
+
+/// `hagfish render DIR`: the plots (`plots/*.png`, `plots/*.svg`), `animation.gif`, the
+/// ParaView frames (`vtk/`) and `run.glb`.
+pub fn render(dir: &Path) -> Result<Written, ReportError> {
+    make(dir, Parts { pictures: true, exports: true, report: false })
+}
+
+/// `hagfish report DIR`: `report.html` alone (its pictures drawn afresh, in memory).
+pub fn report(dir: &Path) -> Result<Written, ReportError> {
+    make(dir, Parts { pictures: false, exports: false, report: true })
+}
+
+/// Everything [`render`] and [`report`] write, reading and drawing once.
+pub fn write_all(dir: &Path) -> Result<Written, ReportError> {
+    make(dir, Parts { pictures: true, exports: true, report: true })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_files::synthetic;
+
+    #[test]
+    fn render_and_report_write_their_own_files_and_write_all_both() {
+        let dir = synthetic("outputs");
+        let stale = dir.join(VTK).join("frame_0099.vtk");
+        std::fs::create_dir_all(dir.join(VTK)).expect("vtk/");
+        std::fs::write(&stale, "from a longer run").expect("write");
+        let rendered = render(&dir).expect("render");
+        assert!(!stale.exists(), "a frame of an earlier run lingers");
+        assert_eq!(rendered.files.len(), 10 + 3, "plots ×2, gif, series, glb");
+        assert_eq!(rendered.vtk_frames, 3);
+        assert!(dir.join(VTK).join("frame_0002.vtk").exists());
+        assert!(!dir.join(REPORT).exists());
+        let names: Vec<&str> = rendered.timings.iter().map(|t| t.0).collect();
+        assert_eq!(names, ["read", "plots", "animation", "vtk", "glb"]);
+
+        let reported = report(&dir).expect("report");
+        assert_eq!(reported.files, vec![dir.join(REPORT)]);
+        let all = write_all(&dir).expect("write_all");
+        assert_eq!(all.files.len(), rendered.files.len() + 1);
+        assert!(all.total_seconds() > 0.0);
+    }
+}

@@ -1,0 +1,87 @@
+//! The run's plots, each as PNG and SVG: force kymographs per axis, the knot's position
+//! and the contacts' span against time, and the contact counts against time.
+
+mod figure;
+mod kymograph;
+mod time_series;
+
+use std::path::Path;
+
+use plotters::style::RGBColor;
+
+pub use figure::Plot;
+use kymograph::Kymograph;
+use time_series::{Line, TimeSeries};
+
+use crate::colour::Rgb;
+use crate::error::ReportError;
+use crate::forces::AXES;
+use crate::run_dir::RunDir;
+
+/// The plotters colour of `c`.
+fn rgb(c: Rgb) -> RGBColor {
+    RGBColor(c[0], c[1], c[2])
+}
+
+/// Draws every plot of `run`; `plots` is the directory their files will go to (named in
+/// errors).
+pub fn draw(run: &RunDir, plots: &Path) -> Result<Vec<Plot>, ReportError> {
+    let mut drawn = Vec::new();
+    for (axis, name) in AXES.iter().enumerate() {
+        let stem = format!("kymograph_{}", name.to_lowercase());
+        let title = format!(
+            "Thigmotaxis force kymograph, axis {name} (joint × time, dyn·cm; colours clipped \
+             at the 99th percentile of |force|)"
+        );
+        let figure = Kymograph { forces: &run.forces, axis };
+        drawn.push(figure::render(&figure, &stem, &title, &plots.join(format!("{stem}.png")))?);
+    }
+    let m = &run.metrics;
+    let line = |label: &str, colour: Rgb, values: &[Option<f64>]| Line {
+        label: label.to_string(),
+        colour,
+        values: values.to_vec(),
+    };
+    let knot = TimeSeries {
+        title: "Knot position and contact span".into(),
+        y_label: "arc length from the head (cm)".into(),
+        times: m.time.clone(),
+        lines: vec![
+            line("knot position", [0, 0, 0], &m.knot_position),
+            line("first contact", [214, 39, 40], &m.first_contact),
+            line("last contact", [31, 119, 180], &m.last_contact),
+            line("contacts start", [255, 152, 150], &m.contacts_start),
+            line("contacts end", [158, 202, 225], &m.contacts_end),
+        ],
+    };
+    let some = |v: &[f64]| v.iter().map(|x| Some(*x)).collect::<Vec<_>>();
+    let contacts = TimeSeries {
+        title: "Contacts".into(),
+        y_label: "count".into(),
+        times: m.time.clone(),
+        lines: vec![
+            line("self contacts", [214, 39, 40], &some(&m.self_contacts)),
+            line("wall contacts", [44, 160, 44], &some(&m.wall_contacts)),
+        ],
+    };
+    for (figure, stem) in [(knot, "knot_span"), (contacts, "contacts")] {
+        let title = figure.title.clone();
+        drawn.push(figure::render(&figure, stem, &title, &plots.join(format!("{stem}.png")))?);
+    }
+    Ok(drawn)
+}
+
+/// Writes each plot as `<stem>.png` and `<stem>.svg` into `plots` (created if missing) and
+/// returns the files written.
+pub fn write(drawn: &[Plot], plots: &Path) -> Result<Vec<std::path::PathBuf>, ReportError> {
+    std::fs::create_dir_all(plots).map_err(ReportError::write(plots))?;
+    let mut files = Vec::new();
+    for plot in drawn {
+        for (extension, bytes) in [("png", plot.png.as_slice()), ("svg", plot.svg.as_bytes())] {
+            let path = plots.join(format!("{}.{extension}", plot.stem));
+            std::fs::write(&path, bytes).map_err(ReportError::write(&path))?;
+            files.push(path);
+        }
+    }
+    Ok(files)
+}

@@ -1,0 +1,105 @@
+//! ParaView export: one legacy VTK file per frame (`vtk/frame_NNNN.vtk`, POLYDATA: the body
+//! centres as one LINES cell with a `radius_cm` point field, cm) and the series index
+//! `vtk/centreline.vtk.series` (ParaView's JSON file-series format, times in s).
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use crate::centreline::Centreline;
+use crate::error::ReportError;
+
+/// Name of the series index inside the VTK directory.
+pub const SERIES: &str = "centreline.vtk.series";
+
+/// The legacy VTK text of frame `f`.
+pub fn frame_text(centreline: &Centreline, radii: &[f64], f: usize) -> String {
+    let points = centreline.frame(f);
+    let n = points.len();
+    let mut text = format!(
+        "# vtk DataFile Version 3.0\nhagfish centreline, frame {f}, t = {} s (cm)\n\
+         ASCII\nDATASET POLYDATA\nPOINTS {n} float\n",
+        centreline.times[f]
+    );
+    for p in points {
+        let _ = writeln!(text, "{} {} {}", p[0] as f32, p[1] as f32, p[2] as f32);
+    }
+    let _ = write!(text, "LINES 1 {}\n{n}", n + 1);
+    for i in 0..n {
+        let _ = write!(text, " {i}");
+    }
+    let _ = write!(text, "\nPOINT_DATA {n}\nSCALARS radius_cm float 1\nLOOKUP_TABLE default\n");
+    for r in radii {
+        let _ = writeln!(text, "{}", *r as f32);
+    }
+    text
+}
+
+/// The file name of frame `f`.
+pub fn frame_name(f: usize) -> String {
+    format!("frame_{f:04}.vtk")
+}
+
+/// The `.vtk.series` JSON naming every frame's file and time.
+pub fn series_text(centreline: &Centreline) -> String {
+    let files: Vec<serde_json::Value> = centreline
+        .times
+        .iter()
+        .enumerate()
+        .map(|(f, t)| serde_json::json!({ "name": frame_name(f), "time": t }))
+        .collect();
+    let series = serde_json::json!({ "file-series-version": "1.0", "files": files });
+    format!("{series:#}\n")
+}
+
+/// Writes every frame and the series index into `dir`, made afresh so that no frame of an
+/// earlier, longer run lingers; returns the series index's path and the number of frame
+/// files.
+pub fn write(
+    centreline: &Centreline,
+    radii: &[f64],
+    dir: &Path,
+) -> Result<(PathBuf, usize), ReportError> {
+    match std::fs::remove_dir_all(dir) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+            return Err(ReportError::write(dir)(e));
+        }
+        _ => {}
+    }
+    std::fs::create_dir_all(dir).map_err(ReportError::write(dir))?;
+    for f in 0..centreline.frames() {
+        let path = dir.join(frame_name(f));
+        std::fs::write(&path, frame_text(centreline, radii, f))
+            .map_err(ReportError::write(&path))?;
+    }
+    let path = dir.join(SERIES);
+    std::fs::write(&path, series_text(centreline)).map_err(ReportError::write(&path))?;
+    Ok((path, centreline.frames()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_files::two_frames;
+
+    #[test]
+    fn a_frame_is_polydata_with_one_polyline_and_a_radius_per_point() {
+        let text = frame_text(&two_frames(), &[0.5, 0.75, 0.25], 1);
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines[0], "# vtk DataFile Version 3.0");
+        assert_eq!(&lines[2..5], &["ASCII", "DATASET POLYDATA", "POINTS 3 float"]);
+        assert_eq!(lines[7], "2 1.5 -0.25");
+        assert_eq!(&lines[8..10], &["LINES 1 4", "3 0 1 2"]);
+        assert_eq!(&lines[10..12], &["POINT_DATA 3", "SCALARS radius_cm float 1"]);
+        assert_eq!(&lines[13..], &["0.5", "0.75", "0.25"]);
+    }
+
+    #[test]
+    fn the_series_names_each_frame_with_its_time() {
+        let series: serde_json::Value =
+            serde_json::from_str(&series_text(&two_frames())).expect("valid JSON");
+        assert_eq!(series["file-series-version"], "1.0");
+        assert_eq!(series["files"][1]["name"], "frame_0001.vtk");
+        assert_eq!(series["files"][1]["time"], 0.5);
+        assert_eq!(series["files"].as_array().map(Vec::len), Some(2));
+    }
+}
