@@ -28,6 +28,7 @@ use clarabel::solver::{
     SupportedConeT, ZeroConeT,
 };
 
+use crate::mass_operator::{Mass, to_dense};
 use crate::problem::Problem;
 use crate::report::SolveStatus;
 use crate::rows::RowKind;
@@ -56,7 +57,14 @@ pub(crate) fn solve(
         rows.kinds().iter().filter(|k| matches!(k, RowKind::SoftInequality { .. })).count();
     let variables = n + soft_count;
     // Jacobi scaling q̇ = D x, D = diag(M̃ᵢᵢ^(−1/2)): the same problem with a unit diagonal.
-    let mass = problem.mass();
+    let owned;
+    let mass = match problem.mass() {
+        Mass::Dense(mass) => mass,
+        Mass::Operator(operator) => {
+            owned = to_dense(operator);
+            owned.as_ref()
+        }
+    };
     let scale: Vec<f64> = (0..n).map(|i| 1.0 / mass[(i, i)].sqrt()).collect();
 
     // Constraint order: equalities (zero cone), then inequality and soft rows, then σ ≥ 0.

@@ -20,7 +20,7 @@ use faer::linalg::matmul::matmul;
 use faer::{Accum, Mat, MatRef, Par};
 
 use crate::linalg::{column, column_mut};
-use crate::mass_factor::MassFactor;
+use crate::mass_operator::FactoredMass;
 use crate::problem::Problem;
 
 /// Y, W, z, r and b of one solve (sizes n × m, m × m, n, m, m).
@@ -46,8 +46,8 @@ impl ContactSpace {
     }
 
     /// Forms Y = L⁻¹Cᵀ, W = YᵀY, z = L⁻¹f̃ and r = b − Yᵀz for `problem`, with `factor`
-    /// holding the Cholesky factor of its M̃.
-    pub(crate) fn build(&mut self, factor: &MassFactor, problem: &Problem<'_>) {
+    /// holding a factor of its M̃ (M̃ = L Lᵀ).
+    pub(crate) fn build(&mut self, factor: &dyn FactoredMass, problem: &Problem<'_>) {
         let rows = problem.rows();
         let (n, m) = (problem.dofs(), rows.len());
         self.y.resize_with(n, m, |_, _| 0.0);
@@ -63,7 +63,7 @@ impl ContactSpace {
 
     /// Recomputes z = L⁻¹f̃ and r = b − Yᵀz for a new f̃, keeping Y and W: for a problem whose
     /// M̃ and rows are those of the last [`build`](Self::build).
-    pub(crate) fn update_force(&mut self, factor: &MassFactor, problem: &Problem<'_>) {
+    pub(crate) fn update_force(&mut self, factor: &dyn FactoredMass, problem: &Problem<'_>) {
         self.z.clear();
         self.z.extend_from_slice(problem.force());
         factor.solve_lower(column_mut(&mut self.z));
@@ -117,7 +117,7 @@ impl ContactSpace {
     }
 
     /// q̇ ← M̃⁻¹(f̃ + Cᵀλ) = L⁻ᵀ(z + Yλ).
-    pub(crate) fn recover(&self, factor: &MassFactor, lambda: &[f64], qdot: &mut [f64]) {
+    pub(crate) fn recover(&self, factor: &dyn FactoredMass, lambda: &[f64], qdot: &mut [f64]) {
         self.lift(lambda, qdot);
         factor.solve_upper(column_mut(qdot));
     }

@@ -27,6 +27,9 @@
 //!
 //! # Paths
 //!
+//! M̃ is a dense matrix or a [`MassOperator`] that brings its own factor M̃ = L Lᵀ (see
+//! [`Mass`]); every path below needs only L⁻¹, L⁻ᵀ and M̃x.
+//!
 //! No rows → Cholesky. Equalities only → KKT by the Schur complement on the Cholesky of M̃.
 //! Any (soft) inequality → QP by the contact-space dual (fast, default) or clarabel
 //! (reference), selected by [`QpBackend`]. The contact-space dual
@@ -63,6 +66,7 @@ mod error;
 mod free_set;
 mod linalg;
 mod mass_factor;
+mod mass_operator;
 mod options;
 mod problem;
 mod refine;
@@ -72,6 +76,7 @@ mod rows;
 mod workspace;
 
 pub use error::SolverError;
+pub use mass_operator::{FactoredMass, Mass, MassOperator};
 pub use options::{QpBackend, SolverOptions, WarmStart};
 pub use problem::Problem;
 pub use report::{Residuals, SlackUsage, SolvePath, SolveReport, SolveStatus};

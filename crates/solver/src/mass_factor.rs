@@ -13,6 +13,7 @@ use faer::linalg::triangular_solve::{
 use faer::{Mat, MatMut, MatRef, Par};
 
 use crate::error::SolverError;
+use crate::mass_operator::FactoredMass;
 
 /// Owned Cholesky factor L of M̃ (lower triangle of `factor`; the strict upper part is junk).
 pub(crate) struct MassFactor {
@@ -68,14 +69,16 @@ impl MassFactor {
             }
         })
     }
+}
 
-    /// x ← L⁻¹x for every column of x.
-    pub(crate) fn solve_lower(&self, x: MatMut<'_, f64>) {
+impl FactoredMass for MassFactor {
+    /// x ← L⁻¹x for every column of x (triangular solve with the Cholesky factor).
+    fn solve_lower(&self, x: MatMut<'_, f64>) {
         solve_lower_triangular_in_place(self.factor.as_ref(), x, Par::Seq);
     }
 
     /// x ← L⁻ᵀx for every column of x.
-    pub(crate) fn solve_upper(&self, x: MatMut<'_, f64>) {
+    fn solve_upper(&self, x: MatMut<'_, f64>) {
         solve_upper_triangular_in_place(self.factor.transpose(), x, Par::Seq);
     }
 }

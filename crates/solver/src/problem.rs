@@ -11,9 +11,12 @@
 //! so the solver itself never sees malformed data. Positive definiteness is checked by the
 //! Cholesky factorisation during the solve.
 
-use faer::MatRef;
+use faer::linalg::matmul::matmul;
+use faer::{Accum, MatRef, Par};
 
 use crate::error::SolverError;
+use crate::linalg::{column, column_mut};
+use crate::mass_operator::{Mass, MassOperator};
 use crate::rows::{RowKind, Rows};
 
 /// Relative tolerance of the symmetry check: |M̃ᵢⱼ − M̃ⱼᵢ| ≤ tol·(|M̃ᵢⱼ| + |M̃ⱼᵢ|) + tol·max|M̃ₖₖ|.
@@ -22,7 +25,7 @@ const SYMMETRY_TOLERANCE: f64 = 1e-12;
 /// Borrowed, validated inputs of one velocity solve: M̃, f̃ and the rows.
 #[derive(Debug, Clone, Copy)]
 pub struct Problem<'a> {
-    mass: MatRef<'a, f64>,
+    mass: Mass<'a>,
     force: &'a [f64],
     rows: &'a Rows,
 }
@@ -44,12 +47,42 @@ impl<'a> Problem<'a> {
         }
         check_mass(mass)?;
         check_rows(rows)?;
-        Ok(Self { mass, force, rows })
+        Ok(Self { mass: Mass::Dense(mass), force, rows })
     }
 
-    /// M̃, n × n.
-    pub fn mass(&self) -> MatRef<'a, f64> {
+    /// Validates and wraps an effective mass given as an operator with its own factor
+    /// (`mass`, n DOFs; symmetric positive definite by its contract), f̃ (`force`, length n)
+    /// and the rows (over n DOFs). The workspace uses the operator's factor instead of
+    /// factoring a dense M̃.
+    pub fn with_operator(
+        mass: &'a dyn MassOperator,
+        force: &'a [f64],
+        rows: &'a Rows,
+    ) -> Result<Self, SolverError> {
+        let n = force.len();
+        check_size("mass operator", n, mass.dofs())?;
+        check_size("row coefficients", n, rows.dofs())?;
+        for (i, &value) in force.iter().enumerate() {
+            check_finite("force", i, 0, value)?;
+        }
+        check_rows(rows)?;
+        Ok(Self { mass: Mass::Operator(mass), force, rows })
+    }
+
+    /// M̃: a dense matrix or an operator.
+    pub fn mass(&self) -> Mass<'a> {
         self.mass
+    }
+
+    /// out ← M̃x (both of length n), with the original data (the dense matrix or the
+    /// operator's own product).
+    pub fn apply_mass(&self, x: &[f64], out: &mut [f64]) {
+        match self.mass {
+            Mass::Dense(mass) => {
+                matmul(column_mut(out), Accum::Replace, mass, column(x), 1.0, Par::Seq);
+            }
+            Mass::Operator(operator) => operator.apply(x, out),
+        }
     }
 
     /// f̃, length n.

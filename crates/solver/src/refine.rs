@@ -19,7 +19,7 @@
 use crate::contact_space::ContactSpace;
 use crate::free_set::FreeSet;
 use crate::linalg::{axpy, column_mut, dot, norm_max, zeroed};
-use crate::mass_factor::MassFactor;
+use crate::mass_operator::FactoredMass;
 use crate::problem::Problem;
 use crate::residuals::{row_residual, stationarity};
 
@@ -30,7 +30,7 @@ const ROUNDING_LEVEL: f64 = 1e-15;
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct FactoredSystem<'a> {
     pub(crate) problem: &'a Problem<'a>,
-    pub(crate) mass: &'a MassFactor,
+    pub(crate) mass: &'a dyn FactoredMass,
     pub(crate) dual: &'a ContactSpace,
     pub(crate) free: &'a FreeSet,
 }

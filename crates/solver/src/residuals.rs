@@ -32,7 +32,7 @@ pub(crate) fn stationarity(
     residual: &mut [f64],
     work: &mut [f64],
 ) -> f64 {
-    matmul(column_mut(residual), Accum::Replace, problem.mass(), column(qdot), 1.0, Par::Seq);
+    problem.apply_mass(qdot, residual);
     matmul(
         column_mut(work),
         Accum::Replace,

@@ -20,6 +20,10 @@
 //! g·cm²/s per rotational DOF). **Impulses, not forces**: the generalized force of a group
 //! over the step is C_gᵀλ_g / h (dyn·cm per rotational DOF), which the caller forms with its h.
 //!
+//! M̃ comes as a dense matrix, factored here by Cholesky, or as an operator with its own
+//! factor ([`crate::MassOperator`], the O(n) tree-structured factor of `hagfish-sparse`):
+//! the pipeline only uses L⁻¹, L⁻ᵀ and M̃x, so both share every line of it.
+//!
 //! All buffers live here and only grow, so repeated solves of the same size do not allocate
 //! (the clarabel backend excepted).
 
@@ -31,6 +35,7 @@ use crate::contact_space::ContactSpace;
 use crate::error::SolverError;
 use crate::linalg::{axpy, zeroed};
 use crate::mass_factor::MassFactor;
+use crate::mass_operator::{FactoredMass, Mass};
 use crate::options::{QpBackend, SolverOptions, WarmStart};
 use crate::problem::Problem;
 use crate::refine::{FactoredSystem, Refinement};
@@ -221,13 +226,19 @@ impl SolverWorkspace {
         problem: &Problem<'_>,
         reuse: Reuse,
     ) -> Result<(SolveStatus, usize, usize), SolverError> {
-        match reuse {
-            Reuse::Nothing => {
-                self.contact_space_ready = false;
-                self.mass.factor(problem.mass())?;
-                self.dual.build(&self.mass, problem);
+        if reuse == Reuse::Nothing {
+            self.contact_space_ready = false;
+            if let Mass::Dense(mass) = problem.mass() {
+                self.mass.factor(mass)?;
             }
-            Reuse::MassAndRows => self.dual.update_force(&self.mass, problem),
+        }
+        let factor: &dyn FactoredMass = match problem.mass() {
+            Mass::Dense(_) => &self.mass,
+            Mass::Operator(operator) => operator,
+        };
+        match reuse {
+            Reuse::Nothing => self.dual.build(factor, problem),
+            Reuse::MassAndRows => self.dual.update_force(factor, problem),
         }
         let limits = ActiveSetLimits {
             max_iterations: self.options.max_iterations,
@@ -237,10 +248,10 @@ impl SolverWorkspace {
             self.active.solve(&self.dual, problem.rows().kinds(), &mut self.multipliers, limits);
         let (mut iterations, mut steps) = (outcome.iterations, 0);
         for pass in 0..=VERIFICATION_PASSES {
-            self.dual.recover(&self.mass, &self.multipliers, &mut self.velocity);
+            self.dual.recover(factor, &self.multipliers, &mut self.velocity);
             let system = FactoredSystem {
                 problem,
-                mass: &self.mass,
+                mass: factor,
                 dual: &self.dual,
                 free: self.active.free(),
             };

@@ -1,0 +1,258 @@
+//! The tree-structured factorisation of the maximal-coordinate velocity system
+//! (`docs/physics.md`, "Sparse maximal-coordinate backend").
+//!
+//! Unknowns: the world twist `V_i` of every body, the joint rates `q̇_c` and a 6-vector
+//! multiplier `μ_c` per joint for the joint constraint `V_c − V_p(c) − S_c q̇_c = 0`
+//! (`V_p = 0` for a root). The step's system is the optimality condition of
+//!
+//! `min Σ_i ½ V_iᵀ Ĩ_i V_i + Σ_c (½ q̇_cᵀ K̃_c q̇_c − q̇_cᵀ f̃_c)` subject to the joint
+//! constraints, with `Ĩ_i = I_i + h C_i` (body inertia plus the implicit point dampers) and
+//! `K̃ = hD + h²K` (diagonal). Eliminating the twists gives back the reduced
+//! `M̃ q̇ = (Jᵀ Ĩ J + K̃) q̇ = f̃` of the dense path exactly.
+//!
+//! Eliminating the unknowns of each body and joint leaf to root is an LDLᵀ factorisation of
+//! the saddle-point matrix in an order with no fill (the elimination tree is the body
+//! tree, so the symbolic factorisation is the parent array, fixed per model). Its numeric
+//! part is the articulated-inertia recursion, leaf to root:
+//!
+//! - `Iᴬ_i = Ĩ_i + Σ_{children k} (Iᴬ_k − Ū_k Ū_kᵀ)`,
+//! - `U_c = Iᴬ_c S_c`, `D_c = S_cᵀ U_c + K̃_c = R_c R_cᵀ` (Cholesky, `n_c ≤ 6`),
+//!   `Ū_c = U_c R_c⁻ᵀ`.
+//!
+//! It gives the square-root split `M̃⁻¹ = Lᵀ⁻¹ L⁻¹` with `L⁻¹ = R⁻¹A`, applied in O(bodies):
+//!
+//! - `y = L⁻¹f` (leaf to root): `u_c = f_c − S_cᵀ p_c`, `y_c = R_c⁻¹ u_c`,
+//!   `p_parent += p_c + Ū_c y_c`;
+//! - `x = L⁻ᵀy` (root to leaf): `x_c = R_c⁻ᵀ (y_c − Ū_cᵀ a_p)`, `a_c = a_p + S_c x_c`
+//!   (`a_p` the parent's twist, 0 at a root).
+//!
+//! The second pass is the transpose of the first, so `M̃⁻¹ = (L⁻¹)ᵀ L⁻¹` and the
+//! contact-space solver can use `Y = L⁻¹Cᵀ`, `W = YᵀY` exactly as with a dense Cholesky
+//! factor.
+
+use std::cell::RefCell;
+use std::ops::Range;
+
+use hagfish_tree::{Data, Model, RigidInertia, Spatial};
+
+use crate::block::Block6;
+use crate::error::SparseError;
+
+/// Largest number of DOFs of one joint (a free joint).
+const MAX_JOINT_DOFS: usize = 6;
+
+/// The factor of one step's maximal-coordinate system. Create once per model with
+/// [`TreeFactor::new`] (the symbolic part), then per step [`TreeFactor::assemble`] and
+/// [`TreeFactor::factor`]; it never allocates after construction.
+#[derive(Debug)]
+pub struct TreeFactor {
+    /// Parent body of each body (`None` for a root): the elimination tree.
+    parents: Vec<Option<usize>>,
+    /// The DOFs of each body's joint.
+    dofs: Vec<Range<usize>>,
+    /// World joint axes `s_a` (one per DOF), copied by `assemble`.
+    axes: Vec<Spatial>,
+    /// `Ĩ_i = I_i + h C_i` per body.
+    inertias: Vec<RigidInertia>,
+    /// `K̃_a = h d_a + h² k_a` per DOF.
+    joint_diagonal: Vec<f64>,
+    /// Articulated inertias (scratch of `factor`).
+    articulated: Vec<Block6>,
+    /// `Ū_c = U_c R_c⁻ᵀ`, one column per DOF.
+    gains: Vec<Spatial>,
+    /// Row `a` of the joint's Cholesky factor `R_c` (entries `R_ab` for the joint's DOFs b ≤ a,
+    /// indexed from the joint's first DOF), one row per DOF.
+    pivots: Vec<[f64; MAX_JOINT_DOFS]>,
+    /// Whether `factor` succeeded on the current assembly.
+    factored: bool,
+    /// Per-body spatial scratch of the passes.
+    scratch: RefCell<Vec<Spatial>>,
+}
+
+impl TreeFactor {
+    /// The symbolic factorisation of `model`: its elimination tree (the parent array) and
+    /// buffers for every numeric quantity. Fails for a joint with more than 6 DOFs.
+    pub fn new(model: &Model) -> Result<Self, SparseError> {
+        let (nb, n) = (model.body_count(), model.dof_count());
+        let mut dofs = Vec::with_capacity(nb);
+        for (body, joint) in model.joints().iter().enumerate() {
+            let range = joint.dofs();
+            if range.len() > MAX_JOINT_DOFS {
+                return Err(SparseError::TooManyJointDofs { body, dofs: range.len() });
+            }
+            dofs.push(range);
+        }
+        Ok(Self {
+            parents: model.joints().iter().map(|j| j.parent).collect(),
+            dofs,
+            axes: vec![Spatial::ZERO; n],
+            inertias: vec![RigidInertia::ZERO; nb],
+            joint_diagonal: vec![0.0; n],
+            articulated: vec![Block6::ZERO; nb],
+            gains: vec![Spatial::ZERO; n],
+            pivots: vec![[0.0; MAX_JOINT_DOFS]; n],
+            factored: false,
+            scratch: RefCell::new(vec![Spatial::ZERO; nb]),
+        })
+    }
+
+    /// Number of reduced DOFs n.
+    pub fn dofs(&self) -> usize {
+        self.axes.len()
+    }
+
+    /// Whether [`factor`](Self::factor) succeeded since the last
+    /// [`assemble`](Self::assemble).
+    pub fn is_factored(&self) -> bool {
+        self.factored
+    }
+
+    /// Assembles the system of a step of size `h` (s) from the kinematics and the applied
+    /// point dampers in `data`: `Ĩ_i = I_i + h C_i`, `K̃_a = h d_a + h² k_a` and the axes
+    /// `s_a`. `model` must be the one given to [`new`](Self::new). O(bodies).
+    pub fn assemble(&mut self, model: &Model, data: &Data, h: f64) {
+        self.axes.copy_from_slice(&data.axes);
+        for ((tilde, inertia), damping) in
+            self.inertias.iter_mut().zip(&data.inertias).zip(&data.applied_damping)
+        {
+            *tilde = *inertia;
+            tilde.add_scaled(damping, h);
+        }
+        for (k, dof) in self.joint_diagonal.iter_mut().zip(model.dofs()) {
+            *k = h * dof.damping + h * h * dof.stiffness;
+        }
+        self.factored = false;
+    }
+
+    /// The numeric factorisation (module docs), leaf to root, O(bodies). Fails at the first
+    /// DOF whose pivot `D_c` is not positive (a body without inertia on a joint without
+    /// damping or stiffness).
+    pub fn factor(&mut self) -> Result<(), SparseError> {
+        self.factored = false;
+        for (block, inertia) in self.articulated.iter_mut().zip(&self.inertias) {
+            *block = Block6::from_inertia(inertia);
+        }
+        for body in (0..self.parents.len()).rev() {
+            let range = self.dofs[body].clone();
+            let start = range.start;
+            let articulated = self.articulated[body];
+            let mut unreduced = [Spatial::ZERO; MAX_JOINT_DOFS];
+            for (u, a) in unreduced.iter_mut().zip(range.clone()) {
+                *u = articulated.apply(&self.axes[a]);
+            }
+            // D_ij = s_iᵀ U_j + δ_ij K̃_i = Σ_c R_ic R_jc, row by row.
+            for (i, a) in range.clone().enumerate() {
+                let mut row = [0.0; MAX_JOINT_DOFS];
+                for j in 0..=i {
+                    let mut value = self.axes[a].dot(&unreduced[j]);
+                    if j == i {
+                        value += self.joint_diagonal[a];
+                    }
+                    for c in 0..j {
+                        let other = if j == i { row[c] } else { self.pivots[start + j][c] };
+                        value -= row[c] * other;
+                    }
+                    if j < i {
+                        row[j] = value / self.pivots[start + j][j];
+                    } else if value > 0.0 && value.is_finite() {
+                        row[i] = value.sqrt();
+                    } else {
+                        return Err(SparseError::NotPositiveDefinite { dof: a, pivot: value });
+                    }
+                }
+                self.pivots[a] = row;
+                // Ū_i = (U_i − Σ_{c<i} Ū_c R_ic) / R_ii.
+                let mut gain = unreduced[i];
+                for c in 0..i {
+                    gain = gain.add_scaled(&self.gains[start + c], -row[c]);
+                }
+                self.gains[a] = gain * (1.0 / row[i]);
+            }
+            if let Some(parent) = self.parents[body] {
+                let mut child = articulated;
+                for a in range {
+                    child.subtract_outer(&self.gains[a]);
+                }
+                self.articulated[parent].add(&child);
+            }
+        }
+        self.factored = true;
+        Ok(())
+    }
+
+    /// `f ← L⁻¹ f` (one column of length n; module docs). Requires a successful
+    /// [`factor`](Self::factor).
+    pub fn solve_lower_column(&self, f: &mut [f64]) {
+        let mut bias = self.scratch.borrow_mut();
+        bias.fill(Spatial::ZERO);
+        for body in (0..self.parents.len()).rev() {
+            let range = self.dofs[body].clone();
+            let start = range.start;
+            let p = bias[body];
+            let mut contribution = p;
+            for a in range.clone() {
+                let mut value = f[a] - self.axes[a].dot(&p);
+                for c in start..a {
+                    value -= self.pivots[a][c - start] * f[c];
+                }
+                f[a] = value / self.pivots[a][a - start];
+                contribution = contribution.add_scaled(&self.gains[a], f[a]);
+            }
+            if let Some(parent) = self.parents[body] {
+                bias[parent] += contribution;
+            }
+        }
+    }
+
+    /// `y ← L⁻ᵀ y` (one column of length n; module docs). Requires a successful
+    /// [`factor`](Self::factor).
+    pub fn solve_upper_column(&self, y: &mut [f64]) {
+        let mut twists = self.scratch.borrow_mut();
+        for body in 0..self.parents.len() {
+            let range = self.dofs[body].clone();
+            let start = range.start;
+            let parent_twist = self.parents[body].map_or(Spatial::ZERO, |p| twists[p]);
+            for a in range.clone() {
+                y[a] -= self.gains[a].dot(&parent_twist);
+            }
+            for a in range.clone().rev() {
+                let mut value = y[a];
+                for c in a + 1..range.end {
+                    value -= self.pivots[c][a - start] * y[c];
+                }
+                y[a] = value / self.pivots[a][a - start];
+            }
+            let mut twist = parent_twist;
+            for a in range {
+                twist = twist.add_scaled(&self.axes[a], y[a]);
+            }
+            twists[body] = twist;
+        }
+    }
+
+    /// `out ← M̃ x = Jᵀ Ĩ J x + K̃ x` in O(bodies): twists root to leaf, momenta `Ĩ_i V_i`,
+    /// subtree sums leaf to root, projected on the axes. Needs only
+    /// [`assemble`](Self::assemble).
+    pub fn apply(&self, x: &[f64], out: &mut [f64]) {
+        let mut work = self.scratch.borrow_mut();
+        for body in 0..self.parents.len() {
+            let mut twist = self.parents[body].map_or(Spatial::ZERO, |p| work[p]);
+            for a in self.dofs[body].clone() {
+                twist = twist.add_scaled(&self.axes[a], x[a]);
+            }
+            work[body] = twist;
+        }
+        for (momentum, inertia) in work.iter_mut().zip(&self.inertias) {
+            *momentum = inertia.apply(momentum);
+        }
+        for body in (0..self.parents.len()).rev() {
+            let sum = work[body];
+            for a in self.dofs[body].clone() {
+                out[a] = self.axes[a].dot(&sum) + self.joint_diagonal[a] * x[a];
+            }
+            if let Some(parent) = self.parents[body] {
+                work[parent] += sum;
+            }
+        }
+    }
+}
