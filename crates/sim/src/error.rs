@@ -21,6 +21,9 @@ pub enum SimError {
     /// The model could not be built.
     #[error("building the model: {0}")]
     Model(#[from] TreeError),
+    /// The sparse backend cannot take the model.
+    #[error("sparse backend: {0}")]
+    Sparse(#[from] hagfish_sparse::SparseError),
     /// An output file could not be written.
     #[error("{}: cannot write: {source}", path.display())]
     Output {

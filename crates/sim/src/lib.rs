@@ -8,6 +8,7 @@
 //! [`rows`]) → velocity solve (Cholesky / KKT / QP, `hagfish-solver`) → integration.
 //! CGS units throughout.
 
+mod backend;
 mod checkpoint;
 mod error;
 mod force_field;
@@ -26,6 +27,7 @@ mod scenario;
 mod step_data;
 mod world;
 
+pub use backend::DynamicsBackend;
 pub use checkpoint::{CHECKPOINT_FILE, CHECKPOINT_FORMAT, Checkpoint, ExactF64s};
 pub use error::SimError;
 pub use force_field::{ForceFieldLog, ForceFieldStats};

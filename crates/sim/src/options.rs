@@ -4,6 +4,7 @@ use glam::DVec3;
 use hagfish_geometry::{DetectorOptions, WallOptions};
 use hagfish_solver::SolverOptions;
 
+use crate::backend::DynamicsBackend;
 use crate::error::SimError;
 
 /// Everything that shapes a step but is not the body itself. Immutable during a run.
@@ -35,6 +36,9 @@ pub struct StepOptions {
     /// velocity (0: explicit, as REDMAX). Default 1: explicit terms make the ES103 chain
     /// unstable at h = 0.01 s once runs of joints lock at their limits (`docs/physics.md`).
     pub velocity_product_iterations: usize,
+    /// The linear algebra of the velocity step: dense reduced (default) or sparse maximal
+    /// (linear in the number of bodies; `docs/physics.md`). Same answer up to rounding.
+    pub backend: DynamicsBackend,
 }
 
 impl Default for StepOptions {
@@ -50,6 +54,7 @@ impl Default for StepOptions {
             wall_options: WallOptions { margin: 0.2, ..WallOptions::default() },
             solver: SolverOptions::default(),
             velocity_product_iterations: 1,
+            backend: DynamicsBackend::default(),
         }
     }
 }

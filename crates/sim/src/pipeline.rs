@@ -11,9 +11,9 @@
 use std::time::Instant;
 
 use hagfish_control::{ControlContext, Controller};
-use hagfish_solver::Problem;
 use hagfish_tree::{Model, State};
 
+use crate::backend::{self, Reuse};
 use crate::error::SimError;
 use crate::options::StepOptions;
 use crate::report::{StageTimings, StepReport};
@@ -78,11 +78,12 @@ pub fn control(
     data.actuation.apply_to(&mut data.tree);
 }
 
-/// Stage 4: `M̃ = M + h Jᵀ C_m J + hD + h²K` (with the implicit dampers of stage 3), the
-/// momentum `M q̇⁰`, the generalized force and `f̃ = M q̇⁰ + h f_r`.
+/// Stage 4: `M̃ = M + h Jᵀ C_m J + hD + h²K` (with the implicit dampers of stage 3; dense, or
+/// its maximal-coordinate blocks on the sparse backend), the momentum `M q̇⁰`, the generalized
+/// force and `f̃ = M q̇⁰ + h f_r`.
 pub fn dynamics(model: &Model, options: &StepOptions, state: &State, data: &mut StepData) {
     let h = options.time_step;
-    hagfish_tree::effective_mass(model, &mut data.tree, h);
+    backend::assemble_effective_mass(model, data, h);
     hagfish_tree::generalized_momentum(model, &mut data.tree);
     hagfish_tree::generalized_force(model, &state.q, &mut data.tree);
     hagfish_tree::assemble_effective_momentum(&mut data.tree, h);
@@ -114,12 +115,9 @@ pub fn build_rows(model: &Model, options: &StepOptions, state: &State, data: &mu
 }
 
 /// Stage 6: `min ½q̇ᵀM̃q̇ − q̇ᵀf̃` subject to the rows; the path (Cholesky, KKT, QP) follows
-/// from the rows present.
+/// from the rows present; `M̃` is the options' backend's.
 pub fn solve_velocities(data: &mut StepData) -> Result<(), hagfish_solver::SolverError> {
-    let problem =
-        Problem::new(data.tree.effective_mass.as_ref(), &data.tree.effective_momentum, &data.rows)?;
-    data.report.solve = *data.solver.solve(&problem)?;
-    Ok(())
+    backend::solve(data, Reuse::Nothing)
 }
 
 /// Optional stage 6b: re-evaluates the velocity-product (Coriolis, centrifugal, gyroscopic)
@@ -214,14 +212,7 @@ pub fn solve_and_resolve(
         match (refreshed, added) {
             (false, 0) => break,
             // Only f̃ changed: keep the factor of M̃ and the contact-space matrices.
-            (true, 0) => {
-                let problem = Problem::new(
-                    data.tree.effective_mass.as_ref(),
-                    &data.tree.effective_momentum,
-                    &data.rows,
-                )?;
-                data.report.solve = *data.solver.solve_with_new_force(&problem)?;
-            }
+            (true, 0) => backend::solve(data, Reuse::MassAndRows)?,
             _ => solve_velocities(data)?,
         }
     }

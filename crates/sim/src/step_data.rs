@@ -4,8 +4,10 @@ use glam::DVec3;
 use hagfish_control::Actuation;
 use hagfish_geometry::{Centreline, ContactDetector, SelfContact, Wall, WallContact};
 use hagfish_solver::{RowGroup, Rows, SolverWorkspace};
+use hagfish_sparse::TreeFactor;
 use hagfish_tree::{Data, Model};
 
+use crate::backend::DynamicsBackend;
 use crate::error::SimError;
 use crate::options::StepOptions;
 use crate::report::StepReport;
@@ -30,6 +32,9 @@ pub struct StepData {
     pub solver: SolverWorkspace,
     /// The report of the last step.
     pub report: StepReport,
+    /// The sparse backend's factor of the maximal-coordinate system (stages `dynamics` and
+    /// `solve_velocities`); `None` on the dense backend.
+    pub tree_factor: Option<TreeFactor>,
     pub(crate) detector: ContactDetector,
     pub(crate) wall: Option<Wall>,
     pub(crate) centres: Vec<DVec3>,
@@ -62,6 +67,10 @@ impl StepData {
             rows: Rows::new(model.dof_count()),
             solver: SolverWorkspace::new(options.solver),
             report: StepReport::default(),
+            tree_factor: match options.backend {
+                DynamicsBackend::DenseReduced => None,
+                DynamicsBackend::SparseMaximal => Some(TreeFactor::new(model)?),
+            },
             detector,
             wall,
             centres,

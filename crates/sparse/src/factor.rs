@@ -148,10 +148,8 @@ impl TreeFactor {
                     if j == i {
                         value += self.joint_diagonal[a];
                     }
-                    for c in 0..j {
-                        let other = if j == i { row[c] } else { self.pivots[start + j][c] };
-                        value -= row[c] * other;
-                    }
+                    let other = if j == i { row } else { self.pivots[start + j] };
+                    value -= row[..j].iter().zip(&other[..j]).map(|(x, y)| x * y).sum::<f64>();
                     if j < i {
                         row[j] = value / self.pivots[start + j][j];
                     } else if value > 0.0 && value.is_finite() {
@@ -163,8 +161,8 @@ impl TreeFactor {
                 self.pivots[a] = row;
                 // Ū_i = (U_i − Σ_{c<i} Ū_c R_ic) / R_ii.
                 let mut gain = unreduced[i];
-                for c in 0..i {
-                    gain = gain.add_scaled(&self.gains[start + c], -row[c]);
+                for (c, r) in row[..i].iter().enumerate() {
+                    gain = gain.add_scaled(&self.gains[start + c], -r);
                 }
                 self.gains[a] = gain * (1.0 / row[i]);
             }
@@ -191,10 +189,8 @@ impl TreeFactor {
             let p = bias[body];
             let mut contribution = p;
             for a in range.clone() {
-                let mut value = f[a] - self.axes[a].dot(&p);
-                for c in start..a {
-                    value -= self.pivots[a][c - start] * f[c];
-                }
+                let done: f64 = self.pivots[a].iter().zip(&f[start..a]).map(|(r, y)| r * y).sum();
+                let value = f[a] - self.axes[a].dot(&p) - done;
                 f[a] = value / self.pivots[a][a - start];
                 contribution = contribution.add_scaled(&self.gains[a], f[a]);
             }
@@ -216,11 +212,8 @@ impl TreeFactor {
                 y[a] -= self.gains[a].dot(&parent_twist);
             }
             for a in range.clone().rev() {
-                let mut value = y[a];
-                for c in a + 1..range.end {
-                    value -= self.pivots[c][a - start] * y[c];
-                }
-                y[a] = value / self.pivots[a][a - start];
+                let done: f64 = (a + 1..range.end).map(|c| self.pivots[c][a - start] * y[c]).sum();
+                y[a] = (y[a] - done) / self.pivots[a][a - start];
             }
             let mut twist = parent_twist;
             for a in range {
