@@ -6,11 +6,13 @@
 //! - `step/knotted/<backend>`: one whole pipeline step (kinematics, contact detection,
 //!   drag, dynamics, rows, constraint solve with its re-solves, integration) in the knotted
 //!   state reached by `data/scenarios/form.ron` at t = 20 s (≈ 40–60 self contacts), with
-//!   the contact-space QP (default) and with clarabel (reference).
+//!   the contact-space QP (default) and with clarabel (reference); and
+//!   `step/knotted/ContactSpace/SparseMaximal`, the same step on the sparse
+//!   maximal-coordinate backend (`StepOptions::backend`).
 
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
 use hagfish_control::WaterDrag;
-use hagfish_sim::{LoadedScenario, StepOptions, World};
+use hagfish_sim::{DynamicsBackend, LoadedScenario, StepOptions, World};
 use hagfish_solver::{QpBackend, SolverOptions};
 use hagfish_tree::{Data, State, step_unconstrained};
 
@@ -43,10 +45,15 @@ fn knotted(c: &mut Criterion) {
         world.step(&mut controller).expect("forming step");
     }
     let knotted = world.state().clone();
-    for backend in [QpBackend::ContactSpace, QpBackend::Clarabel] {
+    for (backend, dynamics, name) in [
+        (QpBackend::ContactSpace, DynamicsBackend::DenseReduced, "ContactSpace"),
+        (QpBackend::Clarabel, DynamicsBackend::DenseReduced, "Clarabel"),
+        (QpBackend::ContactSpace, DynamicsBackend::SparseMaximal, "ContactSpace/SparseMaximal"),
+    ] {
         let model = world.model().clone();
         let options = StepOptions {
             solver: SolverOptions { backend, ..SolverOptions::default() },
+            backend: dynamics,
             ..StepOptions::default()
         };
         let mut bench_world = World::new(model, options, knotted.clone()).expect("world");
@@ -57,7 +64,7 @@ fn knotted(c: &mut Criterion) {
             bench_world.data().report.self_contacts,
             bench_world.data().report.solve.rows_per_group
         );
-        c.bench_function(&format!("step/knotted/{backend:?}"), |b| {
+        c.bench_function(&format!("step/knotted/{name}"), |b| {
             b.iter_batched(
                 || knotted.clone(),
                 |s| {

@@ -1,0 +1,143 @@
+//! Scaling of the whole step with the number of bodies (issue #8), per backend
+//! (`StepOptions::backend`): chains of 100, 200, 400 and 1000 ES103-like bodies of the same
+//! segment length (0.424 cm; alternating X-revolute / YZ-universal joints, ±45° bending and
+//! ±48° twist limits, so 150 to 1500 DOFs), in a bent, moving state.
+//!
+//! - `scaling/unconstrained/<backend>/<bodies>`: kinematics → dynamics → solve → integrate
+//!   with no rows (the pipeline's stages; no contact detection, no controller).
+//! - `scaling/head/<backend>/<bodies>`: the whole pipeline step with the head rows only
+//!   (no self contact, no wall).
+//! - `scaling/rows/<backend>/<bodies>`: the whole pipeline step with self contact and the
+//!   wall on, in a zigzag state where one bending DOF in 8 bodies sits within the margin of
+//!   its limit: head + joint-limit rows on the QP path (the counts are printed).
+
+use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
+use glam::DVec3;
+use hagfish_control::Passive;
+use hagfish_sim::{DynamicsBackend, StepOptions, World, pipeline};
+use hagfish_tree::{BodySpec, DofParams, JointKind, Model, ModelBuilder, State, Transform};
+use std::time::Duration;
+
+const BACKENDS: [DynamicsBackend; 2] =
+    [DynamicsBackend::DenseReduced, DynamicsBackend::SparseMaximal];
+
+fn chain(bodies: usize) -> Model {
+    let mut builder = ModelBuilder::new();
+    let length = 0.424;
+    for i in 0..bodies {
+        let (joint, limit) = if i % 2 == 0 {
+            (JointKind::Revolute { axis: DVec3::X }, 48f64.to_radians())
+        } else {
+            (JointKind::UniversalYz, 45f64.to_radians())
+        };
+        let (mass, radius) = (0.8, 0.85);
+        let transverse = mass * (3.0 * radius * radius + length * length) / 12.0;
+        builder.add_body(BodySpec {
+            parent: i.checked_sub(1),
+            joint,
+            joint_offset: Transform::from_translation(DVec3::new(
+                if i == 0 { 0.0 } else { length },
+                0.0,
+                0.0,
+            )),
+            body_offset: Transform::from_translation(DVec3::new(length / 2.0, 0.0, 0.0)),
+            mass,
+            principal_inertia: DVec3::new(0.5 * mass * radius * radius, transverse, transverse),
+            radius,
+            length,
+            dofs: vec![
+                DofParams {
+                    stiffness: 1.0,
+                    damping: 0.1,
+                    lower: -limit,
+                    upper: limit,
+                    ..DofParams::default()
+                };
+                joint.dof_count()
+            ],
+        });
+    }
+    builder.build().expect("valid chain")
+}
+
+/// Moving and slightly bent (0.2 rad amplitude, or 0.02 rad with `at_limits`); with
+/// `at_limits`, the first DOF of every 4th universal joint 1° inside its ±45° limit, in
+/// alternating directions (a zigzag that stays clear of itself and of the wall), so that it
+/// gets a limit row (within the 2° margin).
+fn state(model: &Model, at_limits: bool) -> State {
+    let mut state = State::rest(model);
+    let amplitude = if at_limits { 0.02 } else { 0.2 };
+    for a in 0..model.dof_count() {
+        state.q[a] = amplitude * (a as f64 * 0.37).sin();
+        state.qdot[a] = 0.2 * (a as f64 * 0.91).cos();
+    }
+    if at_limits {
+        for (k, joint) in model.joints().iter().enumerate().filter(|(k, _)| k % 8 == 1) {
+            let sign = if k % 16 == 1 { 1.0 } else { -1.0 };
+            state.q[joint.dof_start] = sign * 44f64.to_radians();
+        }
+    }
+    state
+}
+
+fn options(backend: DynamicsBackend, rows: bool) -> StepOptions {
+    let default = StepOptions::default();
+    StepOptions {
+        backend,
+        self_contact: rows,
+        wall: if rows { default.wall } else { None },
+        ..default
+    }
+}
+
+fn scaling(c: &mut Criterion) {
+    let mut group = c.benchmark_group("scaling");
+    group.sample_size(10).warm_up_time(Duration::from_secs(1));
+    group.measurement_time(Duration::from_secs(3));
+    for bodies in [100, 200, 400, 1000] {
+        let model = chain(bodies);
+        for backend in BACKENDS {
+            let start = state(&model, false);
+            let step_options = options(backend, false);
+            let mut data = hagfish_sim::StepData::new(&model, &step_options).expect("data");
+            group.bench_function(format!("unconstrained/{backend:?}/{bodies}"), |b| {
+                b.iter_batched_ref(
+                    || start.clone(),
+                    |s| {
+                        pipeline::kinematics(&model, s, &mut data);
+                        data.tree.clear_applied();
+                        pipeline::dynamics(&model, &step_options, s, &mut data);
+                        data.rows.clear();
+                        pipeline::solve_velocities(&mut data).expect("solve");
+                        hagfish_tree::integrate(s, data.solver.velocity(), 0.01).expect("step")
+                    },
+                    BatchSize::SmallInput,
+                )
+            });
+            for (name, rows) in [("head", false), ("rows", true)] {
+                let start = state(&model, rows);
+                let options = options(backend, rows);
+                let mut world = World::new(model.clone(), options, start.clone()).expect("world");
+                let report = *world.step(&mut Passive).expect("warm-up step");
+                println!(
+                    "{name}/{backend:?}/{bodies}: path {:?}, rows per group {:?}",
+                    report.solve.path, report.solve.rows_per_group
+                );
+                group.bench_function(format!("{name}/{backend:?}/{bodies}"), |b| {
+                    b.iter_batched(
+                        || start.clone(),
+                        |s| {
+                            world.set_state(s).expect("state");
+                            world.step(&mut Passive).expect("step").solve.iterations
+                        },
+                        BatchSize::SmallInput,
+                    )
+                });
+            }
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, scaling);
+criterion_main!(benches);
