@@ -1,10 +1,13 @@
 //! The tree-structured factor against the dense reduced path on random trees (chains and
 //! branching trees, all joint kinds, random states and implicit dampers): the same `M̃x`,
-//! the same `M̃⁻¹f`, and a split `M̃⁻¹ = L⁻ᵀL⁻¹` whose two passes are transposes.
+//! the same `M̃⁻¹f`, a split `M̃⁻¹ = L⁻ᵀL⁻¹` whose two passes are transposes, and the same
+//! constrained answer (q̇, λ) from the solver with random equality and inequality rows.
 
 use faer::MatMut;
 use glam::{DMat3, DVec3};
-use hagfish_solver::FactoredMass;
+use hagfish_solver::{
+    FactoredMass, Problem, QpBackend, RowGroup, RowKind, Rows, SolverOptions, SolverWorkspace,
+};
 use hagfish_sparse::{SparseError, TreeFactor};
 use hagfish_tree::{
     BodySpec, Data, DofParams, JointKind, Model, ModelBuilder, RigidInertia, Transform,
@@ -142,6 +145,82 @@ proptest! {
         let right: f64 = x.iter().zip(&upper).map(|(a, b)| a * b).sum();
         prop_assert!((left - right).abs() <= 1e-10 * (1.0 + left.abs()), "{left} vs {right}");
     }
+}
+
+/// Random feasible rows over `n` DOFs: one equality on DOF 0, then `count` inequalities
+/// with coefficients in [−1, 1], all satisfied by a random point q* with slacks in [0, 1]
+/// (so the problem is feasible; the ones the unconstrained answer violates become active).
+fn random_rows(n: usize, count: usize, seed: u64) -> Rows {
+    let feasible = values(seed + 17, n, 2.0);
+    let mut rows = Rows::new(n);
+    let mut unit = vec![0.0; n];
+    unit[0] = 1.0;
+    rows.push(RowKind::Equality, RowGroup::Head, feasible[0], &unit).expect("row");
+    for i in 0..count {
+        let row = values(seed + 11 * i as u64 + 5, n, 1.0);
+        let slack = 0.5 + 0.5 * ((seed + i as u64) as f64 * 1.37).sin();
+        let rhs = row.iter().zip(&feasible).map(|(c, q)| c * q).sum::<f64>() - slack;
+        rows.push(RowKind::Inequality, RowGroup::Contact, rhs, &row).expect("row");
+    }
+    rows
+}
+
+/// Solves with the dense M̃ and with the tree factor as the operator; (q̇, λ) of each.
+fn solve_both(
+    data: &Data,
+    factor: &TreeFactor,
+    force: &[f64],
+    rows: &Rows,
+    backend: QpBackend,
+) -> [(Vec<f64>, Vec<f64>); 2] {
+    let options = SolverOptions { backend, ..SolverOptions::default() };
+    let dense = Problem::new(data.effective_mass.as_ref(), force, rows).expect("dense problem");
+    let operator = Problem::with_operator(factor, force, rows).expect("operator problem");
+    [dense, operator].map(|problem| {
+        let mut workspace = SolverWorkspace::new(options);
+        let report = *workspace.solve(&problem).expect("solve");
+        assert!(report.status.is_solved(), "{report:?}");
+        (workspace.velocity().to_vec(), workspace.multipliers().to_vec())
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    #[test]
+    fn constrained_solves_match_the_dense_path(
+        spec in tree_spec(12),
+        chain in any::<bool>(),
+        seed in 0u64..1000,
+        count in 0usize..8,
+    ) {
+        let model = build(&spec, chain, 0.1, 1.0);
+        let n = model.dof_count();
+        prop_assume!(n > 1);
+        let (data, factor) = setup(&model, seed, 0.01).expect("tree factor");
+        let rows = random_rows(n, count.min(n - 1), seed);
+        let force = values(seed + 9, n, 3.0);
+        let [dense, sparse] = solve_both(&data, &factor, &force, &rows, QpBackend::ContactSpace);
+        prop_assert!(relative_error(&sparse.0, &dense.0) < 1e-9, "q̇ {:?} vs {:?}", sparse.0, dense.0);
+        prop_assert!(relative_error(&sparse.1, &dense.1) < 1e-8, "λ {:?} vs {:?}", sparse.1, dense.1);
+    }
+}
+
+#[test]
+fn clarabel_takes_the_operator_too() -> Result<(), SparseError> {
+    let spec: TreeSpec =
+        (0..8).map(|i| (i * 5, (i % 3) as u8, 0.5, 1.0, 0.05 * i as f64)).collect();
+    let model = build(&spec, false, 0.1, 1.0);
+    let n = model.dof_count();
+    let (data, factor) = setup(&model, 3, 0.01)?;
+    let rows = random_rows(n, 4, 3);
+    let force = values(4, n, 3.0);
+    let [dense, sparse] = solve_both(&data, &factor, &force, &rows, QpBackend::Clarabel);
+    assert!(relative_error(&sparse.0, &dense.0) < 1e-6, "{:?} vs {:?}", sparse.0, dense.0);
+    let [reference, _] = solve_both(&data, &factor, &force, &rows, QpBackend::ContactSpace);
+    assert!(reference.1[1..].iter().any(|l| *l > 1e-6), "some inequality is active");
+    assert!(relative_error(&sparse.0, &reference.0) < 1e-5, "clarabel vs contact space");
+    Ok(())
 }
 
 #[test]
