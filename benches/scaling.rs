@@ -7,15 +7,22 @@
 //!   with no rows (the pipeline's stages; no contact detection, no controller).
 //! - `scaling/head/<backend>/<bodies>`: the whole pipeline step with the head rows only
 //!   (no self contact, no wall).
+//! - `scaling/factor_solve/<bodies>`: the sparse backend's linear algebra alone — assemble
+//!   and factor the maximal-coordinate system and solve `M̃x = f` once (`L⁻¹`, then `L⁻ᵀ`),
+//!   the quantity the issue quotes for faer's sparse LDLᵀ (refactor + solve).
 //! - `scaling/rows/<backend>/<bodies>`: the whole pipeline step with self contact and the
 //!   wall on, in a zigzag state where one bending DOF in 8 bodies sits within the margin of
 //!   its limit: head + joint-limit rows on the QP path (the counts are printed).
 
-use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
+use criterion::measurement::WallTime;
+use criterion::{BatchSize, BenchmarkGroup, Criterion, criterion_group, criterion_main};
+use faer::MatMut;
 use glam::DVec3;
 use hagfish_control::Passive;
 use hagfish_sim::{DynamicsBackend, StepOptions, World, pipeline};
-use hagfish_tree::{BodySpec, DofParams, JointKind, Model, ModelBuilder, State, Transform};
+use hagfish_solver::FactoredMass;
+use hagfish_sparse::TreeFactor;
+use hagfish_tree::{BodySpec, Data, DofParams, JointKind, Model, ModelBuilder, State, Transform};
 use std::time::Duration;
 
 const BACKENDS: [DynamicsBackend; 2] =
@@ -90,12 +97,33 @@ fn options(backend: DynamicsBackend, rows: bool) -> StepOptions {
     }
 }
 
+fn bench_factor_solve(group: &mut BenchmarkGroup<'_, WallTime>, model: &Model) {
+    let start = state(model, false);
+    let mut data = Data::new(model);
+    hagfish_tree::forward_kinematics(model, &start.q, &start.qdot, &mut data);
+    let mut factor = TreeFactor::new(model).expect("factor");
+    let force: Vec<f64> = (0..model.dof_count()).map(|a| (a as f64 * 0.3).sin()).collect();
+    let mut x = force.clone();
+    group.bench_function(format!("factor_solve/{}", model.body_count()), |b| {
+        b.iter(|| {
+            factor.assemble(model, &data, 0.01);
+            factor.factor().expect("SPD");
+            x.copy_from_slice(&force);
+            let n = x.len();
+            factor.solve_lower(MatMut::from_column_major_slice_mut(&mut x, n, 1));
+            factor.solve_upper(MatMut::from_column_major_slice_mut(&mut x, n, 1));
+            x[0]
+        })
+    });
+}
+
 fn scaling(c: &mut Criterion) {
     let mut group = c.benchmark_group("scaling");
     group.sample_size(10).warm_up_time(Duration::from_secs(1));
     group.measurement_time(Duration::from_secs(3));
     for bodies in [100, 200, 400, 1000] {
         let model = chain(bodies);
+        bench_factor_solve(&mut group, &model);
         for backend in BACKENDS {
             let start = state(&model, false);
             let step_options = options(backend, false);
