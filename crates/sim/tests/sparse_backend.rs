@@ -2,7 +2,8 @@
 //! the dense reduced path's `q̇¹` and multipliers (to 1e-9 relative) on the 100-body ES103
 //! hagfish — with the head rows only, with joint-limit and wall rows while a force drags the
 //! tail around, and in the knotted state of `form.ron` with its self contacts and re-solves —
-//! and a 1000-body chain steps stably on it.
+//! the whole `form.ron` run on it ties the same trefoil, and a 1000-body chain steps stably
+//! on it.
 
 use glam::DVec3;
 use hagfish_control::{Actuation, ControlContext, Controller, WaterDrag};
@@ -128,6 +129,34 @@ fn sparse_steps_like_dense_in_the_knotted_state() {
     let (path, rows) = compare_one_step(&model, &options, world.state(), 1e-9, &mut make);
     assert_eq!(path, SolvePath::Qp);
     assert!(rows[RowGroup::Contact.index()] > 5, "knotted: self contacts, got {rows:?}");
+}
+
+#[test]
+fn the_sparse_backend_ties_the_trefoil_of_form_ron() {
+    let loaded = form_scenario();
+    let (dense_world, mut controller) = loaded.build().expect("world");
+    let options = with_backend(dense_world.options(), DynamicsBackend::SparseMaximal);
+    let state = dense_world.state().clone();
+    let mut world = World::new(dense_world.model().clone(), options, state).expect("world");
+    let steps = (loaded.scenario.duration_s / loaded.scenario.time_step_s).round() as usize;
+    let mut max_penetration = 0.0f64;
+    for _ in 0..steps {
+        let report = *world.step(&mut controller).expect("sparse step");
+        max_penetration = max_penetration.max(report.max_self_penetration_relative);
+    }
+    let mut centres = Vec::new();
+    world.body_centres(&mut centres);
+    let knot = hagfish_knots::analyse_knot(&centres, &hagfish_knots::KnotOptions::default())
+        .expect("knot analysis");
+    println!(
+        "sparse form.ron: {:?} (agreement {}), max self penetration {:.2} % of r",
+        knot.knot,
+        knot.agreement,
+        100.0 * max_penetration
+    );
+    assert_eq!(knot.knot, hagfish_knots::KnotType::Trefoil, "{knot:?}");
+    assert!(knot.agreement >= 0.9, "agreement {}", knot.agreement);
+    assert!(max_penetration < 0.05, "max self penetration {max_penetration} of the radius");
 }
 
 /// A chain of `bodies` ES103-like segments (0.424 cm, alternating X-revolute / YZ-universal,
