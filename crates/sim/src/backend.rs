@@ -4,7 +4,6 @@
 //! give the same `q̇¹` for the same step up to rounding; the state stays reduced either way.
 
 use hagfish_solver::{Problem, SolverError};
-use hagfish_sparse::SparseError;
 use hagfish_tree::Model;
 
 use crate::step_data::StepData;
@@ -48,16 +47,7 @@ pub(crate) fn solve(data: &mut StepData, reuse: Reuse) -> Result<(), SolverError
         None => Problem::new(tree.effective_mass.as_ref(), &tree.effective_momentum, rows)?,
         Some(factor) => {
             if reuse == Reuse::Nothing || !factor.is_factored() {
-                factor.factor().map_err(|error| match error {
-                    SparseError::NotPositiveDefinite { dof, .. } => {
-                        SolverError::NotPositiveDefinite { pivot: dof }
-                    }
-                    SparseError::TooManyJointDofs { dofs, .. } => SolverError::DimensionMismatch {
-                        what: "joint DOFs",
-                        expected: 6,
-                        found: dofs,
-                    },
-                })?;
+                factor.factor()?;
             }
             Problem::with_operator(&*factor, &tree.effective_momentum, rows)?
         }

@@ -2,7 +2,8 @@
 
 use thiserror::Error;
 
-/// What can go wrong building or factoring the maximal-coordinate system.
+/// What can go wrong building the maximal-coordinate system of a model (a failed numeric
+/// factorisation is a `hagfish_solver::SolverError`, as on the dense path).
 #[derive(Debug, Clone, Copy, PartialEq, Error)]
 pub enum SparseError {
     /// A joint has more DOFs than a free joint (6).
@@ -12,13 +13,5 @@ pub enum SparseError {
         body: usize,
         /// Its DOF count.
         dofs: usize,
-    },
-    /// The articulated pivot `D_c = S_cᵀ Iᴬ_c S_c + K̃_c` is not positive at a DOF.
-    #[error("effective mass is not positive definite (pivot {pivot} at DOF {dof})")]
-    NotPositiveDefinite {
-        /// The DOF.
-        dof: usize,
-        /// The offending pivot.
-        pivot: f64,
     },
 }

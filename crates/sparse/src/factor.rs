@@ -33,6 +33,7 @@
 use std::cell::RefCell;
 use std::ops::Range;
 
+use hagfish_solver::SolverError;
 use hagfish_tree::{Data, Model, RigidInertia, Spatial};
 
 use crate::block::Block6;
@@ -124,10 +125,10 @@ impl TreeFactor {
         self.factored = false;
     }
 
-    /// The numeric factorisation (module docs), leaf to root, O(bodies). Fails at the first
-    /// DOF whose pivot `D_c` is not positive (a body without inertia on a joint without
-    /// damping or stiffness).
-    pub fn factor(&mut self) -> Result<(), SparseError> {
+    /// The numeric factorisation (module docs), leaf to root, O(bodies). Fails, as the dense
+    /// Cholesky does, with the first DOF whose pivot `D_c` is not positive (a body without
+    /// inertia on a joint without damping or stiffness).
+    pub fn factor(&mut self) -> Result<(), SolverError> {
         self.factored = false;
         for (block, inertia) in self.articulated.iter_mut().zip(&self.inertias) {
             *block = Block6::from_inertia(inertia);
@@ -155,7 +156,7 @@ impl TreeFactor {
                     } else if value > 0.0 && value.is_finite() {
                         row[i] = value.sqrt();
                     } else {
-                        return Err(SparseError::NotPositiveDefinite { dof: a, pivot: value });
+                        return Err(SolverError::NotPositiveDefinite { pivot: a });
                     }
                 }
                 self.pivots[a] = row;

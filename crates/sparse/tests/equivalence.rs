@@ -6,7 +6,8 @@
 use faer::MatMut;
 use glam::{DMat3, DVec3};
 use hagfish_solver::{
-    FactoredMass, Problem, QpBackend, RowGroup, RowKind, Rows, SolverOptions, SolverWorkspace,
+    FactoredMass, Problem, QpBackend, RowGroup, RowKind, Rows, SolverError, SolverOptions,
+    SolverWorkspace,
 };
 use hagfish_sparse::{SparseError, TreeFactor};
 use hagfish_tree::{
@@ -76,7 +77,7 @@ fn setup(model: &Model, seed: u64, h: f64) -> Result<(Data, TreeFactor), SparseE
     factor_effective_mass(&mut data, 0.0).expect("dense M̃ is SPD");
     let mut factor = TreeFactor::new(model)?;
     factor.assemble(model, &data, h);
-    factor.factor()?;
+    factor.factor().expect("the tree factor of an SPD M̃");
     Ok((data, factor))
 }
 
@@ -262,7 +263,7 @@ fn a_massless_direction_is_not_positive_definite() -> Result<(), SparseError> {
     let mut factor = TreeFactor::new(&model)?;
     factor.assemble(&model, &data, 0.01);
     let result = factor.factor();
-    assert!(matches!(result, Err(SparseError::NotPositiveDefinite { dof: 0, .. })), "{result:?}");
+    assert_eq!(result, Err(SolverError::NotPositiveDefinite { pivot: 0 }));
     assert!(!factor.is_factored());
     Ok(())
 }
