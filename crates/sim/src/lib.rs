@@ -23,6 +23,7 @@ mod report;
 pub mod rows;
 mod run;
 mod scenario;
+mod scenario_check;
 mod step_data;
 mod world;
 
