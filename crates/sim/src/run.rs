@@ -3,6 +3,7 @@
 use glam::DVec3;
 use hagfish_control::KnotSpan;
 use hagfish_knots::{KnotOptions, KnotReport, analyse_knot};
+use hagfish_tree::State;
 
 use crate::error::SimError;
 use crate::forces::{GroupForces, dof_labels};
@@ -47,6 +48,8 @@ pub struct RunSummary {
     pub maxima: IntervalMaxima,
     /// Wall-clock seconds per stage, summed over all steps.
     pub timings: StageTimings,
+    /// The state at the end of the run (`None` only before a run has filled the summary).
+    pub final_state: Option<State>,
 }
 
 /// Runs `loaded` to its duration, giving every recorded frame to `sink` and calling
@@ -105,5 +108,6 @@ pub fn run(
         summary.knots.push(KnotSample { time: world.state().t, knot });
     }
     summary.steps = world.steps();
+    summary.final_state = Some(world.state().clone());
     Ok(summary)
 }
