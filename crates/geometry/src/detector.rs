@@ -128,7 +128,9 @@ impl ContactDetector {
         &self.options
     }
 
-    /// Fills `out` with the self contacts of `centreline`, sorted by (u_a, u_b).
+    /// Fills `out` with the self contacts of `centreline`, sorted by (u_a, u_b): the broad
+    /// phase ([`ContactDetector::find_candidates`]), then the narrow phase
+    /// ([`ContactDetector::search_candidates`]).
     ///
     /// `body_lengths` are the body lengths ℓ_i (cm) for the broad-phase spheres.
     ///
@@ -141,8 +143,32 @@ impl ContactDetector {
         out: &mut Vec<SelfContact>,
     ) -> Result<DetectionReport, GeometryError> {
         out.clear();
+        self.find_candidates(centreline, body_lengths)?;
+        Ok(self.search_candidates(centreline, out))
+    }
+
+    /// Broad phase: the body pairs whose spheres overlap, and the segment pairs around them.
+    ///
+    /// # Errors
+    /// As [`BroadPhase::find_pairs`].
+    pub fn find_candidates(
+        &mut self,
+        centreline: &Centreline,
+        body_lengths: &[f64],
+    ) -> Result<(), GeometryError> {
         self.broad_phase.find_pairs(centreline, body_lengths, &mut self.body_pairs)?;
         self.collect_segment_pairs(centreline.segment_count());
+        Ok(())
+    }
+
+    /// Narrow phase on the segment pairs of the last [`ContactDetector::find_candidates`]
+    /// (for the same `centreline`): closest points of the pairs that can touch by the chord
+    /// bound, records within the margin, duplicates merged; appends the contacts to `out`.
+    pub fn search_candidates(
+        &mut self,
+        centreline: &Centreline,
+        out: &mut Vec<SelfContact>,
+    ) -> DetectionReport {
         self.segments.clear();
         self.segments.extend((0..centreline.segment_count()).map(|k| {
             let segment = centreline.segment(k);
@@ -171,18 +197,19 @@ impl ContactDetector {
         }
         let raw_contacts = self.candidates.len();
         let merged = keep_deepest_per_cluster(&mut self.candidates, self.options.cluster_radius);
+        let before = out.len();
         out.extend(
             self.candidates.iter().map(|c| SelfContact::new(centreline, c.u_a, c.u_b, c.status)),
         );
-        Ok(DetectionReport {
+        DetectionReport {
             candidate_pairs: self.body_pairs.len(),
             segment_pairs: self.segment_pairs.len(),
             searched,
             newton_failures,
             raw_contacts,
             merged,
-            contacts: out.len(),
-        })
+            contacts: out.len() - before,
+        }
     }
 
     /// Segment pairs (k_a < k_b) touching the candidate body pairs, sorted and unique:

@@ -8,6 +8,7 @@
 //! [`rows`]) → velocity solve (Cholesky / KKT / QP, `hagfish-solver`) → integration.
 //! CGS units throughout.
 
+mod benchmark_state;
 mod error;
 mod forces;
 mod options;
@@ -20,6 +21,7 @@ mod scenario;
 mod step_data;
 mod world;
 
+pub use benchmark_state::{KNOTTED_SCENARIO, KNOTTED_TIME_S, knotted_world};
 pub use error::SimError;
 pub use forces::{DofLabel, GroupForces, RECORDED_GROUPS, dof_labels};
 pub use options::StepOptions;
