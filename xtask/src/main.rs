@@ -3,8 +3,11 @@
 //! - `regress [--check | --bless] [SCENARIO…]`: runs every scenario of `data/scenarios`,
 //!   compares its metrics with the golden in `data/regress/<scenario>.ron` (`--check`, the
 //!   default) or rewrites the goldens (`--bless`). See `regress.rs`.
+//! - `knotted [--export PATH] [--steps N] [--repeat R] [--time-step H]`: exports and times
+//!   the knotted benchmark state (`knotted.rs`).
 
 mod golden;
+mod knotted;
 mod metrics;
 mod regress;
 mod table;
@@ -37,6 +40,21 @@ enum Task {
         /// Scenario names (file stems in `data/scenarios`); all when none are given.
         scenarios: Vec<String>,
     },
+    /// Exports the knotted benchmark state as JSON and times passive steps from it.
+    Knotted {
+        /// Write the model and state as JSON to this file.
+        #[arg(long)]
+        export: Option<PathBuf>,
+        /// Steps per timed run (0: no timing).
+        #[arg(long, default_value_t = 100)]
+        steps: usize,
+        /// Timed runs from the knotted state.
+        #[arg(long, default_value_t = 20)]
+        repeat: usize,
+        /// Time step of the timed runs (s).
+        #[arg(long, default_value_t = 0.01)]
+        time_step: f64,
+    },
 }
 
 /// The workspace root (the parent of this package's directory).
@@ -51,6 +69,10 @@ fn main() -> ExitCode {
         Task::Regress { check: _, bless, scenarios } => {
             let mode = if bless { regress::Mode::Bless } else { regress::Mode::Check };
             regress::run(&workspace_root(), mode, &scenarios)
+        }
+        Task::Knotted { export, steps, repeat, time_step } => {
+            let request = knotted::Request { export: export.as_deref(), steps, repeat, time_step };
+            knotted::run(&workspace_root(), &request).map(|()| true)
         }
     };
     match result {

@@ -6,22 +6,21 @@ use crate::chord::chord_distance;
 use crate::cluster::{Candidate, keep_deepest_per_cluster};
 use crate::contact::SelfContact;
 use crate::error::GeometryError;
-use crate::narrow_phase::{NewtonStatus, closest_points};
+use crate::narrow_phase::{NewtonStatus, closest_points_within};
 use crate::segment::Segment;
 
-/// Whether segments k_a and k_b can come within `margin` of touching.
-///
-/// Each segment lies within its [`Segment::chord_deviation_bound`] σ of its chord, so the
-/// spline distance is at least d_chord − σ_a − σ_b; the tube radii along a segment are at
-/// most the larger of its two body radii.
-fn may_touch(
-    radii: &[f64],
-    segments: &[(Segment, f64)],
-    (k_a, k_b): (usize, usize),
-    margin: f64,
-) -> bool {
+/// The distance below which segments k_a and k_b may be in contact: the largest tube radii
+/// along them (a radius along a segment is at most the larger of its two body radii) plus
+/// `margin`.
+fn reach(radii: &[f64], (k_a, k_b): (usize, usize), margin: f64) -> f64 {
+    radii[k_a].max(radii[k_a + 1]) + radii[k_b].max(radii[k_b + 1]) + margin
+}
+
+/// Whether segments k_a and k_b can come closer than `reach` by their chords: each segment
+/// lies within its [`Segment::chord_deviation_bound`] σ of its chord, so the spline distance
+/// is at least d_chord − σ_a − σ_b.
+fn may_touch(segments: &[(Segment, f64)], (k_a, k_b): (usize, usize), reach: f64) -> bool {
     let ((a, sigma_a), (b, sigma_b)) = (&segments[k_a], &segments[k_b]);
-    let reach = radii[k_a].max(radii[k_a + 1]) + radii[k_b].max(radii[k_b + 1]) + margin;
     chord_distance(a.chord(), b.chord()) - sigma_a - sigma_b < reach
 }
 
@@ -59,7 +58,8 @@ pub struct DetectionReport {
     pub candidate_pairs: usize,
     /// Distinct segment pairs around the candidate body pairs.
     pub segment_pairs: usize,
-    /// Segment pairs close enough to touch (by the chord bound) and hence searched.
+    /// Segment pairs close enough to touch (by the chord bound, then by the seed-grid bound
+    /// of [`crate::closest_points_within`]) and hence searched.
     pub searched: usize,
     /// Segment pairs whose Newton search did not converge (kept, with their status, if
     /// they are contacts).
@@ -77,7 +77,7 @@ pub struct DetectionReport {
 /// Per call: the broad phase proposes body pairs (with an index gap two less than
 /// `index_gap`, so that no pair whose spline parameters differ by more than `index_gap`
 /// is lost); the segments touching each body ({i−1, i} × {j−1, j}, deduplicated) that can
-/// touch by the chord bound are searched for their closest points; records with
+/// touch by the chord bound and by the seed-grid bound are searched for their closest points; records with
 /// gap < margin and u_b − u_a > index_gap are kept, and duplicates merged (see
 /// `cluster.rs`: this also drops a closest point clamped to a segment end that is the
 /// same point as the neighbouring segment's result). No allocation after warm-up.
@@ -179,11 +179,13 @@ impl ContactDetector {
         let mut newton_failures = 0;
         self.candidates.clear();
         for &(k_a, k_b) in &self.segment_pairs {
-            if !may_touch(centreline.radii(), &self.segments, (k_a, k_b), margin) {
+            let reach = reach(centreline.radii(), (k_a, k_b), margin);
+            if !may_touch(&self.segments, (k_a, k_b), reach) {
                 continue;
             }
+            let (a, b) = (&self.segments[k_a].0, &self.segments[k_b].0);
+            let Some(closest) = closest_points_within(a, b, reach) else { continue };
             searched += 1;
-            let closest = closest_points(&self.segments[k_a].0, &self.segments[k_b].0);
             if closest.status != NewtonStatus::Converged {
                 newton_failures += 1;
             }

@@ -40,6 +40,7 @@ pub use detector::{ContactDetector, DetectionReport, DetectorOptions};
 pub use error::GeometryError;
 pub use narrow_phase::{
     ClosestPoints, GRADIENT_TOLERANCE, MAX_NEWTON_ITERATIONS, NewtonStatus, closest_points,
+    closest_points_within,
 };
 pub use segment::Segment;
 pub use wall::{Wall, WallContact, WallOptions};
