@@ -6,8 +6,8 @@
 //!   then Z).
 //! - timing: from the knotted state, `--repeat` runs of `--steps` steps at `--time-step` with
 //!   a passive body (no drag, no controller: the physics a peer simulator can reproduce);
-//!   prints the median and minimum wall time per step, the median per stage, the contacts
-//!   and whether every run stayed finite, as one JSON object.
+//!   prints the median and minimum wall time per step, the median per stage, the contacts,
+//!   whether every run stayed finite and how far any body centre moved, as one JSON object.
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -60,7 +60,9 @@ fn time(world: &World, request: &Request<'_>) -> Result<(), String> {
     let (mut per_step, mut contacts) = (Vec::new(), Vec::new());
     let mut stages: Vec<Vec<f64>> = vec![Vec::new(); 7];
     let mut failures = 0;
-    let mut max_rate: f64 = 0.0;
+    let (mut max_rate, mut displacement): (f64, f64) = (0.0, 0.0);
+    let (mut start_centres, mut centres) = (Vec::new(), Vec::new());
+    timed.body_centres(&mut start_centres);
     for _ in 0..request.repeat {
         timed.set_state(knotted.clone()).map_err(|e| e.to_string())?;
         for _ in 0..request.steps {
@@ -79,6 +81,9 @@ fn time(world: &World, request: &Request<'_>) -> Result<(), String> {
             }
         }
         max_rate = timed.state().qdot.iter().fold(max_rate, |m, v| m.max(v.abs()));
+        timed.body_centres(&mut centres);
+        let moved = centres.iter().zip(&start_centres).map(|(a, b)| a.distance(*b));
+        displacement = moved.fold(displacement, f64::max);
     }
     let min = per_step.iter().copied().fold(f64::INFINITY, f64::min);
     let median_step = median(&mut per_step);
@@ -93,6 +98,7 @@ fn time(world: &World, request: &Request<'_>) -> Result<(), String> {
 \"time_step\": {}, \"steps\": {}, \"repeat\": {}, \"median_us_per_step\": {:.2}, \
 \"min_us_per_step\": {:.2}, \"steps_per_second\": {:.0}, \"median_contacts\": {}, \
 \"max_contacts\": {}, \"failed_runs\": {failures}, \"max_abs_qdot\": {:.4e}, \
+\"max_centre_displacement_cm\": {displacement:.4}, \
 \"median_stage_us\": {{{stage_json}}}}}",
         request.time_step,
         request.steps,
@@ -101,7 +107,7 @@ fn time(world: &World, request: &Request<'_>) -> Result<(), String> {
         1e6 * min,
         1.0 / median_step,
         median(&mut contacts),
-        contacts.last().copied().unwrap_or(0.0),
+        contacts.iter().copied().fold(0.0, f64::max),
         max_rate,
     );
     Ok(())
