@@ -6,7 +6,7 @@
 //! - `step/knotted/<backend>`: one whole pipeline step (kinematics, contact detection,
 //!   drag, dynamics, rows, constraint solve with its re-solves, integration) in the knotted
 //!   benchmark state (`hagfish_sim::knotted_world`: `data/scenarios/form.ron` at t = 22.65 s,
-//!   43 self contacts), with the contact-space QP (default) and with clarabel (reference).
+//!   41–43 self contacts), with the contact-space QP (default) and with clarabel (reference).
 //!   Per-stage benchmarks of the same state: `cargo bench -p hagfish-sim --bench stages`.
 
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};

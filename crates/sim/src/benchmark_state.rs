@@ -1,7 +1,8 @@
 //! The knotted state that the benchmarks, the allocation test and the peer comparison step:
 //! `data/scenarios/form.ron` run from rest to t = 22.65 s, where the tightened trefoil has
-//! 43 self contacts (the most between 21.5 and 24.5 s; measured when chosen, and changed only
-//! if `form.ron` changes).
+//! 41–43 self contacts (43 when chosen, the most between 21.5 and 24.5 s; the state is the end
+//! of a 2265-step run, so any change of rounding in a step moves it a little: the benchmarks
+//! print the count).
 
 use std::path::Path;
 
