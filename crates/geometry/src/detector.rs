@@ -89,6 +89,8 @@ pub struct ContactDetector {
     /// Every segment of the centreline with its chord deviation bound.
     segments: Vec<(Segment, f64)>,
     segment_pairs: Vec<(usize, usize)>,
+    /// One bit per segment pair (k_a·S + k_b), to collect the pairs sorted and unique.
+    marked: Vec<u64>,
     candidates: Vec<Candidate>,
 }
 
@@ -119,6 +121,7 @@ impl ContactDetector {
             body_pairs: Vec::new(),
             segments: Vec::new(),
             segment_pairs: Vec::new(),
+            marked: Vec::new(),
             candidates: Vec::new(),
         })
     }
@@ -215,7 +218,8 @@ impl ContactDetector {
     }
 
     /// Segment pairs (k_a < k_b) touching the candidate body pairs, sorted and unique:
-    /// body i touches segments i − 1 and i (those that exist).
+    /// body i touches segments i − 1 and i (those that exist). The pairs are marked in a
+    /// bit set indexed by k_a·S + k_b and read back in index order (no sort).
     fn collect_segment_pairs(&mut self, segment_count: usize) {
         let touching = move |body: usize| {
             [body.checked_sub(1), Some(body)]
@@ -223,15 +227,25 @@ impl ContactDetector {
                 .flatten()
                 .filter(move |&k| k < segment_count)
         };
-        self.segment_pairs.clear();
+        self.marked.clear();
+        self.marked.resize((segment_count * segment_count).div_ceil(64), 0);
         for &(i, j) in &self.body_pairs {
             for k_a in touching(i) {
-                self.segment_pairs
-                    .extend(touching(j).filter(|&k_b| k_a < k_b).map(|k_b| (k_a, k_b)));
+                for k_b in touching(j).filter(|&k_b| k_a < k_b) {
+                    let index = k_a * segment_count + k_b;
+                    self.marked[index / 64] |= 1 << (index % 64);
+                }
             }
         }
-        self.segment_pairs.sort_unstable();
-        self.segment_pairs.dedup();
+        self.segment_pairs.clear();
+        for (word, &bits) in self.marked.iter().enumerate() {
+            let mut bits = bits;
+            while bits != 0 {
+                let index = 64 * word + bits.trailing_zeros() as usize;
+                self.segment_pairs.push((index / segment_count, index % segment_count));
+                bits &= bits - 1;
+            }
+        }
     }
 }
 
