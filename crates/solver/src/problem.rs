@@ -100,10 +100,12 @@ fn check_mass(mass: MatRef<'_, f64>) -> Result<(), SolverError> {
     let max_diagonal = (0..n).fold(0.0_f64, |m, j| m.max(mass[(j, j)].abs()));
     let mut bad = !max_diagonal.is_finite();
     for j in 0..n {
-        let column = mass.col(j);
-        let row = mass.row(j);
-        for i in 0..j {
-            let (upper, lower) = (column[i], row[i]);
+        // Column j above the diagonal (contiguous) against row j left of it (strided).
+        let Some(column) = mass.col(j).try_as_col_major().map(|c| c.as_slice()) else {
+            bad = true;
+            break;
+        };
+        for (&upper, &lower) in column[..j].iter().zip(mass.row(j).iter()) {
             let tolerance = SYMMETRY_TOLERANCE * (upper.abs() + lower.abs() + max_diagonal);
             bad |= !(upper.is_finite() & lower.is_finite() & ((upper - lower).abs() <= tolerance));
         }
