@@ -8,6 +8,7 @@
 //! [`rows`]) → velocity solve (Cholesky / KKT / QP, `hagfish-solver`) → integration.
 //! CGS units throughout.
 
+mod benchmark_state;
 mod checkpoint;
 mod error;
 mod force_field;
@@ -27,6 +28,7 @@ mod scenario_check;
 mod step_data;
 mod world;
 
+pub use benchmark_state::{KNOTTED_SCENARIO, KNOTTED_TIME_S, knotted_world};
 pub use checkpoint::{CHECKPOINT_FILE, CHECKPOINT_FORMAT, Checkpoint, ExactF64s};
 pub use error::SimError;
 pub use force_field::{ForceFieldLog, ForceFieldStats};

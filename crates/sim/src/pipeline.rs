@@ -215,7 +215,7 @@ pub fn solve_and_resolve(
             (false, 0) => break,
             // Only f̃ changed: keep the factor of M̃ and the contact-space matrices.
             (true, 0) => {
-                let problem = Problem::new(
+                let problem = Problem::with_validated_mass_and_rows(
                     data.tree.effective_mass.as_ref(),
                     &data.tree.effective_momentum,
                     &data.rows,

@@ -114,4 +114,15 @@ impl LoadedScenario {
         let controller = PhasedController::new(self.scenario.drag, self.scenario.phases.clone());
         Ok((world, controller))
     }
+
+    /// The world and controller after running the scenario from rest to time `time_s`
+    /// (rounded to whole steps; no recording): e.g. the knotted state of the benchmarks.
+    pub fn build_at(&self, time_s: f64) -> Result<(World, PhasedController), SimError> {
+        let (mut world, mut controller) = self.build()?;
+        let steps = (time_s / self.scenario.time_step_s).round() as u64;
+        for _ in 0..steps {
+            world.step(&mut controller)?;
+        }
+        Ok((world, controller))
+    }
 }
