@@ -5,14 +5,15 @@
 //!   state.
 //! - `step/knotted/<backend>`: one whole pipeline step (kinematics, contact detection,
 //!   drag, dynamics, rows, constraint solve with its re-solves, integration) in the knotted
-//!   state reached by `data/scenarios/form.ron` at t = 20 s (≈ 40–60 self contacts), with
-//!   the contact-space QP (default) and with clarabel (reference); and
+//!   benchmark state (`hagfish_sim::knotted_world`: `data/scenarios/form.ron` at t = 22.65 s,
+//!   41–43 self contacts), with the contact-space QP (default) and with clarabel (reference); and
 //!   `step/knotted/ContactSpace/SparseMaximal`, the same step on the sparse
 //!   maximal-coordinate backend (`StepOptions::backend`).
+//!   Per-stage benchmarks of the same state: `cargo bench -p hagfish-sim --bench stages`.
 
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
 use hagfish_control::WaterDrag;
-use hagfish_sim::{DynamicsBackend, LoadedScenario, StepOptions, World};
+use hagfish_sim::{DynamicsBackend, LoadedScenario, StepOptions, World, knotted_world};
 use hagfish_solver::{QpBackend, SolverOptions};
 use hagfish_tree::{Data, State, step_unconstrained};
 
@@ -39,11 +40,7 @@ fn unconstrained(c: &mut Criterion) {
 }
 
 fn knotted(c: &mut Criterion) {
-    let loaded = form_scenario();
-    let (mut world, mut controller) = loaded.build().expect("world");
-    for _ in 0..2000 {
-        world.step(&mut controller).expect("forming step");
-    }
+    let (world, _) = knotted_world(env!("CARGO_MANIFEST_DIR").as_ref()).expect("knotted state");
     let knotted = world.state().clone();
     for (backend, dynamics, name) in [
         (QpBackend::ContactSpace, DynamicsBackend::DenseReduced, "ContactSpace"),

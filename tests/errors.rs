@@ -147,3 +147,27 @@ fn a_diverging_run_keeps_its_outputs_and_exits_with_3() {
     assert!(stderr.starts_with("error: the run diverged: step 35 (t = 0.35"), "{stderr}");
     assert_eq!(common::manifest(&dir)["resumed_at_frames"], serde_json::json!([4]));
 }
+
+#[test]
+fn out_of_range_phase_values_are_located_at_their_occurrence() {
+    // The second `Hold(` of the file (a phase, after the script's own Hold step).
+    assert_user_error(
+        "error_negative_hold",
+        |t| t.replace("Hold(0.5)", "Hold(-0.5)"),
+        "18:14",
+        "Hold = -0.5 is out of range: expected finite and ≥ 0",
+    );
+    // A body index past the tail; the scenario's own `body:` (the file) is not mistaken for it.
+    assert_user_error(
+        "error_body_index",
+        |t| t.replace("Point((30.0, 20.0, 0.0))", "FromBody(body: 100, offset: (0.0, 0.0, 0.0))"),
+        "14:41",
+        "body = 100 is out of range: expected a body index below 100 (0 = head)",
+    );
+    assert_user_error(
+        "error_zero_speed",
+        |t| t.replace("speed: 5.0", "speed: 0.0"),
+        "14:59",
+        "speed = 0 is out of range: expected finite and > 0",
+    );
+}

@@ -38,25 +38,34 @@ impl fmt::Display for Origin {
     }
 }
 
-/// A field of [`crate::Biometrics`], optionally one element of an array field, named as in
-/// the data file (`circumferences_cm[2]`, `tail_taper.tip_radius_cm`).
+/// A field of a data file, optionally one element of an array field, named as in the file
+/// (`circumferences_cm[2]`, `tail_taper.tip_radius_cm`). A key that appears several times (the
+/// `speed` of every `Move` step) is told apart by its occurrence in file order; a tuple variant
+/// (`Hold(1.0)`) is found by its name followed by `(`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Field {
     /// The field's path in the data file, nested fields joined by `.`.
     pub name: &'static str,
     /// The element index for an array field.
     pub index: Option<usize>,
+    /// Which occurrence of the key in the file (0 = the first).
+    pub occurrence: usize,
 }
 
 impl Field {
     /// A whole field.
     pub fn whole(name: &'static str) -> Self {
-        Self { name, index: None }
+        Self { name, index: None, occurrence: 0 }
     }
 
     /// Element `index` of an array field.
     pub fn element(name: &'static str, index: usize) -> Self {
-        Self { name, index: Some(index) }
+        Self { name, index: Some(index), occurrence: 0 }
+    }
+
+    /// The `occurrence`-th appearance (from 0, in file order) of a key used many times.
+    pub fn nth(name: &'static str, occurrence: usize) -> Self {
+        Self { name, index: None, occurrence }
     }
 
     /// The key as written in the file: the last segment of [`Field::name`].

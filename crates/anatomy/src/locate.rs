@@ -86,7 +86,7 @@ fn skip_block_comment(chars: &mut std::iter::Peekable<std::str::CharIndices<'_>>
 
 /// Byte offset of the value of `field` (or of its element) in the filtered text.
 fn find_value(code: &[(usize, char)], field: &Field) -> Option<usize> {
-    let value = find_key(code, field.key())?;
+    let value = find_key(code, field.key(), field.occurrence)?;
     let Some(index) = field.index else {
         return code.get(value).map(|&(offset, _)| offset);
     };
@@ -94,21 +94,23 @@ fn find_value(code: &[(usize, char)], field: &Field) -> Option<usize> {
     code.get(element).map(|&(offset, _)| offset)
 }
 
-/// Index (into `code`) of the first non-blank character after `key:`, where `key` is a whole
-/// identifier.
-fn find_key(code: &[(usize, char)], key: &str) -> Option<usize> {
+/// Index (into `code`) of the first non-blank character after the `occurrence`-th `key:` or
+/// `key(` (a field or a tuple variant), where `key` is a whole identifier.
+fn find_key(code: &[(usize, char)], key: &str, occurrence: usize) -> Option<usize> {
     let key: Vec<char> = key.chars().collect();
     let is_ident = |c: char| c.is_alphanumeric() || c == '_';
-    (0..code.len()).find_map(|start| {
-        let end = start + key.len();
-        let matches = code.get(start..end)?.iter().map(|&(_, c)| c).eq(key.iter().copied());
-        let boundary = start == 0 || !is_ident(code[start - 1].1);
-        if !(matches && boundary) {
-            return None;
-        }
-        let colon = skip_blanks(code, end);
-        (code.get(colon)?.1 == ':').then(|| skip_blanks(code, colon + 1))
-    })
+    (0..code.len())
+        .filter_map(|start| {
+            let end = start + key.len();
+            let matches = code.get(start..end)?.iter().map(|&(_, c)| c).eq(key.iter().copied());
+            let boundary = start == 0 || !is_ident(code[start - 1].1);
+            if !(matches && boundary) {
+                return None;
+            }
+            let after = skip_blanks(code, end);
+            matches!(code.get(after)?.1, ':' | '(').then(|| skip_blanks(code, after + 1))
+        })
+        .nth(occurrence)
 }
 
 /// Index of element `index` of the array whose `[` is at `open`.

@@ -6,22 +6,21 @@ use crate::chord::chord_distance;
 use crate::cluster::{Candidate, keep_deepest_per_cluster};
 use crate::contact::SelfContact;
 use crate::error::GeometryError;
-use crate::narrow_phase::{NewtonStatus, closest_points};
+use crate::narrow_phase::{NewtonStatus, closest_points_within};
 use crate::segment::Segment;
 
-/// Whether segments k_a and k_b can come within `margin` of touching.
-///
-/// Each segment lies within its [`Segment::chord_deviation_bound`] σ of its chord, so the
-/// spline distance is at least d_chord − σ_a − σ_b; the tube radii along a segment are at
-/// most the larger of its two body radii.
-fn may_touch(
-    radii: &[f64],
-    segments: &[(Segment, f64)],
-    (k_a, k_b): (usize, usize),
-    margin: f64,
-) -> bool {
+/// The distance below which segments k_a and k_b may be in contact: the largest tube radii
+/// along them (a radius along a segment is at most the larger of its two body radii) plus
+/// `margin`.
+fn reach(radii: &[f64], (k_a, k_b): (usize, usize), margin: f64) -> f64 {
+    radii[k_a].max(radii[k_a + 1]) + radii[k_b].max(radii[k_b + 1]) + margin
+}
+
+/// Whether segments k_a and k_b can come closer than `reach` by their chords: each segment
+/// lies within its [`Segment::chord_deviation_bound`] σ of its chord, so the spline distance
+/// is at least d_chord − σ_a − σ_b.
+fn may_touch(segments: &[(Segment, f64)], (k_a, k_b): (usize, usize), reach: f64) -> bool {
     let ((a, sigma_a), (b, sigma_b)) = (&segments[k_a], &segments[k_b]);
-    let reach = radii[k_a].max(radii[k_a + 1]) + radii[k_b].max(radii[k_b + 1]) + margin;
     chord_distance(a.chord(), b.chord()) - sigma_a - sigma_b < reach
 }
 
@@ -59,7 +58,8 @@ pub struct DetectionReport {
     pub candidate_pairs: usize,
     /// Distinct segment pairs around the candidate body pairs.
     pub segment_pairs: usize,
-    /// Segment pairs close enough to touch (by the chord bound) and hence searched.
+    /// Segment pairs close enough to touch (by the chord bound, then by the seed-grid bound
+    /// of [`crate::closest_points_within`]) and hence searched.
     pub searched: usize,
     /// Segment pairs whose Newton search did not converge (kept, with their status, if
     /// they are contacts).
@@ -72,12 +72,16 @@ pub struct DetectionReport {
     pub contacts: usize,
 }
 
+/// Pairs per body that [`ContactDetector::reserve`] makes room for: a body of a tube that does
+/// not interpenetrate itself is near far fewer (about 10 in a tight knot) other bodies.
+pub const PAIRS_PER_BODY: usize = 64;
+
 /// Self-contact detector: options plus the reusable broad- and narrow-phase workspaces.
 ///
 /// Per call: the broad phase proposes body pairs (with an index gap two less than
 /// `index_gap`, so that no pair whose spline parameters differ by more than `index_gap`
 /// is lost); the segments touching each body ({i−1, i} × {j−1, j}, deduplicated) that can
-/// touch by the chord bound are searched for their closest points; records with
+/// touch by the chord bound and by the seed-grid bound are searched for their closest points; records with
 /// gap < margin and u_b − u_a > index_gap are kept, and duplicates merged (see
 /// `cluster.rs`: this also drops a closest point clamped to a segment end that is the
 /// same point as the neighbouring segment's result). No allocation after warm-up.
@@ -89,6 +93,8 @@ pub struct ContactDetector {
     /// Every segment of the centreline with its chord deviation bound.
     segments: Vec<(Segment, f64)>,
     segment_pairs: Vec<(usize, usize)>,
+    /// One bit per segment pair (k_a·S + k_b), to collect the pairs sorted and unique.
+    marked: Vec<u64>,
     candidates: Vec<Candidate>,
 }
 
@@ -119,8 +125,21 @@ impl ContactDetector {
             body_pairs: Vec::new(),
             segments: Vec::new(),
             segment_pairs: Vec::new(),
+            marked: Vec::new(),
             candidates: Vec::new(),
         })
+    }
+
+    /// Reserves the scratch buffers for a centreline of `bodies` bodies, so that detection
+    /// does not allocate: room for [`PAIRS_PER_BODY`] pairs per body in every pair list (a
+    /// packing bound for tubes that do not interpenetrate, with room to spare).
+    pub fn reserve(&mut self, bodies: usize) {
+        let pairs = PAIRS_PER_BODY * bodies;
+        self.body_pairs.reserve(pairs);
+        self.segments.reserve(bodies + 1);
+        self.segment_pairs.reserve(pairs);
+        self.marked.reserve((bodies + 1).pow(2).div_ceil(64));
+        self.candidates.reserve(pairs);
     }
 
     /// The options this detector was built with.
@@ -128,7 +147,9 @@ impl ContactDetector {
         &self.options
     }
 
-    /// Fills `out` with the self contacts of `centreline`, sorted by (u_a, u_b).
+    /// Fills `out` with the self contacts of `centreline`, sorted by (u_a, u_b): the broad
+    /// phase ([`ContactDetector::find_candidates`]), then the narrow phase
+    /// ([`ContactDetector::search_candidates`]).
     ///
     /// `body_lengths` are the body lengths ℓ_i (cm) for the broad-phase spheres.
     ///
@@ -141,8 +162,32 @@ impl ContactDetector {
         out: &mut Vec<SelfContact>,
     ) -> Result<DetectionReport, GeometryError> {
         out.clear();
+        self.find_candidates(centreline, body_lengths)?;
+        Ok(self.search_candidates(centreline, out))
+    }
+
+    /// Broad phase: the body pairs whose spheres overlap, and the segment pairs around them.
+    ///
+    /// # Errors
+    /// As [`BroadPhase::find_pairs`].
+    pub fn find_candidates(
+        &mut self,
+        centreline: &Centreline,
+        body_lengths: &[f64],
+    ) -> Result<(), GeometryError> {
         self.broad_phase.find_pairs(centreline, body_lengths, &mut self.body_pairs)?;
         self.collect_segment_pairs(centreline.segment_count());
+        Ok(())
+    }
+
+    /// Narrow phase on the segment pairs of the last [`ContactDetector::find_candidates`]
+    /// (for the same `centreline`): closest points of the pairs that can touch by the chord
+    /// bound, records within the margin, duplicates merged; appends the contacts to `out`.
+    pub fn search_candidates(
+        &mut self,
+        centreline: &Centreline,
+        out: &mut Vec<SelfContact>,
+    ) -> DetectionReport {
         self.segments.clear();
         self.segments.extend((0..centreline.segment_count()).map(|k| {
             let segment = centreline.segment(k);
@@ -153,11 +198,13 @@ impl ContactDetector {
         let mut newton_failures = 0;
         self.candidates.clear();
         for &(k_a, k_b) in &self.segment_pairs {
-            if !may_touch(centreline.radii(), &self.segments, (k_a, k_b), margin) {
+            let reach = reach(centreline.radii(), (k_a, k_b), margin);
+            if !may_touch(&self.segments, (k_a, k_b), reach) {
                 continue;
             }
+            let (a, b) = (&self.segments[k_a].0, &self.segments[k_b].0);
+            let Some(closest) = closest_points_within(a, b, reach) else { continue };
             searched += 1;
-            let closest = closest_points(&self.segments[k_a].0, &self.segments[k_b].0);
             if closest.status != NewtonStatus::Converged {
                 newton_failures += 1;
             }
@@ -171,22 +218,24 @@ impl ContactDetector {
         }
         let raw_contacts = self.candidates.len();
         let merged = keep_deepest_per_cluster(&mut self.candidates, self.options.cluster_radius);
+        let before = out.len();
         out.extend(
             self.candidates.iter().map(|c| SelfContact::new(centreline, c.u_a, c.u_b, c.status)),
         );
-        Ok(DetectionReport {
+        DetectionReport {
             candidate_pairs: self.body_pairs.len(),
             segment_pairs: self.segment_pairs.len(),
             searched,
             newton_failures,
             raw_contacts,
             merged,
-            contacts: out.len(),
-        })
+            contacts: out.len() - before,
+        }
     }
 
     /// Segment pairs (k_a < k_b) touching the candidate body pairs, sorted and unique:
-    /// body i touches segments i − 1 and i (those that exist).
+    /// body i touches segments i − 1 and i (those that exist). The pairs are marked in a
+    /// bit set indexed by k_a·S + k_b and read back in index order (no sort).
     fn collect_segment_pairs(&mut self, segment_count: usize) {
         let touching = move |body: usize| {
             [body.checked_sub(1), Some(body)]
@@ -194,15 +243,25 @@ impl ContactDetector {
                 .flatten()
                 .filter(move |&k| k < segment_count)
         };
-        self.segment_pairs.clear();
+        self.marked.clear();
+        self.marked.resize((segment_count * segment_count).div_ceil(64), 0);
         for &(i, j) in &self.body_pairs {
             for k_a in touching(i) {
-                self.segment_pairs
-                    .extend(touching(j).filter(|&k_b| k_a < k_b).map(|k_b| (k_a, k_b)));
+                for k_b in touching(j).filter(|&k_b| k_a < k_b) {
+                    let index = k_a * segment_count + k_b;
+                    self.marked[index / 64] |= 1 << (index % 64);
+                }
             }
         }
-        self.segment_pairs.sort_unstable();
-        self.segment_pairs.dedup();
+        self.segment_pairs.clear();
+        for (word, &bits) in self.marked.iter().enumerate() {
+            let mut bits = bits;
+            while bits != 0 {
+                let index = 64 * word + bits.trailing_zeros() as usize;
+                self.segment_pairs.push((index / segment_count, index % segment_count));
+                bits &= bits - 1;
+            }
+        }
     }
 }
 

@@ -36,10 +36,11 @@ mod weights;
 pub use broad_phase::{BroadPhase, BroadPhaseOptions};
 pub use centreline::Centreline;
 pub use contact::SelfContact;
-pub use detector::{ContactDetector, DetectionReport, DetectorOptions};
+pub use detector::{ContactDetector, DetectionReport, DetectorOptions, PAIRS_PER_BODY};
 pub use error::GeometryError;
 pub use narrow_phase::{
     ClosestPoints, GRADIENT_TOLERANCE, MAX_NEWTON_ITERATIONS, NewtonStatus, closest_points,
+    closest_points_within,
 };
 pub use segment::Segment;
 pub use wall::{Wall, WallContact, WallOptions};

@@ -225,11 +225,28 @@ fn improves(found: &ClosestPoints, best: &ClosestPoints) -> bool {
 /// the converged searches from every start (then from a probe next to a bound, if that
 /// is closer), or the closest failed one if none converged.
 pub fn closest_points(a: &Segment, b: &Segment) -> ClosestPoints {
+    search_from(a, b, &Starts::new(a, b))
+}
+
+/// [`closest_points`] of `a` and `b` if they may come closer than `reach`, or `None` (no
+/// search) when the seed grid already proves every distance ≥ `reach`: the distance at the
+/// closest grid point minus half a grid interval times the segments' speed bounds (with a
+/// relative allowance of 10⁻⁹ for rounding).
+pub fn closest_points_within(a: &Segment, b: &Segment, reach: f64) -> Option<ClosestPoints> {
+    let starts = Starts::new(a, b);
+    let bound = starts.distance_lower_bound([a.speed_bound(), b.speed_bound()]);
+    (bound < reach * (1.0 + ROUNDING_ALLOWANCE)).then(|| search_from(a, b, &starts))
+}
+
+/// Relative allowance for rounding in the pruning bound of [`closest_points_within`].
+const ROUNDING_ALLOWANCE: f64 = 1e-9;
+
+/// The searches of [`closest_points`] from `starts`.
+fn search_from(a: &Segment, b: &Segment, starts: &Starts) -> ClosestPoints {
     let keep_better = |best: ClosestPoints, start: [f64; 2]| {
         let found = search(a, b, start);
         if improves(&found, &best) { found } else { best }
     };
-    let starts = Starts::new(a, b);
     let best = starts
         .grid_minima()
         .iter()
@@ -335,6 +352,33 @@ mod tests {
             assert!((thesis[0][j] + hessian[0][j]).abs() < 1e-15);
             assert!((thesis[1][j] - hessian[1][j]).abs() < 1e-15);
         }
+    }
+
+    #[test]
+    fn pruning_never_drops_a_pair_within_reach_and_drops_far_ones() {
+        let bent = |origin: DVec3, turn: f64| {
+            let p = [0.0, 1.0, 2.0, 3.0].map(|i: f64| {
+                let angle = turn * i;
+                origin + 0.424 * DVec3::new(i, angle.sin() * i, (0.7 * angle).cos() - 1.0)
+            });
+            Segment::new(p)
+        };
+        let mut pruned = 0;
+        for i in 0..400 {
+            let x = f64::from(i);
+            let a = bent(DVec3::ZERO, 0.3 * (0.37 * x).sin());
+            let offset =
+                DVec3::new((0.91 * x).sin(), (1.3 * x).cos(), 0.5 + 0.6 * (0.17 * x).sin());
+            let b = bent(offset, 0.4 * (0.53 * x).cos());
+            let found = closest_points(&a, &b);
+            let distance = found.distance_squared.sqrt();
+            let within = closest_points_within(&a, &b, distance + 1e-9);
+            assert_eq!(within, Some(found), "pair {i} within reach was pruned");
+            if closest_points_within(&a, &b, 0.5 * distance).is_none() {
+                pruned += 1;
+            }
+        }
+        assert!(pruned > 200, "only {pruned} of 400 pairs pruned at half their distance");
     }
 
     #[test]

@@ -43,6 +43,8 @@ pub(crate) struct Starts {
     /// Grid minima (s_a, s_b), deepest first, valid up to `found`.
     grid_minima: [[f64; 2]; MAX_GRID_STARTS],
     found: usize,
+    /// f at the closest grid point (the deepest grid minimum).
+    depth: f64,
 }
 
 impl Starts {
@@ -96,12 +98,21 @@ impl Starts {
             }
         }
         let chord = closest_chord_parameters(a.chord(), b.chord());
-        Starts { chord: [chord.0, chord.1], grid_minima, found }
+        Starts { chord: [chord.0, chord.1], grid_minima, found, depth: depths[0] }
     }
 
     /// The closest points of the two chords.
     pub(crate) fn chord(&self) -> [f64; 2] {
         self.chord
+    }
+
+    /// Lower bound on the distance of the segments over [0, 1]², from the closest grid
+    /// point: every (s_a, s_b) is within half a grid interval of a grid point along each
+    /// parameter, and the distance changes by at most the speed bound times the parameter
+    /// change (`speeds` = [`Segment::speed_bound`] of a and b).
+    pub(crate) fn distance_lower_bound(&self, speeds: [f64; 2]) -> f64 {
+        let half_interval = 0.5 / SEED_GRID_INTERVALS as f64;
+        self.depth.sqrt() - half_interval * (speeds[0] + speeds[1])
     }
 
     /// The deepest grid minima, deepest first.

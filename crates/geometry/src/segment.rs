@@ -97,6 +97,13 @@ impl Segment {
         2.0 * c + 6.0 * s * d
     }
 
+    /// Upper bound on the speed |x′(s)| over s ∈ [0, 1]: x′ is the quadratic Bézier curve
+    /// with control vectors B, B + C and B + 2C + 3D, which lies in their convex hull.
+    pub fn speed_bound(&self) -> f64 {
+        let [_, b, c, d] = self.coefficients;
+        b.length().max((b + c).length()).max((b + 2.0 * c + 3.0 * d).length())
+    }
+
     /// The chord from x(0) = `control[1]` to x(1) = `control[2]`, the straight-line
     /// approximation used to start the narrow phase.
     pub fn chord(&self) -> (DVec3, DVec3) {
@@ -179,6 +186,17 @@ mod tests {
         assert!(worst <= bound && worst > 0.3 * bound, "{worst} vs {bound}");
         let straight = Segment::new([0.0, 1.0, 2.0, 3.0].map(|x| DVec3::new(x, 0.5, 0.0)));
         assert_eq!(straight.chord_deviation_bound(), 0.0);
+    }
+
+    #[test]
+    fn speed_bound_holds_and_is_tight_for_a_straight_segment() {
+        let seg = sample_segment();
+        let bound = seg.speed_bound();
+        let speeds = (0..=1000).map(|i| seg.derivative(f64::from(i) / 1000.0).length());
+        let worst = speeds.fold(0.0, f64::max);
+        assert!(worst <= bound && worst > 0.5 * bound, "{worst} vs {bound}");
+        let straight = Segment::new([0.0, 1.0, 2.0, 3.0].map(|x| DVec3::new(x, 0.5, 0.0)));
+        assert!((straight.speed_bound() - 1.0).abs() < 1e-15);
     }
 
     #[test]

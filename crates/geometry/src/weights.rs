@@ -15,14 +15,17 @@
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SplineWeights {
     /// Body indices, ascending, valid up to `len`.
-    pub bodies: [usize; 4],
+    pub bodies: [usize; SplineWeights::CAPACITY],
     /// Weight of each body, valid up to `len`.
-    pub weights: [f64; 4],
+    pub weights: [f64; SplineWeights::CAPACITY],
     /// Number of valid entries (2 to 4; fewer at the ends of short chains).
     pub len: usize,
 }
 
 impl SplineWeights {
+    /// The most bodies a spline point blends (the four control points of its segment).
+    pub const CAPACITY: usize = 4;
+
     /// Folds the four segment weights of segment `k` (on c_{k−1}..c_{k+2}) of a chain of
     /// `body_count` ≥ 2 centres onto real bodies, replacing the phantom end points by
     /// their definitions c₋₁ = 2c₀ − c₁ and c_N = 2c_{N−1} − c_{N−2}.

@@ -3,6 +3,7 @@
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use hagfish_sim::{CENTRELINE_HEADER, FORCES_HEADER, METRICS_HEADER};
 
@@ -17,9 +18,11 @@ pub fn dir(name: &str) -> PathBuf {
     dir
 }
 
-/// Writes `text` to `name` in this process's temporary test directory and returns its path.
+/// Writes `text` to `name` in a directory of its own (tests run in parallel and may use the
+/// same file names) and returns its path.
 pub fn write(name: &str, text: &str) -> PathBuf {
-    let path = dir("files").join(name);
+    static WRITTEN: AtomicUsize = AtomicUsize::new(0);
+    let path = dir(&format!("file-{}", WRITTEN.fetch_add(1, Ordering::Relaxed))).join(name);
     std::fs::write(&path, text).expect("write a test file");
     path
 }

@@ -38,12 +38,17 @@ pub(crate) fn assemble_effective_mass(model: &Model, data: &mut StepData, h: f64
     }
 }
 
-/// Stage 6's solve with the backend's `M̃`: the dense matrix (factored by the solver), or the
-/// tree factor (factored here, O(n), unless only f̃ changed) as a
-/// [`hagfish_solver::MassOperator`].
+/// Stage 6's solve with the backend's `M̃`: the dense matrix (factored by the solver; when only
+/// f̃ changed, not validated again), or the tree factor (factored here, O(n), unless only f̃
+/// changed) as a [`hagfish_solver::MassOperator`].
 pub(crate) fn solve(data: &mut StepData, reuse: Reuse) -> Result<(), SolverError> {
     let StepData { tree, tree_factor, rows, solver, report, .. } = data;
     let problem = match tree_factor {
+        None if reuse == Reuse::MassAndRows => Problem::with_validated_mass_and_rows(
+            tree.effective_mass.as_ref(),
+            &tree.effective_momentum,
+            rows,
+        )?,
         None => Problem::new(tree.effective_mass.as_ref(), &tree.effective_momentum, rows)?,
         Some(factor) => {
             if reuse == Reuse::Nothing || !factor.is_factored() {

@@ -46,21 +46,47 @@ fn axis_name(axis: DVec3) -> char {
 /// The groups whose forces are recorded (the head's bilateral force is not a control).
 pub const RECORDED_GROUPS: [RowGroup; 3] = [RowGroup::Limit, RowGroup::Contact, RowGroup::Thigmo];
 
-/// Generalized forces `C_gᵀλ_g / h` (dyn·cm per rotational DOF) of the recorded groups over
-/// the last step.
+/// Generalized forces of the recorded groups averaged over a recording interval (dyn·cm per
+/// rotational DOF): `f_g = Σ_k C_gᵀλ_g,k / (K h)` over the K steps since the previous frame.
+/// Single steps alias badly at a 0.1 s frame rate (a contact force can be zero one step and
+/// a few thousand dyn·cm the next); the mean is the force the frame interval felt.
 #[derive(Clone, Debug, Default)]
 pub struct GroupForces {
-    /// One vector per group of [`RECORDED_GROUPS`], indexed like `q`.
+    /// One vector per group of [`RECORDED_GROUPS`], indexed like `q`: the summed impulses
+    /// until [`GroupForces::finish_interval`], the mean forces after it.
     pub values: [Vec<f64>; 3],
+    /// Steps summed in the current interval.
+    steps: usize,
 }
 
 impl GroupForces {
-    /// Fills the forces from the last step's solve (zero before any step).
-    pub fn fill(&mut self, data: &StepData, dofs: usize, time_step: f64) {
+    /// Adds the impulses `C_gᵀλ_g` of the step just solved.
+    pub fn add_step(&mut self, data: &StepData, dofs: usize) {
         for (values, group) in self.values.iter_mut().zip(RECORDED_GROUPS) {
             values.resize(dofs, 0.0);
-            data.group_force(group, time_step, values);
+            for (value, impulse) in values.iter_mut().zip(data.solver.group_impulse(group)) {
+                *value += impulse;
+            }
         }
+        self.steps += 1;
+    }
+
+    /// Turns the summed impulses into mean forces over the interval's steps of `time_step`
+    /// (zero forces for an interval without steps, e.g. frame 0), sized for `dofs` DOFs.
+    pub fn finish_interval(&mut self, dofs: usize, time_step: f64) {
+        let duration = self.steps as f64 * time_step;
+        for values in &mut self.values {
+            values.resize(dofs, 0.0);
+            if duration > 0.0 {
+                values.iter_mut().for_each(|v| *v /= duration);
+            }
+        }
+    }
+
+    /// Starts the next interval.
+    pub fn clear(&mut self) {
+        self.values.iter_mut().for_each(|values| values.fill(0.0));
+        self.steps = 0;
     }
 
     /// The forces of one recorded group (empty for a group that is not recorded).

@@ -9,6 +9,7 @@
 //! CGS units throughout.
 
 mod backend;
+mod benchmark_state;
 mod checkpoint;
 mod error;
 mod force_field;
@@ -24,10 +25,12 @@ mod report;
 pub mod rows;
 mod run;
 mod scenario;
+mod scenario_check;
 mod step_data;
 mod world;
 
 pub use backend::DynamicsBackend;
+pub use benchmark_state::{KNOTTED_SCENARIO, KNOTTED_TIME_S, knotted_world};
 pub use checkpoint::{CHECKPOINT_FILE, CHECKPOINT_FORMAT, Checkpoint, ExactF64s};
 pub use error::SimError;
 pub use force_field::{ForceFieldLog, ForceFieldStats};

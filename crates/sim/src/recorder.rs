@@ -24,8 +24,8 @@ use crate::npy::NpyWriter;
 use crate::output_file::OutputFile;
 use crate::report::StepReport;
 
-/// Header of `forces.csv`: generalized constraint forces per joint, axis and group over the
-/// step that ended at the frame (dyn·cm).
+/// Header of `forces.csv`: generalized constraint forces per joint, axis and group, averaged
+/// over the steps since the previous frame (dyn·cm).
 pub const FORCES_HEADER: &str = "frame,time_s,joint,axis,group,value_dyn_cm";
 
 /// Header of `centreline.csv`.
@@ -116,7 +116,7 @@ pub struct Frame<'a> {
     pub centreline: &'a Centreline,
     /// Labels of the DOFs (joint, axis).
     pub labels: &'a [DofLabel],
-    /// Generalized constraint forces of the step that ended at the frame.
+    /// Generalized constraint forces averaged over the steps since the previous frame.
     pub forces: &'a GroupForces,
 }
 

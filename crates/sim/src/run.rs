@@ -156,6 +156,7 @@ pub fn run(
         match world.step(&mut controller) {
             Ok(report) => {
                 recording.last_report = *report;
+                recording.forces.add_step(world.data(), world.model().dof_count());
                 recording.maxima.include(&recording.last_report, world.max_limit_excess());
                 summary.timings.accumulate(&recording.last_report.timings);
             }
@@ -223,7 +224,7 @@ impl Recording {
         world.body_centres(&mut self.centres);
         let knot = analyse_knot(&self.centres, &self.knot_options).ok();
         let dofs = world.model().dof_count();
-        self.forces.fill(world.data(), dofs, world.options().time_step);
+        self.forces.finish_interval(dofs, world.options().time_step);
         let data = world.data();
         let span = KnotSpan::of(&data.self_contacts, &data.centreline);
         let phase = controller.phase_name();
@@ -245,6 +246,7 @@ impl Recording {
         })?;
         summary.maxima.merge(&self.maxima);
         self.maxima = IntervalMaxima::default();
+        self.forces.clear();
         summary.frames += 1;
         summary.steps = world.steps();
         sink.checkpoint(&mut self.checkpoint(world, controller, summary))?;

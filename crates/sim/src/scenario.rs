@@ -22,6 +22,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::SimError;
 use crate::options::StepOptions;
+use crate::scenario_check::check_scenario;
 use crate::world::World;
 
 /// The content of a scenario file.
@@ -75,7 +76,6 @@ impl LoadedScenario {
     }
 
     fn checked(file: DataFile<Scenario>) -> Result<Self, SimError> {
-        validate(&file)?;
         let directory = file.path.parent().unwrap_or(Path::new("."));
         let body = directory.join(&file.value.body);
         let biometrics = Biometrics::load(&body).map_err(|source| match source {
@@ -85,6 +85,7 @@ impl LoadedScenario {
             },
             other => SimError::DataFile(other),
         })?;
+        check_scenario(&file, biometrics.body_count)?;
         let body = std::fs::canonicalize(&body).unwrap_or(body);
         let resolved = Scenario { body, ..file.value };
         Ok(Self { scenario: resolved, biometrics, path: file.path })
@@ -113,39 +114,15 @@ impl LoadedScenario {
         let controller = PhasedController::new(self.scenario.drag, self.scenario.phases.clone());
         Ok((world, controller))
     }
-}
 
-fn validate(file: &DataFile<Scenario>) -> Result<(), AnatomyError> {
-    let s = &file.value;
-    let positive = |name: &'static str, value: f64| {
-        if value.is_finite() && value > 0.0 {
-            Ok(())
-        } else {
-            Err(AnatomyError::OutOfRange {
-                at: file.locate(&Field::whole(name)),
-                field: Field::whole(name),
-                value,
-                expected: "finite and > 0".into(),
-            })
+    /// The world and controller after running the scenario from rest to time `time_s`
+    /// (rounded to whole steps; no recording): e.g. the knotted state of the benchmarks.
+    pub fn build_at(&self, time_s: f64) -> Result<(World, PhasedController), SimError> {
+        let (mut world, mut controller) = self.build()?;
+        let steps = (time_s / self.scenario.time_step_s).round() as u64;
+        for _ in 0..steps {
+            world.step(&mut controller)?;
         }
-    };
-    positive("time_step_s", s.time_step_s)?;
-    positive("duration_s", s.duration_s)?;
-    positive("record_every_s", s.record_every_s)?;
-    if let Some(drag) = s.drag {
-        for (name, value) in [
-            ("linear_dyn_s_per_cm3", drag.linear_dyn_s_per_cm3),
-            ("quadratic_g_per_cm3", drag.quadratic_g_per_cm3),
-        ] {
-            if !(value.is_finite() && value >= 0.0) {
-                return Err(AnatomyError::OutOfRange {
-                    at: file.locate(&Field::whole(name)),
-                    field: Field::whole(name),
-                    value,
-                    expected: "finite and ≥ 0".into(),
-                });
-            }
-        }
+        Ok((world, controller))
     }
-    Ok(())
 }

@@ -129,6 +129,27 @@ pub(crate) struct ActiveSet {
 }
 
 impl ActiveSet {
+    /// Reserves room for problems of up to `dofs` velocities and `rows` rows.
+    pub(crate) fn reserve(&mut self, dofs: usize, rows: usize) {
+        self.bound.reserve(rows);
+        for buffer in [
+            &mut self.lower,
+            &mut self.upper,
+            &mut self.compact,
+            &mut self.border,
+            &mut self.z,
+            &mut self.gradient,
+            &mut self.magnitude,
+        ] {
+            buffer.reserve(rows);
+        }
+        self.ray.reserve(dofs);
+        self.lift.reserve(dofs);
+        self.free.reset(rows);
+        self.saved.reserve(rows + 1);
+        self.implied.reserve(rows);
+    }
+
     /// The free rows and their factor at the end of the last run (for refinement).
     pub(crate) fn free(&self) -> &FreeSet {
         &self.free

@@ -45,6 +45,15 @@ impl ContactSpace {
         }
     }
 
+    /// Reserves room for problems of up to `dofs` velocities and `rows` rows.
+    pub(crate) fn reserve(&mut self, dofs: usize, rows: usize) {
+        self.y.reserve(dofs, rows);
+        self.w.reserve(rows, rows);
+        self.z.reserve(dofs);
+        self.r.reserve(rows);
+        self.b.reserve(rows);
+    }
+
     /// Forms Y = L⁻¹Cᵀ, W = YᵀY, z = L⁻¹f̃ and r = b − Yᵀz for `problem`, with `factor`
     /// holding a factor of its M̃ (M̃ = L Lᵀ).
     pub(crate) fn build(&mut self, factor: &dyn FactoredMass, problem: &Problem<'_>) {

@@ -44,6 +44,13 @@ pub(crate) struct Refinement {
 }
 
 impl Refinement {
+    /// Reserves room for problems of up to `dofs` velocities and `rows` rows.
+    pub(crate) fn reserve(&mut self, dofs: usize, rows: usize) {
+        self.residual.reserve(dofs);
+        self.work.reserve(dofs);
+        self.compact.reserve(rows);
+    }
+
     /// Refines (q̇, λ) in place for at most `max_steps` corrections; returns the number taken.
     pub(crate) fn run(
         &mut self,

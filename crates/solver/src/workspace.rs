@@ -98,6 +98,19 @@ impl SolverWorkspace {
         }
     }
 
+    /// Sizes every buffer for problems of up to `dofs` velocities and `rows` rows, so that
+    /// contact-space solves within those sizes never allocate (larger ones still work and
+    /// grow the buffers).
+    pub fn reserve(&mut self, dofs: usize, rows: usize) {
+        self.dual.reserve(dofs, rows);
+        self.active.reserve(dofs, rows);
+        self.refinement.reserve(dofs, rows);
+        for buffer in [&mut self.velocity, &mut self.residual, &mut self.work] {
+            buffer.reserve(dofs);
+        }
+        self.multipliers.reserve(rows);
+    }
+
     /// The options in use.
     pub fn options(&self) -> &SolverOptions {
         &self.options

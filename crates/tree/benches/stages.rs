@@ -1,16 +1,19 @@
 //! Per-stage timings of the unconstrained step on a 100-body chain with the hagfish's layout
 //! (alternating X-revolute / YZ-universal joints, 0.424 cm bodies, 150 DOFs) in a bent,
 //! moving state. The whole-hagfish benchmarks live in the workspace's `benches/`.
+//!
+//! `scaling/<stage>/<bodies>`: the same stages of the dense reduced path for chains of 100,
+//! 200, 400 and 1000 bodies of the same segment length (so 150 to 1500 DOFs).
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use glam::DVec3;
 use hagfish_tree::*;
 use std::hint::black_box;
 
-fn chain() -> (Model, State) {
+fn chain(bodies: usize) -> (Model, State) {
     let mut builder = ModelBuilder::new();
     let length = 0.424;
-    for i in 0..100usize {
+    for i in 0..bodies {
         let joint = if i % 2 == 0 {
             JointKind::Revolute { axis: DVec3::X }
         } else {
@@ -47,7 +50,7 @@ fn chain() -> (Model, State) {
 }
 
 fn stages(c: &mut Criterion) {
-    let (model, state) = chain();
+    let (model, state) = chain(100);
     let mut data = Data::new(&model);
     let h = 0.01;
     c.bench_function("tree/forward_kinematics", |b| {
@@ -73,5 +76,33 @@ fn stages(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, stages);
+fn scaling(c: &mut Criterion) {
+    let h = 0.01;
+    let mut group = c.benchmark_group("scaling");
+    group.sample_size(10);
+    for bodies in [100, 200, 400, 1000] {
+        let (model, state) = chain(bodies);
+        let mut data = Data::new(&model);
+        forward_kinematics(&model, &state.q, &state.qdot, &mut data);
+        group.bench_function(format!("forward_kinematics/{bodies}"), |b| {
+            b.iter(|| forward_kinematics(&model, black_box(&state.q), &state.qdot, &mut data))
+        });
+        group.bench_function(format!("effective_mass/{bodies}"), |b| {
+            b.iter(|| effective_mass(&model, &mut data, h))
+        });
+        group.bench_function(format!("factor_effective_mass/{bodies}"), |b| {
+            b.iter(|| factor_effective_mass(&mut data, 0.0).expect("SPD"))
+        });
+        group.bench_function(format!("step_unconstrained/{bodies}"), |b| {
+            b.iter_batched_ref(
+                || state.clone(),
+                |s| step_unconstrained(&model, s, h, &mut data).expect("step"),
+                criterion::BatchSize::SmallInput,
+            )
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, stages, scaling);
 criterion_main!(benches);

@@ -77,6 +77,51 @@ pub fn add_point_row(
     }
 }
 
+/// Adds `Σ_k scale_k · nᵀ P_{b_k}(x_k)` to `row` for the points `(b_k, x_k, scale_k)` (at most
+/// 64), in one walk from the highest-numbered body to its root instead of one walk per
+/// point: a DOF a on that path gets `n·v_a C + ((X × n)·ω_a)` with `C = Σ scale_k` and
+/// `X = Σ scale_k x_k` over the points at or below it. Points whose bodies are not on that
+/// path are added one by one ([`add_point_row`]). Equal to the sum of the single-point rows up
+/// to rounding.
+pub fn add_point_rows(
+    model: &Model,
+    data: &Data,
+    points: &[(usize, DVec3, f64)],
+    n: DVec3,
+    row: &mut [f64],
+) {
+    let Some(deepest) = points.iter().map(|p| p.0).max() else { return };
+    if points.len() > 64 {
+        for &(body, x, scale) in points {
+            add_point_row(model, data, body, x, n, scale, row);
+        }
+        return;
+    }
+    let (mut total, mut moment, mut on_path) = (0.0, DVec3::ZERO, 0u64);
+    let mut next = Some(deepest);
+    while let Some(body) = next {
+        for (k, &(b, x, scale)) in points.iter().enumerate() {
+            if b == body {
+                total += scale;
+                moment += scale * x;
+                on_path |= 1 << k;
+            }
+        }
+        let joint = &model.joints()[body];
+        let moment_arm = moment.cross(n);
+        for a in joint.dofs() {
+            let s = &data.axes[a];
+            row[a] += total * n.dot(s.linear) + moment_arm.dot(s.angular);
+        }
+        next = joint.parent;
+    }
+    for (k, &(body, x, scale)) in points.iter().enumerate() {
+        if on_path & (1 << k) == 0 {
+            add_point_row(model, data, body, x, n, scale, row);
+        }
+    }
+}
+
 fn write_spatial(v: &Spatial, mut out: MatMut<'_, f64>, column: usize) {
     let values = [v.angular.x, v.angular.y, v.angular.z, v.linear.x, v.linear.y, v.linear.z];
     for (r, value) in values.into_iter().enumerate() {

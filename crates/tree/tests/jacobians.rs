@@ -6,7 +6,10 @@ mod common;
 use common::*;
 use faer::Mat;
 use glam::DVec3;
-use hagfish_tree::jacobian::{body_bias_acceleration, body_jacobian, body_twist, point_jacobian};
+use hagfish_tree::jacobian::{
+    add_point_row, add_point_rows, body_bias_acceleration, body_jacobian, body_twist,
+    point_jacobian,
+};
 use proptest::prelude::*;
 
 const EPS: f64 = 1e-6;
@@ -106,4 +109,37 @@ fn universal_joint_motion_subspace_matches_closed_form() {
     let s2 = rt * data.axes[1].angular;
     assert!((s1 - DVec3::new(q2.sin(), q2.cos(), 0.0)).length() < 1e-14);
     assert!((s2 - DVec3::Z).length() < 1e-14);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    #[test]
+    fn blended_point_rows_equal_the_sum_of_single_point_rows(
+        (spec, q, _qdot, body, p) in chain_and_state(),
+        scales in proptest::collection::vec(-2.0f64..2.0, 8)
+    ) {
+        let model = build_chain(&spec, DVec3::ZERO, 0.0, 0.0);
+        let (n, bodies) = (model.dof_count(), model.body_count());
+        let data = kinematics_at(&model, &q, &vec![0.0; n]);
+        let normal = DVec3::from(p).normalize_or(DVec3::X);
+        let points: Vec<(usize, DVec3, f64)> = scales
+            .iter()
+            .enumerate()
+            .map(|(k, &scale)| {
+                let b = (body + 3 * k) % bodies;
+                (b, data.body_centre(b) + DVec3::new(0.1 * k as f64, 0.2, -0.1), scale)
+            })
+            .collect();
+        let mut blended = vec![0.0; n];
+        add_point_rows(&model, &data, &points, normal, &mut blended);
+        let mut single = vec![0.0; n];
+        for &(b, x, scale) in &points {
+            add_point_row(&model, &data, b, x, normal, scale, &mut single);
+        }
+        let scale = single.iter().fold(1.0_f64, |m, v| m.max(v.abs()));
+        for (a, (x, y)) in blended.iter().zip(&single).enumerate() {
+            prop_assert!((x - y).abs() <= 1e-12 * scale, "dof {a}: {x} vs {y}");
+        }
+    }
 }

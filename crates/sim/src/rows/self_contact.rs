@@ -7,12 +7,12 @@
 use glam::DVec3;
 use hagfish_geometry::{SelfContact, SplineWeights};
 use hagfish_solver::{RowGroup, RowKind, Rows};
-use hagfish_tree::jacobian::add_point_row;
+use hagfish_tree::jacobian::add_point_rows;
 use hagfish_tree::{Data, Model};
 
 use super::stabilisation::unilateral_rhs;
 
-/// Appends one row per self contact.
+/// Appends one row per self contact (both spline points blended in one walk to the root).
 pub fn add_self_contact_rows(
     model: &Model,
     data: &Data,
@@ -24,8 +24,15 @@ pub fn add_self_contact_rows(
     for contact in contacts {
         let rhs = unilateral_rhs(contact.gap, time_step, push_out);
         let row = rows.push_zeroed(RowKind::Inequality, RowGroup::Contact, rhs);
-        add_spline_point_row(model, data, &contact.weights_b, contact.normal, 1.0, row);
-        add_spline_point_row(model, data, &contact.weights_a, contact.normal, -1.0, row);
+        let mut points = [(0, DVec3::ZERO, 0.0); 2 * SplineWeights::CAPACITY];
+        let mut count = 0;
+        for (weights, sign) in [(&contact.weights_b, 1.0), (&contact.weights_a, -1.0)] {
+            for (body, w) in weights.iter() {
+                points[count] = (body, data.body_centre(body), sign * w);
+                count += 1;
+            }
+        }
+        add_point_rows(model, data, &points[..count], contact.normal, row);
     }
 }
 
@@ -39,7 +46,11 @@ pub fn add_spline_point_row(
     scale: f64,
     row: &mut [f64],
 ) {
+    let mut points = [(0, DVec3::ZERO, 0.0); SplineWeights::CAPACITY];
+    let mut count = 0;
     for (body, w) in weights.iter() {
-        add_point_row(model, data, body, data.body_centre(body), direction, scale * w, row);
+        points[count] = (body, data.body_centre(body), scale * w);
+        count += 1;
     }
+    add_point_rows(model, data, &points[..count], direction, row);
 }

@@ -1,0 +1,114 @@
+//! Per-stage benchmarks of one step in the knotted benchmark state (`form.ron` at
+//! t = 22.65 s, 41–43 self contacts; see `hagfish_sim::knotted_world`), with water drag as the
+//! controller (as `benches/step.rs`):
+//!
+//! kinematics, effective mass M̃ (CRBA), Cholesky factor of M̃, dynamics (M̃, momentum,
+//! forces), broad phase, narrow phase, whole contact detection, constraint rows, contact solve
+//! (with its velocity-product re-solve), integration, and the whole step.
+//!
+//! Stages that change their input (solve, integrate, step) are timed with their input reset
+//! outside the timed region.
+
+use std::time::{Duration, Instant};
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use hagfish_control::WaterDrag;
+use hagfish_geometry::ContactDetector;
+use hagfish_sim::{StepData, knotted_world, pipeline};
+
+fn stages(c: &mut Criterion) {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
+    let (mut world, _) = knotted_world(root.as_ref()).expect("knotted state");
+    let (model, options, state) =
+        (world.model().clone(), world.options().clone(), world.state().clone());
+    let (model, options) = (&model, &options);
+    let h = options.time_step;
+    let mut drag = WaterDrag::default();
+    let mut data = StepData::new(model, options).expect("step data");
+    let mut run_all = |data: &mut StepData| {
+        pipeline::kinematics(model, &state, data);
+        pipeline::detect_contacts(model, options, data).expect("detect");
+        pipeline::control(model, options, &state, data, &mut drag);
+        pipeline::dynamics(model, options, &state, data);
+        pipeline::build_rows(model, options, &state, data);
+    };
+    run_all(&mut data);
+    println!(
+        "knotted state at t = {:.2} s: {} self contacts, {} rows",
+        state.t,
+        data.self_contacts.len(),
+        data.rows.len()
+    );
+    let mut group = c.benchmark_group("knotted");
+    group.bench_function("kinematics", |b| {
+        b.iter(|| pipeline::kinematics(model, &state, &mut data))
+    });
+    group.bench_function("mass_matrix", |b| {
+        b.iter(|| hagfish_tree::effective_mass(model, &mut data.tree, h))
+    });
+    group.bench_function("factor", |b| {
+        b.iter(|| hagfish_tree::factor_effective_mass(&mut data.tree, state.t).expect("SPD"))
+    });
+    group.bench_function("dynamics", |b| {
+        b.iter(|| pipeline::dynamics(model, options, &state, &mut data))
+    });
+    let lengths: Vec<f64> = model.bodies().iter().map(|body| body.length).collect();
+    let mut detector = ContactDetector::new(options.contact).expect("detector");
+    let mut contacts = Vec::new();
+    group.bench_function("broad_phase", |b| {
+        b.iter(|| detector.find_candidates(&data.centreline, &lengths).expect("broad phase"))
+    });
+    group.bench_function("narrow_phase", |b| {
+        b.iter(|| {
+            contacts.clear();
+            detector.search_candidates(&data.centreline, &mut contacts)
+        })
+    });
+    group.bench_function("detect_contacts", |b| {
+        b.iter(|| pipeline::detect_contacts(model, options, &mut data).expect("detect"))
+    });
+    run_all(&mut data);
+    group.bench_function("rows", |b| {
+        b.iter(|| pipeline::build_rows(model, options, &state, &mut data))
+    });
+    group.bench_function("contact_solve", |b| {
+        b.iter_custom(|iterations| {
+            let mut total = Duration::ZERO;
+            for _ in 0..iterations {
+                run_all(&mut data);
+                let start = Instant::now();
+                pipeline::solve_and_resolve(model, options, &state, &mut data).expect("solve");
+                total += start.elapsed();
+            }
+            total
+        })
+    });
+    group.bench_function("integrate", |b| {
+        b.iter_custom(|iterations| {
+            let mut total = Duration::ZERO;
+            for _ in 0..iterations {
+                let mut next = state.clone();
+                let start = Instant::now();
+                hagfish_tree::integrate(&mut next, data.solver.velocity(), h).expect("finite");
+                total += start.elapsed();
+            }
+            total
+        })
+    });
+    group.bench_function("step", |b| {
+        b.iter_custom(|iterations| {
+            let mut total = Duration::ZERO;
+            for _ in 0..iterations {
+                world.set_state(state.clone()).expect("state");
+                let start = Instant::now();
+                world.step(&mut drag).expect("step");
+                total += start.elapsed();
+            }
+            total
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, stages);
+criterion_main!(benches);

@@ -1,0 +1,25 @@
+//! The knotted state that the benchmarks, the allocation test and the peer comparison step:
+//! `data/scenarios/form.ron` run from rest to t = 22.65 s, where the tightened trefoil has
+//! 41–43 self contacts (43 when chosen, the most between 21.5 and 24.5 s; the state is the end
+//! of a 2265-step run, so any change of rounding in a step moves it a little: the benchmarks
+//! print the count).
+
+use std::path::Path;
+
+use hagfish_control::PhasedController;
+
+use crate::error::SimError;
+use crate::scenario::LoadedScenario;
+use crate::world::World;
+
+/// The scenario of the knotted benchmark state, relative to the workspace root.
+pub const KNOTTED_SCENARIO: &str = "data/scenarios/form.ron";
+
+/// Simulated time of the knotted benchmark state (s).
+pub const KNOTTED_TIME_S: f64 = 22.65;
+
+/// The world (and the scenario's controller) at the knotted benchmark state, with the
+/// scenario loaded from `workspace_root`.
+pub fn knotted_world(workspace_root: &Path) -> Result<(World, PhasedController), SimError> {
+    LoadedScenario::load(workspace_root.join(KNOTTED_SCENARIO))?.build_at(KNOTTED_TIME_S)
+}

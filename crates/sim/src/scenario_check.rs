@@ -1,0 +1,168 @@
+//! Checks of a scenario's values after parsing, each failure reported at the value's
+//! `file:line:column`: times and speeds positive, gains and drag non-negative, every number
+//! finite, body indices inside the body.
+//!
+//! Keys used many times (the `speed` of every `Move`, the `v_a` of every contact) are located
+//! by their occurrence in file order, which is the order of the checks below as long as the
+//! fields of each struct keep the documented order (head before tail). A value out of order
+//! is still named, only its position may point at a sibling.
+
+use std::collections::HashMap;
+
+use hagfish_anatomy::{AnatomyError, DataFile, Field};
+use hagfish_control::{FormingScript, Phase, ScriptStep, ThigmoPhase, Waypoint};
+
+use crate::scenario::Scenario;
+
+/// What a value must be.
+#[derive(Clone, Copy)]
+enum Range {
+    Positive,
+    NonNegative,
+    Finite,
+}
+
+impl Range {
+    fn holds(self, value: f64) -> bool {
+        value.is_finite()
+            && match self {
+                Range::Positive => value > 0.0,
+                Range::NonNegative => value >= 0.0,
+                Range::Finite => true,
+            }
+    }
+
+    fn expected(self) -> &'static str {
+        match self {
+            Range::Positive => "finite and > 0",
+            Range::NonNegative => "finite and ≥ 0",
+            Range::Finite => "finite",
+        }
+    }
+}
+
+/// Walks the values in file order, counting the occurrences of each key.
+struct Checker<'a> {
+    file: &'a DataFile<Scenario>,
+    seen: HashMap<&'static str, usize>,
+}
+
+impl Checker<'_> {
+    /// The next occurrence of `key` in file order.
+    fn next_field(&mut self, key: &'static str) -> Field {
+        let count = self.seen.entry(key).or_insert(0);
+        let field = Field::nth(key, *count);
+        *count += 1;
+        field
+    }
+
+    /// Checks the value of the next occurrence of `key`.
+    fn check(&mut self, key: &'static str, value: f64, range: Range) -> Result<(), AnatomyError> {
+        let field = self.next_field(key);
+        if range.holds(value) {
+            return Ok(());
+        }
+        Err(AnatomyError::OutOfRange {
+            at: self.file.locate(&field),
+            field,
+            value,
+            expected: range.expected().into(),
+        })
+    }
+
+    /// Checks the three coordinates of the next occurrence of `key` (a point or offset).
+    fn check_vector(&mut self, key: &'static str, v: [f64; 3]) -> Result<(), AnatomyError> {
+        let field = self.next_field(key);
+        match v.into_iter().find(|x| !x.is_finite()) {
+            None => Ok(()),
+            Some(value) => Err(AnatomyError::OutOfRange {
+                at: self.file.locate(&field),
+                field,
+                value,
+                expected: "finite coordinates (cm)".into(),
+            }),
+        }
+    }
+
+    fn forming(&mut self, script: &FormingScript, bodies: usize) -> Result<(), AnatomyError> {
+        self.check("kp_dyn_per_cm", script.gains.kp_dyn_per_cm, Range::NonNegative)?;
+        self.check("kd_dyn_s_per_cm", script.gains.kd_dyn_s_per_cm, Range::NonNegative)?;
+        self.check("max_force_dyn", script.gains.max_force_dyn, Range::Positive)?;
+        for step in &script.steps {
+            match *step {
+                ScriptStep::Move { to, speed } => {
+                    self.waypoint(to, bodies)?;
+                    self.check("speed", speed, Range::Positive)?;
+                }
+                ScriptStep::Hold(seconds) => self.check("Hold", seconds, Range::NonNegative)?,
+            }
+        }
+        Ok(())
+    }
+
+    fn waypoint(&mut self, to: Waypoint, bodies: usize) -> Result<(), AnatomyError> {
+        match to {
+            Waypoint::Point(p) => self.check_vector("Point", p),
+            Waypoint::FromTarget(p) => self.check_vector("FromTarget", p),
+            Waypoint::FromLoopCentroid(p) => self.check_vector("FromLoopCentroid", p),
+            Waypoint::FromBody { body, offset } => {
+                let field = self.next_field("body");
+                if body >= bodies {
+                    return Err(AnatomyError::OutOfRange {
+                        at: self.file.locate(&field),
+                        field,
+                        value: body as f64,
+                        expected: format!("a body index below {bodies} (0 = head)"),
+                    });
+                }
+                self.check_vector("offset", offset)
+            }
+        }
+    }
+
+    fn thigmotaxis(&mut self, phase: &ThigmoPhase) -> Result<(), AnatomyError> {
+        let p = &phase.parameters;
+        for targets in [p.head, p.tail] {
+            self.check("v_a", targets.v_a, Range::Finite)?;
+            self.check("v_b", targets.v_b, Range::Finite)?;
+        }
+        self.check("tail_pull_dyn", p.tail_pull_dyn, Range::Finite)?;
+        self.check("max_force_dyn", p.max_force_dyn, Range::Positive)?;
+        let until = &phase.until;
+        self.check("seconds", until.seconds, Range::NonNegative)?;
+        for (key, value) in [
+            ("knot_start_below_cm", until.knot_start_below_cm),
+            ("knot_start_above_cm", until.knot_start_above_cm),
+            ("span_below_cm", until.span_below_cm),
+            ("span_above_cm", until.span_above_cm),
+        ] {
+            if let Some(value) = value {
+                self.check(key, value, Range::Finite)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Checks every value of the scenario in `file` for a body of `bodies` bodies.
+pub(crate) fn check_scenario(file: &DataFile<Scenario>, bodies: usize) -> Result<(), AnatomyError> {
+    let s = &file.value;
+    let mut checker = Checker { file, seen: HashMap::new() };
+    // The top-level `body:` (the biometrics file) comes before any `FromBody(body: …)`.
+    checker.next_field("body");
+    checker.check("time_step_s", s.time_step_s, Range::Positive)?;
+    checker.check("duration_s", s.duration_s, Range::Positive)?;
+    checker.check("record_every_s", s.record_every_s, Range::Positive)?;
+    if let Some(drag) = s.drag {
+        checker.check("linear_dyn_s_per_cm3", drag.linear_dyn_s_per_cm3, Range::NonNegative)?;
+        checker.check("quadratic_g_per_cm3", drag.quadratic_g_per_cm3, Range::NonNegative)?;
+    }
+    for phase in &s.phases {
+        match phase {
+            Phase::Form(script) => checker.forming(script, bodies)?,
+            Phase::Hold(seconds) => checker.check("Hold", *seconds, Range::NonNegative)?,
+            Phase::Thigmotaxis(phase) => checker.thigmotaxis(phase)?,
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,55 @@
+//! A step allocates nothing once warm. Two knotted states are stepped on with their
+//! scenario's own controller: the knotted benchmark state (`form.ron` at t = 22.65 s, about
+//! 40 self contacts, knot-forming pull) and `thesis.ron` at t = 21 s (thigmotaxis rows).
+//! After warm-up steps the next steps must not touch the heap (counted by an instrumented
+//! global allocator). One test function: the counter is global, so nothing else may run
+//! alongside.
+
+use std::alloc::System;
+
+use hagfish_control::PhasedController;
+use hagfish_sim::{LoadedScenario, World, knotted_world};
+use stats_alloc::{INSTRUMENTED_SYSTEM, Region, StatsAlloc};
+
+#[global_allocator]
+static GLOBAL: &StatsAlloc<System> = &INSTRUMENTED_SYSTEM;
+
+/// Steps after the knotted state before counting (buffers reach their working size).
+const WARM_UP_STEPS: usize = 20;
+/// Steps counted.
+const COUNTED_STEPS: usize = 200;
+
+/// Steps `world` warm, then counts allocations over [`COUNTED_STEPS`] steps; asserts that
+/// the stretch is knotted (≥ 20 self contacts at some step) and that nothing was allocated.
+fn assert_steps_do_not_allocate(label: &str, world: &mut World, controller: &mut PhasedController) {
+    for _ in 0..WARM_UP_STEPS {
+        world.step(controller).expect("warm-up step");
+    }
+    let mut contacts = Vec::with_capacity(COUNTED_STEPS);
+    let mut thigmo_rows = 0;
+    let region = Region::new(GLOBAL);
+    for _ in 0..COUNTED_STEPS {
+        let report = world.step(controller).expect("step");
+        contacts.push(report.self_contacts);
+        thigmo_rows += world.data().actuation.thigmo.len();
+    }
+    let change = region.change();
+    let most = contacts.iter().copied().max().unwrap_or(0);
+    println!("{label}: up to {most} self contacts, {thigmo_rows} thigmotaxis requests");
+    assert!(most >= 20, "{label}: not knotted, at most {most} self contacts");
+    assert_eq!(
+        (change.allocations, change.reallocations),
+        (0, 0),
+        "{label}: {COUNTED_STEPS} knotted steps allocated: {change:?}"
+    );
+}
+
+#[test]
+fn knotted_steps_do_not_allocate() {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
+    let (mut world, mut controller) = knotted_world(root.as_ref()).expect("knotted state");
+    assert_steps_do_not_allocate("form.ron", &mut world, &mut controller);
+    let thesis = LoadedScenario::load(format!("{root}/data/scenarios/thesis.ron")).expect("loads");
+    let (mut world, mut controller) = thesis.build_at(21.0).expect("thesis at 21 s");
+    assert_steps_do_not_allocate("thesis.ron", &mut world, &mut controller);
+}

@@ -1,0 +1,86 @@
+//! `cargo xtask <task>`: project tasks that are programs rather than tests.
+//!
+//! - `regress [--check | --bless] [SCENARIO…]`: runs every scenario of `data/scenarios`,
+//!   compares its metrics with the golden in `data/regress/<scenario>.ron` (`--check`, the
+//!   default) or rewrites the goldens (`--bless`). See `regress.rs`.
+//! - `knotted [--export PATH] [--steps N] [--repeat R] [--time-step H]`: exports and times
+//!   the knotted benchmark state (`knotted.rs`).
+
+mod golden;
+mod knotted;
+mod metrics;
+mod regress;
+mod table;
+mod tolerance;
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+/// Command line of `cargo xtask`.
+#[derive(Parser)]
+#[command(name = "cargo xtask", about = "hagfish project tasks")]
+struct Cli {
+    #[command(subcommand)]
+    task: Task,
+}
+
+/// The tasks.
+#[derive(Subcommand)]
+enum Task {
+    /// Runs the scenarios and compares their metrics with the goldens in `data/regress`.
+    Regress {
+        /// Compare with the goldens and fail on a difference (the default).
+        #[arg(long, conflicts_with = "bless")]
+        check: bool,
+        /// Rewrite the goldens from this build's results.
+        #[arg(long)]
+        bless: bool,
+        /// Scenario names (file stems in `data/scenarios`); all when none are given.
+        scenarios: Vec<String>,
+    },
+    /// Exports the knotted benchmark state as JSON and times passive steps from it.
+    Knotted {
+        /// Write the model and state as JSON to this file.
+        #[arg(long)]
+        export: Option<PathBuf>,
+        /// Steps per timed run (0: no timing).
+        #[arg(long, default_value_t = 100)]
+        steps: usize,
+        /// Timed runs from the knotted state.
+        #[arg(long, default_value_t = 20)]
+        repeat: usize,
+        /// Time step of the timed runs (s).
+        #[arg(long, default_value_t = 0.01)]
+        time_step: f64,
+    },
+}
+
+/// The workspace root (the parent of this package's directory).
+fn workspace_root() -> PathBuf {
+    let manifest = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    manifest.parent().map_or(manifest.clone(), PathBuf::from)
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.task {
+        Task::Regress { check: _, bless, scenarios } => {
+            let mode = if bless { regress::Mode::Bless } else { regress::Mode::Check };
+            regress::run(&workspace_root(), mode, &scenarios)
+        }
+        Task::Knotted { export, steps, repeat, time_step } => {
+            let request = knotted::Request { export: export.as_deref(), steps, repeat, time_step };
+            knotted::run(&workspace_root(), &request).map(|()| true)
+        }
+    };
+    match result {
+        Ok(true) => ExitCode::SUCCESS,
+        Ok(false) => ExitCode::FAILURE,
+        Err(message) => {
+            eprintln!("error: {message}");
+            ExitCode::from(2)
+        }
+    }
+}
