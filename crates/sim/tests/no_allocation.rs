@@ -1,6 +1,7 @@
 //! A step allocates nothing once warm. Two knotted states are stepped on with their
 //! scenario's own controller: the knotted benchmark state (`form.ron` at t = 22.65 s, about
-//! 40 self contacts, knot-forming pull) and `thesis.ron` at t = 21 s (thigmotaxis rows).
+//! 40 self contacts, knot-forming pull; on both dynamics backends) and `thesis.ron` at
+//! t = 21 s (thigmotaxis rows).
 //! After warm-up steps the next steps must not touch the heap (counted by an instrumented
 //! global allocator). One test function: the counter is global, so nothing else may run
 //! alongside.
@@ -8,7 +9,7 @@
 use std::alloc::System;
 
 use hagfish_control::PhasedController;
-use hagfish_sim::{LoadedScenario, World, knotted_world};
+use hagfish_sim::{DynamicsBackend, LoadedScenario, StepOptions, World, knotted_world};
 use stats_alloc::{INSTRUMENTED_SYSTEM, Region, StatsAlloc};
 
 #[global_allocator]
@@ -48,7 +49,13 @@ fn assert_steps_do_not_allocate(label: &str, world: &mut World, controller: &mut
 fn knotted_steps_do_not_allocate() {
     let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
     let (mut world, mut controller) = knotted_world(root.as_ref()).expect("knotted state");
+    let sparse_options =
+        StepOptions { backend: DynamicsBackend::SparseMaximal, ..world.options().clone() };
+    let mut sparse = World::new(world.model().clone(), sparse_options, world.state().clone())
+        .expect("sparse world");
+    let mut sparse_controller = controller.clone();
     assert_steps_do_not_allocate("form.ron", &mut world, &mut controller);
+    assert_steps_do_not_allocate("form.ron, sparse backend", &mut sparse, &mut sparse_controller);
     let thesis = LoadedScenario::load(format!("{root}/data/scenarios/thesis.ron")).expect("loads");
     let (mut world, mut controller) = thesis.build_at(21.0).expect("thesis at 21 s");
     assert_steps_do_not_allocate("thesis.ron", &mut world, &mut controller);
