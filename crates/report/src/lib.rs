@@ -6,7 +6,7 @@
 //! - `plots/`: force kymographs of the thigmotaxic force field per axis (joint × time),
 //!   knot position and contact span against time, contact counts against time; PNG and SVG
 //!   (plotters, with an embedded subset of DejaVu Sans).
-//! - `animation.gif`: the body as shaded tubes, top and side view ([`raster`] is a small
+//! - `animation.gif`: the body as shaded tubes, top and side view (`raster` is a small
 //!   software rasteriser with a depth buffer).
 //! - `report.html`: one offline page with the summary, the plots, the animation, the
 //!   scenario and manifest, and a WebGL view scrubbed by a time slider.

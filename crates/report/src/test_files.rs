@@ -57,7 +57,7 @@ pub fn synthetic(name: &str) -> PathBuf {
             let _ = writeln!(centreline, "{f},{t:.4},{b},{},{},0", b as f64, (f * b) as f64);
         }
         let _ =
-            writeln!(metrics, "{f},{t:.4},form,{f},0,0_1,1.000,,,,0,0,0,0,,,,,Kkt,Solved,1,0,0e0");
+            writeln!(metrics, "{f},{t:.4},form,{f},0,0_1,1.000,,,,0,0,0,0,,,,,,,Kkt,Solved,1,0,0e0");
         for j in 0..2 {
             for (axis, group) in [("X", "thigmo"), ("Y", "thigmo"), ("Y", "limit")] {
                 let _ = writeln!(forces, "{f},{t:.4},{j},{axis},{group},{}", f + j);

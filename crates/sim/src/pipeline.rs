@@ -192,7 +192,7 @@ pub fn step(
 
 /// Stage 6 with its re-solves: solve; then, while something changed (a velocity-product
 /// refresh is due, or a joint would overshoot a limit without a row), solve again, at most
-/// [`MAX_RESOLVES`] more times.
+/// `MAX_RESOLVES` (4) more times.
 pub fn solve_and_resolve(
     model: &Model,
     options: &StepOptions,

@@ -38,7 +38,7 @@ pub const METRICS_HEADER: &str = "frame,time_s,phase,self_contacts,wall_contacts
 knot,knot_agreement,knot_first_body,knot_last_body,knot_position_cm,\
 max_self_penetration_cm,max_self_penetration_rel,max_wall_penetration_cm,max_limit_excess_deg,\
 contacts_start_cm,contacts_end_cm,first_contact_cm,last_contact_cm,\
-solver_path,solver_status,solver_iterations,slack_rows,slack_max_cm_s";
+contact_span_cm,contact_midpoint_cm,solver_path,solver_status,solver_iterations,slack_rows,slack_max_cm_s";
 
 /// Header of `contacts.csv`: the self contacts of the step that ended at the frame (detected
 /// at its start): spline parameters, arc lengths from the head, gap and the two points.
@@ -245,10 +245,15 @@ impl Recorder {
             None => Default::default(),
         };
         let (s, m) = (frame.step, frame.maxima);
-        let span = frame.span.map_or(",,,".to_string(), |k| {
+        let span = frame.span.map_or(",,,,,".to_string(), |k| {
             format!(
-                "{:.3},{:.3},{:.3},{:.3}",
-                k.start_cm, k.end_cm, k.first_contact_cm, k.last_contact_cm
+                "{:.3},{:.3},{:.3},{:.3},{:.3},{:.3}",
+                k.start_cm,
+                k.end_cm,
+                k.first_contact_cm,
+                k.last_contact_cm,
+                k.length_cm(),
+                k.midpoint_cm()
             )
         });
         self.metrics.line(format_args!(

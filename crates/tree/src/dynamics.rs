@@ -1,4 +1,4 @@
-//! Stage 2, forces in reduced coordinates (the mass matrix is in [`crate::mass_matrix`]).
+//! Stage 2, forces in reduced coordinates (the mass matrix is in the `mass_matrix` module).
 //!
 //! - Inverse dynamics by recursive Newton–Euler in world coordinates: body accelerations
 //!   `A_i + Σ s_a q̈_a`, body wrenches `w_i = I_i a_i + V_i ×* (I_i V_i) − w_applied,i`
