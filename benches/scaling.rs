@@ -29,55 +29,14 @@ use faer::sparse::{SparseColMat, Triplet};
 use faer::{Conj, MatMut, Par, Side};
 use glam::DVec3;
 use hagfish_control::Passive;
-use hagfish_sim::{DynamicsBackend, StepOptions, World, pipeline};
+use hagfish_sim::{DynamicsBackend, StepOptions, World, pipeline, segment_chain};
 use hagfish_solver::FactoredMass;
 use hagfish_sparse::TreeFactor;
-use hagfish_tree::{
-    BodySpec, Data, DofParams, JointKind, Model, ModelBuilder, Spatial, State, Transform,
-};
+use hagfish_tree::{Data, Model, Spatial, State};
 use std::time::Duration;
 
 const BACKENDS: [DynamicsBackend; 2] =
     [DynamicsBackend::DenseReduced, DynamicsBackend::SparseMaximal];
-
-fn chain(bodies: usize) -> Model {
-    let mut builder = ModelBuilder::new();
-    let length = 0.424;
-    for i in 0..bodies {
-        let (joint, limit) = if i % 2 == 0 {
-            (JointKind::Revolute { axis: DVec3::X }, 48f64.to_radians())
-        } else {
-            (JointKind::UniversalYz, 45f64.to_radians())
-        };
-        let (mass, radius) = (0.8, 0.85);
-        let transverse = mass * (3.0 * radius * radius + length * length) / 12.0;
-        builder.add_body(BodySpec {
-            parent: i.checked_sub(1),
-            joint,
-            joint_offset: Transform::from_translation(DVec3::new(
-                if i == 0 { 0.0 } else { length },
-                0.0,
-                0.0,
-            )),
-            body_offset: Transform::from_translation(DVec3::new(length / 2.0, 0.0, 0.0)),
-            mass,
-            principal_inertia: DVec3::new(0.5 * mass * radius * radius, transverse, transverse),
-            radius,
-            length,
-            dofs: vec![
-                DofParams {
-                    stiffness: 1.0,
-                    damping: 0.1,
-                    lower: -limit,
-                    upper: limit,
-                    ..DofParams::default()
-                };
-                joint.dof_count()
-            ],
-        });
-    }
-    builder.build().expect("valid chain")
-}
 
 /// Moving and slightly bent (0.2 rad amplitude, or 0.02 rad with `at_limits`); with
 /// `at_limits`, the first DOF of every 4th universal joint 1° inside its ±45° limit, in
@@ -273,7 +232,7 @@ fn scaling(c: &mut Criterion) {
     group.sample_size(10).warm_up_time(Duration::from_secs(1));
     group.measurement_time(Duration::from_secs(3));
     for bodies in [100, 200, 400, 1000] {
-        let model = chain(bodies);
+        let model = segment_chain(bodies).expect("chain");
         bench_factor_solve(&mut group, &model);
         bench_faer_ldlt(&mut group, &model);
         for backend in BACKENDS {

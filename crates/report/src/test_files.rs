@@ -56,8 +56,10 @@ pub fn synthetic(name: &str) -> PathBuf {
         for b in 0..4 {
             let _ = writeln!(centreline, "{f},{t:.4},{b},{},{},0", b as f64, (f * b) as f64);
         }
-        let _ =
-            writeln!(metrics, "{f},{t:.4},form,{f},0,0_1,1.000,,,,0,0,0,0,,,,,,,Kkt,Solved,1,0,0e0");
+        let _ = writeln!(
+            metrics,
+            "{f},{t:.4},form,{f},0,0_1,1.000,,,,0,0,0,0,,,,,,,Kkt,Solved,1,0,0e0"
+        );
         for j in 0..2 {
             for (axis, group) in [("X", "thigmo"), ("Y", "thigmo"), ("Y", "limit")] {
                 let _ = writeln!(forces, "{f},{t:.4},{j},{axis},{group},{}", f + j);

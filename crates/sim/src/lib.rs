@@ -9,6 +9,7 @@
 //! CGS units throughout.
 
 mod backend;
+mod benchmark_chain;
 mod benchmark_state;
 mod checkpoint;
 mod error;
@@ -30,6 +31,7 @@ mod step_data;
 mod world;
 
 pub use backend::DynamicsBackend;
+pub use benchmark_chain::segment_chain;
 pub use benchmark_state::{KNOTTED_SCENARIO, KNOTTED_TIME_S, knotted_world};
 pub use checkpoint::{CHECKPOINT_FILE, CHECKPOINT_FORMAT, Checkpoint, ExactF64s};
 pub use error::SimError;

@@ -10,7 +10,7 @@ use glam::DVec3;
 use hagfish_control::{Actuation, ControlContext, Controller, WaterDrag};
 use hagfish_sim::{DynamicsBackend, LoadedScenario, StepOptions, World};
 use hagfish_solver::{RowGroup, SolvePath};
-use hagfish_tree::{BodySpec, DofParams, JointKind, Model, ModelBuilder, State, Transform};
+use hagfish_tree::{Model, State};
 
 fn relative_error(a: &[f64], b: &[f64]) -> f64 {
     let diff: f64 = a.iter().zip(b).map(|(x, y)| (x - y).powi(2)).sum::<f64>().sqrt();
@@ -169,50 +169,9 @@ fn the_sparse_backend_ties_the_trefoil_of_form_ron() {
     assert!(max_penetration < 0.05, "max self penetration {max_penetration} of the radius");
 }
 
-/// A chain of `bodies` ES103-like segments (0.424 cm, alternating X-revolute / YZ-universal,
-/// ±45° bending and ±48° twist limits).
-fn long_chain(bodies: usize) -> Model {
-    let mut builder = ModelBuilder::new();
-    let length = 0.424;
-    for i in 0..bodies {
-        let (joint, limit) = if i % 2 == 0 {
-            (JointKind::Revolute { axis: DVec3::X }, 48f64.to_radians())
-        } else {
-            (JointKind::UniversalYz, 45f64.to_radians())
-        };
-        let (mass, radius) = (0.8, 0.85);
-        let transverse = mass * (3.0 * radius * radius + length * length) / 12.0;
-        builder.add_body(BodySpec {
-            parent: i.checked_sub(1),
-            joint,
-            joint_offset: Transform::from_translation(DVec3::new(
-                if i == 0 { 0.0 } else { length },
-                0.0,
-                0.0,
-            )),
-            body_offset: Transform::from_translation(DVec3::new(length / 2.0, 0.0, 0.0)),
-            mass,
-            principal_inertia: DVec3::new(0.5 * mass * radius * radius, transverse, transverse),
-            radius,
-            length,
-            dofs: vec![
-                DofParams {
-                    stiffness: 1.0,
-                    damping: 0.1,
-                    lower: -limit,
-                    upper: limit,
-                    ..DofParams::default()
-                };
-                joint.dof_count()
-            ],
-        });
-    }
-    builder.build().expect("valid chain")
-}
-
 #[test]
 fn a_thousand_body_chain_steps_stably_on_the_sparse_backend() {
-    let model = long_chain(1000);
+    let model = hagfish_sim::segment_chain(1000).expect("chain");
     let options = StepOptions {
         backend: DynamicsBackend::SparseMaximal,
         wall: None,
