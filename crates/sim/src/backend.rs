@@ -8,11 +8,12 @@ use hagfish_tree::Model;
 
 use crate::step_data::StepData;
 
-/// The backend of the dynamics and solve stages (a [`crate::StepOptions`] field).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+/// The backend of the dynamics and solve stages (a [`crate::StepOptions`] field, and the
+/// `backend` of a scenario file).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 pub enum DynamicsBackend {
     /// Dense reduced `M̃ = M + h Jᵀ C_m J + hD + h²K` by CRBA, factored by dense Cholesky.
-    /// Cubic in the number of bodies; fastest up to ~100 bodies.
+    /// Cubic in the number of bodies; the reference path (the goldens are blessed on it).
     #[default]
     DenseReduced,
     /// Body twists and joint constraints, `[Ĩ, 0, Gᵀ; 0, K̃, −Sᵀ; G, −S, 0]`, eliminated

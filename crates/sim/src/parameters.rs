@@ -54,6 +54,12 @@ pub const PARAMETERS: &[Parameter] = &[
     ),
     p("phases", "-", "required", "the phases of control, in order; passive after the last"),
     p(
+        "backend",
+        "-",
+        "DenseReduced",
+        "velocity-step linear algebra: DenseReduced, or SparseMaximal (linear in the bodies)",
+    ),
+    p(
         "phases[].Form",
         "-",
         "-",
@@ -232,6 +238,7 @@ mod tests {
             duration_s: 1.0,
             record_every_s: 0.1,
             drag: Some(WaterDrag::default()),
+            backend: crate::DynamicsBackend::SparseMaximal,
             phases: vec![
                 Phase::Form(FormingScript {
                     gains: TailGains::default(),
@@ -306,6 +313,7 @@ mod tests {
             |name: &str| PARAMETERS.iter().find(|p| p.name == name).map(|p| p.default).expect(name);
         assert_eq!(default("record_every_s").parse::<f64>().ok(), Some(scenario.record_every_s));
         assert_eq!(default("drag"), "None");
+        assert_eq!(default("backend"), format!("{:?}", scenario.backend));
         assert!(scenario.drag.is_none());
         let Some(Phase::Thigmotaxis(phase)) = scenario.phases.first() else {
             panic!("one thigmotaxis phase")

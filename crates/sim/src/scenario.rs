@@ -20,6 +20,7 @@ use hagfish_control::{Phase, PhasedController, WaterDrag};
 use hagfish_tree::State;
 use serde::{Deserialize, Serialize};
 
+use crate::backend::DynamicsBackend;
 use crate::error::SimError;
 use crate::options::StepOptions;
 use crate::scenario_check::check_scenario;
@@ -45,6 +46,10 @@ pub struct Scenario {
     pub drag: Option<WaterDrag>,
     /// The phases of control, in order.
     pub phases: Vec<Phase>,
+    /// The linear algebra of the velocity step: `DenseReduced` (default) or `SparseMaximal`
+    /// (linear in the number of bodies, for long bodies; same answer up to rounding).
+    #[serde(default)]
+    pub backend: DynamicsBackend,
 }
 
 fn default_record_every() -> f64 {
@@ -108,8 +113,11 @@ impl LoadedScenario {
     pub fn build(&self) -> Result<(World, PhasedController), SimError> {
         let model = self.biometrics.to_model()?;
         let state = State::rest(&model);
-        let options =
-            StepOptions { time_step: self.scenario.time_step_s, ..StepOptions::default() };
+        let options = StepOptions {
+            time_step: self.scenario.time_step_s,
+            backend: self.scenario.backend,
+            ..StepOptions::default()
+        };
         let world = World::new(model, options, state)?;
         let controller = PhasedController::new(self.scenario.drag, self.scenario.phases.clone());
         Ok((world, controller))
@@ -124,5 +132,27 @@ impl LoadedScenario {
             world.step(&mut controller)?;
         }
         Ok((world, controller))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `tests/data/form.ron` with `backend` set, parsed as if it sat in `tests/data/`.
+    fn short_form_with(backend: &str) -> LoadedScenario {
+        let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
+        let path = Path::new(root).join("tests/data/form.ron");
+        let text = std::fs::read_to_string(&path).expect("tests/data/form.ron");
+        let text = text.replace("phases: [", &format!("{backend}phases: ["));
+        LoadedScenario::parse(text.as_bytes(), &path).expect("parses")
+    }
+
+    #[test]
+    fn the_backend_of_a_scenario_reaches_the_step_options() {
+        let (world, _) = short_form_with("backend: SparseMaximal, ").build().expect("builds");
+        assert_eq!(world.options().backend, DynamicsBackend::SparseMaximal);
+        let (world, _) = short_form_with("").build().expect("builds");
+        assert_eq!(world.options().backend, DynamicsBackend::DenseReduced);
     }
 }
