@@ -2,6 +2,9 @@
 //! fixed, and joint limits and the wall hold while a force drives the tail around for 10 s at
 //! h = 0.01 s; and one test per row type with hand-checked signs on small chains.
 
+mod common;
+
+use common::SweepingTailForce;
 use glam::DVec3;
 use hagfish_control::{Actuation, ControlContext, Controller, Passive, PointForce};
 use hagfish_sim::{StepOptions, World};
@@ -11,23 +14,6 @@ use hagfish_tree::{BodySpec, Data, DofParams, JointKind, Model, ModelBuilder, St
 fn hagfish() -> Model {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/hagfish/es103.ron");
     hagfish_anatomy::Biometrics::load(path).and_then(|b| b.to_model()).expect("ES103 builds")
-}
-
-/// A force on the tail body's centre that sweeps around the body axis and pulls toward the
-/// wall, so the tail is dragged around, bends joints into their limits and meets the wall.
-struct SweepingTailForce(f64);
-
-impl Controller for SweepingTailForce {
-    fn control(&mut self, context: &ControlContext<'_>, out: &mut Actuation) {
-        let tail = context.model.body_count() - 1;
-        let phase = 1.5 * context.state.t;
-        let direction = DVec3::new(-1.0, phase.cos(), phase.sin()).normalize();
-        out.forces.push(PointForce {
-            body: tail,
-            point: context.centre(tail),
-            force: direction * self.0,
-        });
-    }
 }
 
 /// A constant force at the centre of one body.

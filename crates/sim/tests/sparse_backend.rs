@@ -6,8 +6,10 @@
 //! the whole `form.ron` run on it ties the same trefoil, and a 1000-body chain steps stably
 //! on it.
 
-use glam::DVec3;
-use hagfish_control::{Actuation, ControlContext, Controller, WaterDrag};
+mod common;
+
+use common::SweepingTailForce;
+use hagfish_control::{Controller, WaterDrag};
 use hagfish_sim::{DynamicsBackend, LoadedScenario, StepOptions, World};
 use hagfish_solver::{RowGroup, SolvePath};
 use hagfish_tree::{Model, State};
@@ -77,23 +79,6 @@ fn compare_one_step(
 fn form_scenario() -> LoadedScenario {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/scenarios/form.ron");
     LoadedScenario::load(path).expect("form.ron loads")
-}
-
-/// A force on the tail body's centre that sweeps around the body axis and pulls toward the
-/// wall: the tail bends joints into their limits and meets the wall.
-struct SweepingTailForce(f64);
-
-impl Controller for SweepingTailForce {
-    fn control(&mut self, context: &ControlContext<'_>, out: &mut Actuation) {
-        let tail = context.model.body_count() - 1;
-        let phase = 1.5 * context.state.t;
-        let direction = DVec3::new(-1.0, phase.cos(), phase.sin()).normalize();
-        out.forces.push(hagfish_control::PointForce {
-            body: tail,
-            point: context.centre(tail),
-            force: direction * self.0,
-        });
-    }
 }
 
 #[test]
