@@ -166,19 +166,9 @@ impl Recorder {
             file.flush()?;
             Ok(file)
         };
-        let [centreline, metrics, forces, contacts] = CSV_FILES.map(csv);
-        let [q, qdot, thigmo] =
-            NPY_FILES.map(|name| NpyWriter::create(&directory.join(name), dofs));
-        Ok(Self {
-            directory: directory.to_path_buf(),
-            centreline: centreline?,
-            metrics: metrics?,
-            forces: forces?,
-            contacts: contacts?,
-            q: q?,
-            qdot: qdot?,
-            thigmo: thigmo?,
-        })
+        let csv = CSV_FILES.map(csv);
+        let npy = NPY_FILES.map(|name| NpyWriter::create(&directory.join(name), dofs));
+        Self::from_files(directory, csv, npy)
     }
 
     /// Reopens the output files in `directory` as they were at `checkpoint`: every file is cut
@@ -196,12 +186,23 @@ impl Recorder {
                 }
             })
         };
-        let [centreline, metrics, forces, contacts] = CSV_FILES.map(|(name, _)| {
+        let csv = CSV_FILES.map(|(name, _)| {
             length(name).and_then(|l| OutputFile::reopen(&directory.join(name), l))
         });
         let frames = checkpoint.frames;
-        let [q, qdot, thigmo] =
-            NPY_FILES.map(|name| NpyWriter::reopen(&directory.join(name), dofs, frames));
+        let npy = NPY_FILES.map(|name| NpyWriter::reopen(&directory.join(name), dofs, frames));
+        Self::from_files(directory, csv, npy)
+    }
+
+    /// The recorder of `directory` from its opened CSV files (in [`CSV_FILES`] order) and
+    /// `.npy` writers (in [`NPY_FILES`] order), or the first error among them.
+    fn from_files(
+        directory: &Path,
+        csv: [Result<OutputFile, SimError>; 4],
+        npy: [Result<NpyWriter, SimError>; 3],
+    ) -> Result<Self, SimError> {
+        let [centreline, metrics, forces, contacts] = csv;
+        let [q, qdot, thigmo] = npy;
         Ok(Self {
             directory: directory.to_path_buf(),
             centreline: centreline?,

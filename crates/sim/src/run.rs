@@ -139,17 +139,24 @@ pub fn run(
     let steps = (scenario.duration_s / scenario.time_step_s).round() as u64;
     let record_every = ((scenario.record_every_s / scenario.time_step_s).round() as u64).max(1);
     let mut recording = Recording::new(&world, loaded.hash());
-    if options.resume.is_none() {
-        recording.frame(
-            &mut world,
-            &controller,
-            &mut summary,
-            sink,
-            progress,
-            scenario.duration_s,
-        )?;
-    }
+    // Frame 0 is the initial state; a resumed run recorded its last frame before it stopped.
+    let mut record = options.resume.is_none();
     let end = loop {
+        if record {
+            recording.frame(
+                &mut world,
+                &controller,
+                &mut summary,
+                sink,
+                progress,
+                scenario.duration_s,
+            )?;
+            let stop = options.stop_after_frame.is_some_and(|k| summary.frames > k)
+                || options.stop.is_some_and(|flag| flag.load(Ordering::Relaxed));
+            if stop && world.steps() < steps {
+                break RunEnd::Interrupted;
+            }
+        }
         if world.steps() >= steps {
             break RunEnd::Completed;
         }
@@ -165,22 +172,7 @@ pub fn run(
                 break RunEnd::Diverged { error, at };
             }
         }
-        if world.steps() % record_every != 0 {
-            continue;
-        }
-        recording.frame(
-            &mut world,
-            &controller,
-            &mut summary,
-            sink,
-            progress,
-            scenario.duration_s,
-        )?;
-        let stop = options.stop_after_frame.is_some_and(|k| summary.frames > k)
-            || options.stop.is_some_and(|flag| flag.load(Ordering::Relaxed));
-        if stop && world.steps() < steps {
-            break RunEnd::Interrupted;
-        }
+        record = world.steps() % record_every == 0;
     };
     summary.steps = world.steps();
     Ok(RunOutcome { summary, end, state: world.state().clone() })
