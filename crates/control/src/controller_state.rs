@@ -79,7 +79,7 @@ mod tests {
     fn a_saved_state_comes_back_and_a_foreign_one_is_refused() {
         let phases = vec![form(), Phase::Hold(1.0)];
         let saved = ControllerState {
-            phases: PhaseProgress { phase: 1, started_at: 2.5 },
+            phases: PhaseProgress { phase: 1, started_at: 2.5, condition_since: Some(2.7) },
             forming: Some(ScriptProgress {
                 step: 1,
                 started_at: Some(1.5),
@@ -98,12 +98,14 @@ mod tests {
             mismatch(&ControllerState { forming: None, ..saved }),
             "Form phase without progress"
         );
-        let beyond = PhaseProgress { phase: 3, started_at: 0.0 };
+        let beyond = PhaseProgress { phase: 3, started_at: 0.0, condition_since: None };
         assert!(mismatch(&ControllerState { phases: beyond, ..saved }), "phase beyond the last");
         let passive = controller(vec![Phase::Hold(1.0)]).restore(&saved);
         assert!(passive.is_err(), "forming progress without a Form phase");
-        let finished =
-            ControllerState { phases: PhaseProgress { phase: 2, started_at: 3.5 }, ..saved };
+        let finished = ControllerState {
+            phases: PhaseProgress { phase: 2, started_at: 3.5, condition_since: None },
+            ..saved
+        };
         assert!(!mismatch(&finished), "after the last phase the forming script is kept");
     }
 }

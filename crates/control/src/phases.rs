@@ -39,12 +39,19 @@ fn default_thigmo_name() -> String {
 }
 
 /// End conditions of a phase; it ends at the first that holds. The knot conditions read the
-/// self contacts of the step ([`KnotSpan`]); without contacts only the duration counts.
+/// self contacts of the step ([`KnotSpan`]) and must hold without interruption for
+/// `hold_s`; without contacts only the duration counts.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Until {
     /// Longest duration (s).
     pub seconds: f64,
+    /// How long a knot condition must hold without interruption before the phase ends (s,
+    /// default 0: at the first step it holds). The contact span flickers by 1–2 cm between
+    /// steps as contacts at the knot's ends appear and vanish at the margin; a few tenths of a
+    /// second keep one flicker from ending a phase.
+    #[serde(default)]
+    pub hold_s: f64,
     /// Ends once the knot's anterior end is this close to the head (cm of arc length).
     #[serde(default)]
     pub knot_start_below_cm: Option<f64>,
@@ -60,8 +67,24 @@ pub struct Until {
 }
 
 impl Until {
-    /// True once the phase that started `elapsed` seconds ago with the knot at `span` is over.
-    pub fn reached(&self, elapsed: f64, span: Option<&KnotSpan>) -> bool {
+    /// Whether a phase that started `elapsed` seconds ago is over at time `t` with the knot at
+    /// `span`: its duration has passed, or a knot condition has held since `since` for at least
+    /// `hold_s`. Updates `since` (the phase's [`PhaseProgress::condition_since`]): set when a
+    /// knot condition starts to hold, cleared when none holds.
+    pub fn over(
+        &self,
+        t: f64,
+        elapsed: f64,
+        span: Option<&KnotSpan>,
+        since: &mut Option<f64>,
+    ) -> bool {
+        *since = if self.knot_condition(span) { Some(since.unwrap_or(t)) } else { None };
+        elapsed >= self.seconds || since.is_some_and(|since| t - since >= self.hold_s)
+    }
+
+    /// True once a knot condition holds for the knot at `span` (the duration and `hold_s`
+    /// are not looked at).
+    pub fn knot_condition(&self, span: Option<&KnotSpan>) -> bool {
         let at_most = |limit: Option<f64>, value: Option<f64>| {
             limit.zip(value).is_some_and(|(limit, value)| value <= limit)
         };
@@ -70,8 +93,7 @@ impl Until {
         };
         let start = span.map(|s| s.start_cm);
         let length = span.map(KnotSpan::length_cm);
-        elapsed >= self.seconds
-            || at_most(self.knot_start_below_cm, start)
+        at_most(self.knot_start_below_cm, start)
             || at_least(self.knot_start_above_cm, start)
             || at_most(self.span_below_cm, length)
             || at_least(self.span_above_cm, length)
@@ -85,6 +107,10 @@ pub struct PhaseProgress {
     pub phase: usize,
     /// Time the current phase started (s).
     pub started_at: f64,
+    /// Since when a knot condition of the current phase's [`Until`] has held without
+    /// interruption (s), or `None`.
+    #[serde(default)]
+    pub condition_since: Option<f64>,
 }
 
 /// Drag plus phases, in order.
@@ -122,21 +148,25 @@ impl PhasedController {
         }
     }
 
-    /// True when the current phase is over.
-    fn phase_over(&self, context: &ControlContext<'_>) -> bool {
-        let elapsed = context.state.t - self.progress.started_at;
+    /// True when the current phase is over; for thigmotaxis, also notes since when a knot
+    /// condition has held.
+    fn phase_over(&mut self, context: &ControlContext<'_>) -> bool {
+        let t = context.state.t;
+        let elapsed = t - self.progress.started_at;
         match self.phases.get(self.progress.phase) {
             Some(Phase::Form(_)) => self.forming.as_ref().is_none_or(FormingController::finished),
             Some(Phase::Hold(seconds)) => elapsed >= *seconds,
-            Some(Phase::Thigmotaxis(phase)) => phase
-                .until
-                .reached(elapsed, KnotSpan::of(context.self_contacts, context.centreline).as_ref()),
+            Some(Phase::Thigmotaxis(phase)) => {
+                let span = KnotSpan::of(context.self_contacts, context.centreline);
+                phase.until.over(t, elapsed, span.as_ref(), &mut self.progress.condition_since)
+            }
             None => false,
         }
     }
 
     fn advance(&mut self, t: f64) {
-        self.progress = PhaseProgress { phase: self.progress.phase + 1, started_at: t };
+        self.progress =
+            PhaseProgress { phase: self.progress.phase + 1, started_at: t, condition_since: None };
         if let Some(Phase::Form(script)) = self.phases.get(self.progress.phase) {
             self.forming = Some(FormingController::new(script.clone()));
         }
@@ -175,18 +205,41 @@ mod tests {
     fn until_ends_at_the_first_condition_that_holds() {
         let until = Until {
             seconds: 5.0,
+            hold_s: 0.0,
             knot_start_below_cm: Some(3.0),
             knot_start_above_cm: None,
             span_below_cm: Some(20.0),
             span_above_cm: None,
         };
-        assert!(!until.reached(1.0, Some(&span(10.0, 35.0))));
-        assert!(until.reached(5.0, Some(&span(10.0, 35.0))), "duration");
-        assert!(until.reached(1.0, Some(&span(2.5, 35.0))), "knot start near the head");
-        assert!(until.reached(1.0, Some(&span(10.0, 29.5))), "span tight enough");
-        assert!(!until.reached(1.0, None), "without contacts only the duration counts");
+        assert!(!until.knot_condition(Some(&span(10.0, 35.0))));
+        assert!(until.knot_condition(Some(&span(2.5, 35.0))), "knot start near the head");
+        assert!(until.knot_condition(Some(&span(10.0, 29.5))), "span tight enough");
+        assert!(!until.knot_condition(None), "without contacts only the duration counts");
         let loosen = Until { span_above_cm: Some(27.0), span_below_cm: None, ..until };
-        assert!(loosen.reached(1.0, Some(&span(10.0, 37.0))));
-        assert!(!loosen.reached(1.0, Some(&span(10.0, 29.5))));
+        assert!(loosen.knot_condition(Some(&span(10.0, 37.0))));
+        assert!(!loosen.knot_condition(Some(&span(10.0, 29.5))));
+    }
+
+    #[test]
+    fn a_knot_condition_ends_the_phase_only_after_holding_for_hold_s() {
+        let until = Until {
+            seconds: 5.0,
+            hold_s: 0.3,
+            knot_start_below_cm: None,
+            knot_start_above_cm: None,
+            span_below_cm: Some(20.0),
+            span_above_cm: None,
+        };
+        let (tight, loose) = (span(10.0, 29.5), span(10.0, 35.0));
+        let mut since = None;
+        assert!(!until.over(1.0, 1.0, Some(&tight), &mut since), "a single dip");
+        assert_eq!(since, Some(1.0));
+        assert!(!until.over(1.1, 1.1, Some(&loose), &mut since), "the flicker is over");
+        assert_eq!(since, None);
+        for t in [1.2, 1.3, 1.4] {
+            assert!(!until.over(t, t, Some(&tight), &mut since), "held only since 1.2 s");
+        }
+        assert!(until.over(1.5, 1.5, Some(&tight), &mut since), "held for 0.3 s");
+        assert!(until.over(5.0, 5.0, None, &mut None), "the duration ends it regardless");
     }
 }

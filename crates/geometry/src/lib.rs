@@ -28,6 +28,7 @@ mod contact;
 mod detector;
 mod error;
 mod narrow_phase;
+mod nearby;
 mod seeds;
 mod segment;
 mod wall;
@@ -42,6 +43,7 @@ pub use narrow_phase::{
     ClosestPoints, GRADIENT_TOLERANCE, MAX_NEWTON_ITERATIONS, NewtonStatus, closest_points,
     closest_points_within,
 };
+pub use nearby::{NearbyClosestPoints, closest_points_near};
 pub use segment::Segment;
 pub use wall::{Wall, WallContact, WallOptions};
 pub use weights::SplineWeights;

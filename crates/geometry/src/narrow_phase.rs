@@ -174,7 +174,7 @@ fn solve_positive_definite(m: [[f64; 2]; 2], g: [f64; 2]) -> Option<[f64; 2]> {
 }
 
 /// Projected Newton search from `start` (steps 2–5 of the module docs).
-fn search(a: &Segment, b: &Segment, start: [f64; 2]) -> ClosestPoints {
+pub(crate) fn search(a: &Segment, b: &Segment, start: [f64; 2]) -> ClosestPoints {
     let mut local = Local::new(a, b, start);
     let finish = |local: &Local, iterations: usize, status: NewtonStatus| ClosestPoints {
         s_a: local.s[0],

@@ -12,6 +12,7 @@ mod backend;
 mod benchmark_chain;
 mod benchmark_state;
 mod checkpoint;
+mod contact_prediction;
 mod error;
 mod force_field;
 mod forces;

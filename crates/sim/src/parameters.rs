@@ -185,6 +185,12 @@ pub const PARAMETERS: &[Parameter] = &[
     ),
     p("Thigmotaxis.until.seconds", "s", "required", "longest duration of the phase"),
     p(
+        "Thigmotaxis.until.hold_s",
+        "s",
+        "0",
+        "a knot condition must hold this long without interruption to end the phase",
+    ),
+    p(
         "Thigmotaxis.until.knot_start_below_cm",
         "cm",
         "None",
@@ -261,6 +267,7 @@ mod tests {
                     },
                     until: Until {
                         seconds: 1.0,
+                        hold_s: 0.2,
                         knot_start_below_cm: Some(3.0),
                         knot_start_above_cm: Some(30.0),
                         span_below_cm: Some(20.0),

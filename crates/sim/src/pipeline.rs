@@ -2,7 +2,8 @@
 //!
 //! ```text
 //! kinematics → detect_contacts → control → dynamics → build_rows → solve_velocities
-//!   → [refresh_velocity_products | add_overshooting_limit_rows → solve_velocities]* → integrate
+//!   → [predict_contact_gaps | refresh_velocity_products | add_overshooting_limit_rows
+//!      → solve_velocities]* → integrate
 //! ```
 //!
 //! Each stage is a public function of the immutable model and options and the mutable step
@@ -190,9 +191,37 @@ pub fn step(
     Ok(())
 }
 
+/// Optional stage 6c: predicts every self-contact gap at the end of the step, `q + h q̇`, and
+/// raises the bound of each row whose gap would end below its target (`contact_prediction.rs`;
+/// off when [`StepOptions::contact_prediction`] is `None`). Returns how many bounds were raised;
+/// only right-hand sides change, so the next solve keeps M̃'s factor and the contact-space
+/// matrices.
+pub fn predict_contact_gaps(
+    model: &Model,
+    options: &StepOptions,
+    state: &State,
+    data: &mut StepData,
+) -> usize {
+    let Some(tolerance) = options.contact_prediction else { return 0 };
+    let raised = data.predictor.tighten_contact_rows(
+        model,
+        state,
+        data.solver.velocity(),
+        &data.self_contacts,
+        &mut data.rows,
+        options.time_step,
+        options.push_out,
+        tolerance,
+    );
+    data.report.predicted_contact_rows += raised;
+    raised
+}
+
 /// Stage 6 with its re-solves: solve; then, while something changed (a velocity-product
-/// refresh is due, or a joint would overshoot a limit without a row), solve again, at most
-/// `MAX_RESOLVES` (4) more times.
+/// refresh is due, a contact gap is predicted to end below its target — checked after the
+/// first solve only —, or a joint would overshoot a limit without a row), solve again, at most
+/// `MAX_RESOLVES` (4) more times. If raised contact bounds leave the last solve without a
+/// solution, the bounds are restored and the step solved once more.
 pub fn solve_and_resolve(
     model: &Model,
     options: &StepOptions,
@@ -202,6 +231,8 @@ pub fn solve_and_resolve(
     solve_velocities(data)?;
     for round in 0..MAX_RESOLVES {
         let refreshed = round < options.velocity_product_iterations;
+        // Once per step: repeated, the prediction can feed on its own faster velocities.
+        let raised = if round < 2 { predict_contact_gaps(model, options, state, data) } else { 0 };
         if refreshed {
             refresh_velocity_products(model, options, state, data);
         }
@@ -209,12 +240,18 @@ pub fn solve_and_resolve(
         let h = options.time_step;
         let rows = &mut data.rows;
         let added = add_overshooting_limit_rows(model, state, velocity, h, options.push_out, rows);
-        match (refreshed, added) {
+        match (refreshed || raised > 0, added) {
             (false, 0) => break,
-            // Only f̃ changed: keep the factor of M̃ and the contact-space matrices.
+            // Only f̃ or bounds changed: keep the factor of M̃ and the contact-space matrices.
             (true, 0) => backend::solve(data, Reuse::MassAndRows)?,
             _ => solve_velocities(data)?,
         }
+    }
+    if data.report.predicted_contact_rows > 0 && !data.report.solve.status.is_solved() {
+        // The raised bounds left no solution: solve with the first-order bounds instead.
+        data.predictor.restore_bounds(&mut data.rows);
+        data.report.predicted_contact_rows = 0;
+        solve_velocities(data)?;
     }
     Ok(())
 }

@@ -25,6 +25,8 @@ pub struct StepReport {
     pub max_self_penetration_relative: f64,
     /// Deepest wall penetration at the start of the step (cm).
     pub max_wall_penetration: f64,
+    /// Self-contact bounds raised by the contact predictor, summed over the step's re-solves.
+    pub predicted_contact_rows: usize,
     /// Wall-clock time spent in each stage (not part of the simulation's results).
     pub timings: StageTimings,
 }

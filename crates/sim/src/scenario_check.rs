@@ -130,6 +130,7 @@ impl Checker<'_> {
         self.check("max_force_dyn", p.max_force_dyn, Range::Positive)?;
         let until = &phase.until;
         self.check("seconds", until.seconds, Range::NonNegative)?;
+        self.check("hold_s", until.hold_s, Range::NonNegative)?;
         for (key, value) in [
             ("knot_start_below_cm", until.knot_start_below_cm),
             ("knot_start_above_cm", until.knot_start_above_cm),

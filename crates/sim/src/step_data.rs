@@ -10,6 +10,7 @@ use hagfish_sparse::TreeFactor;
 use hagfish_tree::{Data, Model};
 
 use crate::backend::DynamicsBackend;
+use crate::contact_prediction::ContactPredictor;
 use crate::error::SimError;
 use crate::options::StepOptions;
 use crate::report::StepReport;
@@ -48,6 +49,7 @@ pub struct StepData {
     pub(crate) radii: Vec<f64>,
     pub(crate) lengths: Vec<f64>,
     pub(crate) velocity_guess: Vec<f64>,
+    pub(crate) predictor: ContactPredictor,
 }
 
 impl StepData {
@@ -68,6 +70,7 @@ impl StepData {
             .map_err(geometry)?;
         let mut solver = SolverWorkspace::new(options.solver);
         solver.reserve(model.dof_count(), ROWS_PER_DOF * model.dof_count());
+        let predictor = ContactPredictor::new(model, &centreline);
         Ok(Self {
             tree,
             centreline,
@@ -87,6 +90,7 @@ impl StepData {
             radii,
             lengths,
             velocity_guess: vec![0.0; model.dof_count()],
+            predictor,
         })
     }
 

@@ -24,8 +24,15 @@ fn with_backend(options: &StepOptions, backend: DynamicsBackend) -> StepOptions 
     StepOptions { backend, ..options.clone() }
 }
 
+/// The 2-norm condition number of the symmetric positive definite `matrix`.
+fn condition(matrix: faer::MatRef<'_, f64>) -> f64 {
+    let eigenvalues = matrix.self_adjoint_eigenvalues(faer::Side::Lower).expect("symmetric");
+    eigenvalues[eigenvalues.len() - 1] / eigenvalues[0]
+}
+
 /// One step from `state` on each backend (fresh worlds, so neither is warm-started). Checks
-/// that q̇¹ (and λ, when both steps have the same rows) agree to `tolerance` (relative) and that
+/// that q̇¹ (and λ, when both steps have the same rows, to the conditioning bound below) agree to
+/// `tolerance` (relative) and that
 /// the sparse answer satisfies `M̃q̇ = f̃ + Cᵀλ` with the dense M̃ to rounding; returns the
 /// dense step's solve path and rows per group.
 fn compare_one_step(
@@ -51,8 +58,16 @@ fn compare_one_step(
     let sparse_rows = sparse.report.solve.rows_per_group;
     if rows == sparse_rows {
         if !lambda.is_empty() {
+            // λ is as sensitive to rounding as W = C M̃⁻¹Cᵀ is ill-conditioned, and cond(W) ≤
+            // cond(M̃), which reaches 10⁸ for this chain: the bound is `tolerance` or
+            // 10·cond(M̃)·ε, whichever is larger (as for the round trip in hagfish-tree).
+            let bound =
+                tolerance.max(10.0 * condition(dense.tree.effective_mass.as_ref()) * f64::EPSILON);
             let multiplier_error = relative_error(lambda, dense.solver.multipliers());
-            assert!(multiplier_error < tolerance, "λ differs by {multiplier_error:e} (relative)");
+            assert!(
+                multiplier_error < bound,
+                "λ differs by {multiplier_error:e} (relative, bound {bound:e})"
+            );
         }
     } else {
         // A joint whose first-solve velocity lands on its limit to rounding gets an

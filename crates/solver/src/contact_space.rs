@@ -65,14 +65,15 @@ impl ContactSpace {
         self.w.resize_with(m, m, |_, _| 0.0);
         matmul(self.w.as_mut(), Accum::Replace, self.y.transpose(), self.y.as_ref(), 1.0, Par::Seq);
 
-        self.b.clear();
-        self.b.extend_from_slice(rows.rhs());
         self.update_force(factor, problem);
     }
 
-    /// Recomputes z = L⁻¹f̃ and r = b − Yᵀz for a new f̃, keeping Y and W: for a problem whose
-    /// M̃ and rows are those of the last [`build`](Self::build).
+    /// Recomputes z = L⁻¹f̃ and r = b − Yᵀz for a new f̃ and new right-hand sides b, keeping Y
+    /// and W: for a problem whose M̃ and row coefficients are those of the last
+    /// [`build`](Self::build).
     pub(crate) fn update_force(&mut self, factor: &dyn FactoredMass, problem: &Problem<'_>) {
+        self.b.clear();
+        self.b.extend_from_slice(problem.rows().rhs());
         self.z.clear();
         self.z.extend_from_slice(problem.force());
         factor.solve_lower(column_mut(&mut self.z));

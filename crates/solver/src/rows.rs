@@ -181,6 +181,12 @@ impl Rows {
         &self.rhs
     }
 
+    /// Right-hand sides b, to change a bound between solves (e.g. a contact row tightened after
+    /// predicting the end-of-step gap); the coefficients stay.
+    pub fn rhs_mut(&mut self) -> &mut [f64] {
+        &mut self.rhs
+    }
+
     /// Row kinds (one per row).
     pub fn kinds(&self) -> &[RowKind] {
         &self.kinds

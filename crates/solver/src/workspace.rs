@@ -129,12 +129,13 @@ impl SolverWorkspace {
         self.solve_with(problem, Reuse::Nothing)
     }
 
-    /// Solves `problem` when only f̃ changed since the last solve: same M̃ (values) and the same
-    /// rows. The Cholesky factor of M̃ and the contact-space matrices Y = L⁻¹Cᵀ and W = YᵀY are
+    /// Solves `problem` when only f̃ and the right-hand sides b changed since the last solve:
+    /// same M̃ (values) and the same row coefficients. The Cholesky factor of M̃ and the contact-space matrices Y = L⁻¹Cᵀ and W = YᵀY are
     /// kept; only L⁻¹f̃ and the dual's linear term are recomputed, and the active set starts
     /// from the last multipliers. Used to re-evaluate the velocity-product force at the new
-    /// velocity. When the last solve was not on the contact-space path or the sizes differ, this
-    /// is a full [`solve`](Self::solve). The caller guarantees that M̃ and the rows are unchanged.
+    /// velocity, or after tightening contact bounds. When the last solve was not on the
+    /// contact-space path or the sizes differ, this is a full [`solve`](Self::solve). The caller
+    /// guarantees that M̃ and the row coefficients are unchanged.
     pub fn solve_with_new_force(
         &mut self,
         problem: &Problem<'_>,

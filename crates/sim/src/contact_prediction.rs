@@ -1,0 +1,148 @@
+//! Contact prediction: the self-contact rows bound the gap to first order,
+//! `g + h·nᵀ(ẋ_b − ẋ_a) ≥ g_target`, but the gap at the end of the step is a nonlinear function of
+//! `q + h q̇`: body rotations curve the paths of the contact points, and where two curved strands
+//! slide past each other the closest points move along them. At h = 0.01 s with strands sliding at
+//! 2–4 cm/s that second-order error reached 2–3 % of the radius (`docs/physics.md`).
+//!
+//! The predictor evaluates the gap after the step exactly, `g⁺ = |x_b⁺ − x_a⁺| − r_a − r_b`, at the
+//! closest points near the contact's parameters on the centreline of the predicted positions
+//! `q⁺ = q + h q̇` ([`hagfish_geometry::closest_points_near`]). Where `g⁺` falls below the row's
+//! target `g_target = g + h·b(g)` (0 for an open contact; `(1 − β)g` for a penetration pushed out
+//! by the fraction β) by more than the tolerance, the row's bound becomes
+//!
+//! `b ← max(b, v + (g_target − g⁺)/h)`, with `v = nᵀ(ẋ_b − ẋ_a)` the achieved normal speed,
+//!
+//! the normal speed that, to first order in the correction, lifts `g⁺` to `g_target`; the step is
+//! then solved again with the same M̃ and rows (a predictor–corrector on the bounds, as the
+//! joint-limit rows added for overshooting joints).
+
+use glam::DVec3;
+use hagfish_geometry::{Centreline, PAIRS_PER_BODY, SelfContact, closest_points_near};
+use hagfish_solver::{RowGroup, Rows};
+use hagfish_tree::{Data, Model, State};
+
+use crate::rows::unilateral_rhs;
+
+/// cos of the largest angle between a contact's normal and the line between the predicted
+/// closest points for the prediction to count (25°).
+const NORMAL_AGREEMENT: f64 = 0.9;
+
+/// Largest correction of one row's gap target per step (cm, ≈ 2.5 % of the ES103 radius): the
+/// second-order error of one step is far smaller; a larger predicted shortfall means the
+/// prediction left the contact's basin.
+const MAX_CORRECTION: f64 = 0.02;
+
+/// Scratch of the contact predictor: the predicted positions, their kinematics and centreline.
+#[derive(Debug)]
+pub(crate) struct ContactPredictor {
+    /// (row, bound before raising it) of the last [`ContactPredictor::tighten_contact_rows`].
+    raised: Vec<(usize, f64)>,
+    q: Vec<f64>,
+    kinematics: Data,
+    centres: Vec<DVec3>,
+    radii: Vec<f64>,
+    centreline: Centreline,
+}
+
+impl ContactPredictor {
+    /// Buffers for `model`; `centreline` (a centreline of the model, tube radii included) is
+    /// the starting value of the predicted one.
+    pub(crate) fn new(model: &Model, centreline: &Centreline) -> Self {
+        Self {
+            raised: Vec::with_capacity(PAIRS_PER_BODY * model.body_count()),
+            q: vec![0.0; model.dof_count()],
+            kinematics: Data::new(model),
+            centres: vec![DVec3::ZERO; model.body_count()],
+            radii: centreline.radii().to_vec(),
+            centreline: centreline.clone(),
+        }
+    }
+
+    /// Raises the bounds of the self-contact rows in `rows` (one per contact of `contacts`, in
+    /// order, group [`RowGroup::Contact`]) whose gap after the step with velocity `qdot` would
+    /// fall more than `tolerance` (cm) below the row's target (module docs). Returns how many
+    /// bounds were raised.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn tighten_contact_rows(
+        &mut self,
+        model: &Model,
+        state: &State,
+        qdot: &[f64],
+        contacts: &[SelfContact],
+        rows: &mut Rows,
+        time_step: f64,
+        push_out: f64,
+        tolerance: f64,
+    ) -> usize {
+        let Some(first_row) = rows.groups().iter().position(|g| *g == RowGroup::Contact) else {
+            return 0;
+        };
+        debug_assert_eq!(
+            rows.groups().iter().filter(|g| **g == RowGroup::Contact).count(),
+            contacts.len()
+        );
+        self.raised.clear();
+        if !self.predict_centreline(model, state, qdot, time_step) {
+            return 0;
+        }
+        for (i, contact) in contacts.iter().enumerate() {
+            let row = first_row + i;
+            let gap_after = self.gap_after(contact);
+            let target = contact.gap + time_step * unilateral_rhs(contact.gap, time_step, push_out);
+            if gap_after >= target - tolerance {
+                continue;
+            }
+            let Some(coefficients) = rows.coefficients(row) else { continue };
+            let speed: f64 = coefficients.iter().zip(qdot).map(|(c, v)| c * v).sum();
+            let bound = &mut rows.rhs_mut()[row];
+            let raised = speed + (target - gap_after).min(MAX_CORRECTION) / time_step;
+            if raised > *bound {
+                self.raised.push((row, *bound));
+                *bound = raised;
+            }
+        }
+        self.raised.len()
+    }
+
+    /// Puts back the bounds that the last [`ContactPredictor::tighten_contact_rows`] raised.
+    pub(crate) fn restore_bounds(&mut self, rows: &mut Rows) {
+        for &(row, bound) in &self.raised {
+            rows.rhs_mut()[row] = bound;
+        }
+        self.raised.clear();
+    }
+
+    /// The gap of `contact` on the predicted centreline: at the closest points near its
+    /// parameters ([`closest_points_near`]) if the line between them is within
+    /// [`NORMAL_AGREEMENT`] of the row's normal (so that pushing along the row's normal opens
+    /// that gap too), otherwise between the contact's own material points. (The first can be
+    /// a body or more away along the strands: where a strand end lies cradled along another
+    /// strand the distance is flat and the closest point jumps; merging keeps one record per
+    /// such stretch.)
+    fn gap_after(&self, contact: &SelfContact) -> f64 {
+        let line = &self.centreline;
+        let near = closest_points_near(line, contact.u_a, contact.u_b);
+        let (x_a, x_b) = (line.point(near.u_a), line.point(near.u_b));
+        let aligned = (x_b - x_a).normalize_or_zero().dot(contact.normal) >= NORMAL_AGREEMENT;
+        let (u_a, u_b, distance) = if aligned {
+            (near.u_a, near.u_b, near.distance)
+        } else {
+            let (u_a, u_b) = (contact.u_a, contact.u_b);
+            (u_a, u_b, line.point(u_a).distance(line.point(u_b)))
+        };
+        distance - line.radius(u_a) - line.radius(u_b)
+    }
+
+    /// The centreline through the body centres at `q + h q̇`; false (no prediction) if those
+    /// centres give no centreline (non-finite velocities, which the integrator reports).
+    fn predict_centreline(&mut self, model: &Model, state: &State, qdot: &[f64], h: f64) -> bool {
+        for ((predicted, q), v) in self.q.iter_mut().zip(&state.q).zip(qdot) {
+            *predicted = q + h * v;
+        }
+        hagfish_tree::forward_kinematics(model, &self.q, qdot, &mut self.kinematics);
+        for (i, centre) in self.centres.iter_mut().enumerate() {
+            *centre = self.kinematics.body_centre(i);
+        }
+        self.centreline.update(&self.centres, &self.radii).is_ok()
+    }
+}
