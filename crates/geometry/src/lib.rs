@@ -28,6 +28,7 @@ mod contact;
 mod detector;
 mod error;
 mod narrow_phase;
+mod sampled_segment;
 mod seeds;
 mod segment;
 mod wall;

@@ -30,6 +30,7 @@
 
 use glam::DVec3;
 
+use crate::sampled_segment::SampledSegment;
 use crate::seeds::{Starts, probe_next_to_bound};
 use crate::segment::Segment;
 
@@ -225,7 +226,8 @@ fn improves(found: &ClosestPoints, best: &ClosestPoints) -> bool {
 /// the converged searches from every start (then from a probe next to a bound, if that
 /// is closer), or the closest failed one if none converged.
 pub fn closest_points(a: &Segment, b: &Segment) -> ClosestPoints {
-    search_from(a, b, &Starts::new(a, b))
+    let (a, b) = (SampledSegment::new(*a), SampledSegment::new(*b));
+    search_from(&a.segment, &b.segment, &Starts::new(&a, &b))
 }
 
 /// [`closest_points`] of `a` and `b` if they may come closer than `reach`, or `None` (no
@@ -233,9 +235,20 @@ pub fn closest_points(a: &Segment, b: &Segment) -> ClosestPoints {
 /// closest grid point minus half a grid interval times the segments' speed bounds (with a
 /// relative allowance of 10⁻⁹ for rounding).
 pub fn closest_points_within(a: &Segment, b: &Segment, reach: f64) -> Option<ClosestPoints> {
+    sampled_closest_points_within(&SampledSegment::new(*a), &SampledSegment::new(*b), reach)
+}
+
+/// [`closest_points_within`] on segments whose seed-grid samples and bounds are already
+/// computed (the detector samples each segment once per detection).
+pub(crate) fn sampled_closest_points_within(
+    a: &SampledSegment,
+    b: &SampledSegment,
+    reach: f64,
+) -> Option<ClosestPoints> {
     let starts = Starts::new(a, b);
-    let bound = starts.distance_lower_bound([a.speed_bound(), b.speed_bound()]);
-    (bound < reach * (1.0 + ROUNDING_ALLOWANCE)).then(|| search_from(a, b, &starts))
+    let bound = starts.distance_lower_bound([a.speed_bound, b.speed_bound]);
+    (bound < reach * (1.0 + ROUNDING_ALLOWANCE))
+        .then(|| search_from(&a.segment, &b.segment, &starts))
 }
 
 /// Relative allowance for rounding in the pruning bound of [`closest_points_within`].
