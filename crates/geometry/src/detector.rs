@@ -6,8 +6,8 @@ use crate::chord::chord_distance;
 use crate::cluster::{Candidate, keep_deepest_per_cluster};
 use crate::contact::SelfContact;
 use crate::error::GeometryError;
-use crate::narrow_phase::{NewtonStatus, closest_points_within};
-use crate::segment::Segment;
+use crate::narrow_phase::{NewtonStatus, sampled_closest_points_within};
+use crate::sampled_segment::SampledSegment;
 
 /// The distance below which segments k_a and k_b may be in contact: the largest tube radii
 /// along them (a radius along a segment is at most the larger of its two body radii) plus
@@ -16,12 +16,12 @@ fn reach(radii: &[f64], (k_a, k_b): (usize, usize), margin: f64) -> f64 {
     radii[k_a].max(radii[k_a + 1]) + radii[k_b].max(radii[k_b + 1]) + margin
 }
 
-/// Whether segments k_a and k_b can come closer than `reach` by their chords: each segment
-/// lies within its [`Segment::chord_deviation_bound`] σ of its chord, so the spline distance
-/// is at least d_chord − σ_a − σ_b.
-fn may_touch(segments: &[(Segment, f64)], (k_a, k_b): (usize, usize), reach: f64) -> bool {
-    let ((a, sigma_a), (b, sigma_b)) = (&segments[k_a], &segments[k_b]);
-    chord_distance(a.chord(), b.chord()) - sigma_a - sigma_b < reach
+/// Whether segments `a` and `b` can come closer than `reach` by their chords: each segment
+/// lies within its [`crate::Segment::chord_deviation_bound`] σ of its chord, so the spline
+/// distance is at least d_chord − σ_a − σ_b.
+fn may_touch(a: &SampledSegment, b: &SampledSegment, reach: f64) -> bool {
+    chord_distance(a.segment.chord(), b.segment.chord()) - a.chord_deviation - b.chord_deviation
+        < reach
 }
 
 /// Options of the [`ContactDetector`].
@@ -90,8 +90,8 @@ pub struct ContactDetector {
     options: DetectorOptions,
     broad_phase: BroadPhase,
     body_pairs: Vec<(usize, usize)>,
-    /// Every segment of the centreline with its chord deviation bound.
-    segments: Vec<(Segment, f64)>,
+    /// Every segment of the centreline with its seed-grid samples and bounds.
+    segments: Vec<SampledSegment>,
     segment_pairs: Vec<(usize, usize)>,
     /// One bit per segment pair (k_a·S + k_b), to collect the pairs sorted and unique.
     marked: Vec<u64>,
@@ -189,21 +189,20 @@ impl ContactDetector {
         out: &mut Vec<SelfContact>,
     ) -> DetectionReport {
         self.segments.clear();
-        self.segments.extend((0..centreline.segment_count()).map(|k| {
-            let segment = centreline.segment(k);
-            (segment, segment.chord_deviation_bound())
-        }));
+        self.segments.extend(
+            (0..centreline.segment_count()).map(|k| SampledSegment::new(centreline.segment(k))),
+        );
         let (margin, index_gap) = (self.options.margin, self.options.index_gap as f64);
         let mut searched = 0;
         let mut newton_failures = 0;
         self.candidates.clear();
         for &(k_a, k_b) in &self.segment_pairs {
             let reach = reach(centreline.radii(), (k_a, k_b), margin);
-            if !may_touch(&self.segments, (k_a, k_b), reach) {
+            let (a, b) = (&self.segments[k_a], &self.segments[k_b]);
+            if !may_touch(a, b, reach) {
                 continue;
             }
-            let (a, b) = (&self.segments[k_a].0, &self.segments[k_b].0);
-            let Some(closest) = closest_points_within(a, b, reach) else { continue };
+            let Some(closest) = sampled_closest_points_within(a, b, reach) else { continue };
             searched += 1;
             if closest.status != NewtonStatus::Converged {
                 newton_failures += 1;

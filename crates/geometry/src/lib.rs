@@ -29,6 +29,7 @@ mod detector;
 mod error;
 mod narrow_phase;
 mod nearby;
+mod sampled_segment;
 mod seeds;
 mod segment;
 mod wall;

@@ -30,6 +30,7 @@
 
 use glam::DVec3;
 
+use crate::sampled_segment::SampledSegment;
 use crate::seeds::{Starts, probe_next_to_bound};
 use crate::segment::Segment;
 
@@ -113,16 +114,18 @@ impl Local {
 
     /// Parameters free to move: not on a bound with the gradient pointing out of the box.
     fn free(&self) -> [bool; 2] {
+        // Non-short-circuit `&` and `|`: this runs every iteration, on unpredictable signs.
         [0, 1].map(|i| {
             let g = self.gradient[i];
-            !((self.s[i] <= 0.0 && g > 0.0) || (self.s[i] >= 1.0 && g < 0.0))
+            !(((self.s[i] <= 0.0) & (g > 0.0)) | ((self.s[i] >= 1.0) & (g < 0.0)))
         })
     }
 
     /// Largest projected-gradient component (zero for parameters held on a bound).
     fn projected_gradient(&self) -> f64 {
         let free = self.free();
-        (0..2).filter(|&i| free[i]).map(|i| self.gradient[i].abs()).fold(0.0, f64::max)
+        let component = |i: usize| if free[i] { self.gradient[i].abs() } else { 0.0 };
+        0.0_f64.max(component(0)).max(component(1))
     }
 
     /// Gauss–Newton matrix JᵀJ of Δ(s_a, s_b), J = [−x′_a, x′_b]: positive semi-definite.
@@ -176,37 +179,45 @@ fn solve_positive_definite(m: [[f64; 2]; 2], g: [f64; 2]) -> Option<[f64; 2]> {
 /// Projected Newton search from `start` (steps 2–5 of the module docs).
 pub(crate) fn search(a: &Segment, b: &Segment, start: [f64; 2]) -> ClosestPoints {
     let mut local = Local::new(a, b, start);
-    let finish = |local: &Local, iterations: usize, status: NewtonStatus| ClosestPoints {
+    let mut iterations = 0;
+    let status = loop {
+        if local.projected_gradient() <= GRADIENT_TOLERANCE {
+            break NewtonStatus::Converged;
+        }
+        if iterations == MAX_NEWTON_ITERATIONS {
+            break NewtonStatus::IterationLimit;
+        }
+        match line_search(a, b, &local) {
+            Some(accepted) => local = accepted,
+            None => break NewtonStatus::Stalled,
+        }
+        iterations += 1;
+    };
+    ClosestPoints {
         s_a: local.s[0],
         s_b: local.s[1],
         distance_squared: local.distance_squared(),
         iterations,
         status,
-    };
-    for iteration in 0..MAX_NEWTON_ITERATIONS {
-        if local.projected_gradient() <= GRADIENT_TOLERANCE {
-            return finish(&local, iteration, NewtonStatus::Converged);
-        }
-        let step = local.step();
-        let limit = local.distance_squared() + local.rounding_allowance();
-        let mut scale = 1.0;
-        let accepted = (0..MAX_STEP_HALVINGS).find_map(|_| {
-            let s = [0, 1].map(|i| (local.s[i] + scale * step[i]).clamp(0.0, 1.0));
-            scale *= 0.5;
-            let trial = Local::new(a, b, s);
-            (trial.distance_squared() <= limit && s != local.s).then_some(trial)
-        });
-        match accepted {
-            Some(trial) => local = trial,
-            None => return finish(&local, iteration, NewtonStatus::Stalled),
+    }
+}
+
+/// The first point along the search direction from `local`, halving the step from the full
+/// one, at which f has not increased beyond rounding (step 4 of the module docs), or `None`
+/// after [`MAX_STEP_HALVINGS`] halvings.
+fn line_search(a: &Segment, b: &Segment, local: &Local) -> Option<Local> {
+    let step = local.step();
+    let limit = local.distance_squared() + local.rounding_allowance();
+    let mut scale = 1.0;
+    for _ in 0..MAX_STEP_HALVINGS {
+        let s = [0, 1].map(|i| (local.s[i] + scale * step[i]).clamp(0.0, 1.0));
+        scale *= 0.5;
+        let trial = Local::new(a, b, s);
+        if trial.distance_squared() <= limit && s != local.s {
+            return Some(trial);
         }
     }
-    let status = if local.projected_gradient() <= GRADIENT_TOLERANCE {
-        NewtonStatus::Converged
-    } else {
-        NewtonStatus::IterationLimit
-    };
-    finish(&local, MAX_NEWTON_ITERATIONS, status)
+    None
 }
 
 /// Whether search result `found` should replace `best`: converged beats failed, then the
@@ -225,7 +236,8 @@ fn improves(found: &ClosestPoints, best: &ClosestPoints) -> bool {
 /// the converged searches from every start (then from a probe next to a bound, if that
 /// is closer), or the closest failed one if none converged.
 pub fn closest_points(a: &Segment, b: &Segment) -> ClosestPoints {
-    search_from(a, b, &Starts::new(a, b))
+    let (a, b) = (SampledSegment::new(*a), SampledSegment::new(*b));
+    search_from(&a.segment, &b.segment, &Starts::new(&a, &b))
 }
 
 /// [`closest_points`] of `a` and `b` if they may come closer than `reach`, or `None` (no
@@ -233,9 +245,20 @@ pub fn closest_points(a: &Segment, b: &Segment) -> ClosestPoints {
 /// closest grid point minus half a grid interval times the segments' speed bounds (with a
 /// relative allowance of 10⁻⁹ for rounding).
 pub fn closest_points_within(a: &Segment, b: &Segment, reach: f64) -> Option<ClosestPoints> {
+    sampled_closest_points_within(&SampledSegment::new(*a), &SampledSegment::new(*b), reach)
+}
+
+/// [`closest_points_within`] on segments whose seed-grid samples and bounds are already
+/// computed (the detector samples each segment once per detection).
+pub(crate) fn sampled_closest_points_within(
+    a: &SampledSegment,
+    b: &SampledSegment,
+    reach: f64,
+) -> Option<ClosestPoints> {
     let starts = Starts::new(a, b);
-    let bound = starts.distance_lower_bound([a.speed_bound(), b.speed_bound()]);
-    (bound < reach * (1.0 + ROUNDING_ALLOWANCE)).then(|| search_from(a, b, &starts))
+    let bound = starts.distance_lower_bound([a.speed_bound, b.speed_bound]);
+    (bound < reach * (1.0 + ROUNDING_ALLOWANCE))
+        .then(|| search_from(&a.segment, &b.segment, &starts))
 }
 
 /// Relative allowance for rounding in the pruning bound of [`closest_points_within`].

@@ -6,13 +6,12 @@
 //! started from several points (and once more from a probe next to a bound), and the
 //! closest result wins.
 
-use glam::DVec3;
-
 use crate::chord::closest_chord_parameters;
+use crate::sampled_segment::{GRID_SAMPLES, SampledSegment};
 use crate::segment::Segment;
 
 /// Intervals per parameter of the grid that seeds the searches ((n + 1)² samples of f).
-const SEED_GRID_INTERVALS: usize = 8;
+pub(crate) const SEED_GRID_INTERVALS: usize = 8;
 
 /// At most this many grid minima start a search (besides the chord start). Two strands
 /// lying side by side give a flat distance with several shallow minima, and only searching
@@ -48,45 +47,55 @@ pub(crate) struct Starts {
 }
 
 impl Starts {
-    /// The starting points for segments `a` and `b`.
-    pub(crate) fn new(a: &Segment, b: &Segment) -> Starts {
-        const N: usize = SEED_GRID_INTERVALS + 1;
+    /// The starting points for segments `a` and `b`, from their seed-grid samples.
+    pub(crate) fn new(a: &SampledSegment, b: &SampledSegment) -> Starts {
+        const N: usize = GRID_SAMPLES;
         let grid = |i: usize| i as f64 / SEED_GRID_INTERVALS as f64;
-        let points_a: [DVec3; N] = std::array::from_fn(|i| a.point(grid(i)));
-        let points_b: [DVec3; N] = std::array::from_fn(|j| b.point(grid(j)));
-        let tangents_a: [DVec3; N] = std::array::from_fn(|i| a.derivative(grid(i)));
-        let tangents_b: [DVec3; N] = std::array::from_fn(|j| b.derivative(grid(j)));
-        // f and the components of the gradient of ½f along s_a and s_b at every grid point.
+        // f = |Δ|² and the components of the gradient of ½f along s_a and s_b at every grid
+        // point, Δ = x_b(s_j) − x_a(s_i), coordinate by coordinate (same operations and
+        // order as the DVec3 dot products, so the same values).
         let mut f = [[0.0; N]; N];
         let mut g_a = [[0.0; N]; N];
         let mut g_b = [[0.0; N]; N];
+        let ([bx, by, bz], [tbx, tby, tbz]) = (&b.points, &b.tangents);
         for i in 0..N {
+            let (ax, ay, az) = (a.points[0][i], a.points[1][i], a.points[2][i]);
+            let (tax, tay, taz) = (a.tangents[0][i], a.tangents[1][i], a.tangents[2][i]);
             for j in 0..N {
-                let delta = points_b[j] - points_a[i];
-                f[i][j] = delta.length_squared();
-                g_a[i][j] = -tangents_a[i].dot(delta);
-                g_b[i][j] = tangents_b[j].dot(delta);
+                let (dx, dy, dz) = (bx[j] - ax, by[j] - ay, bz[j] - az);
+                f[i][j] = dx * dx + dy * dy + dz * dz;
+                g_a[i][j] = -(tax * dx + tay * dy + taz * dz);
+                g_b[i][j] = tbx[j] * dx + tby[j] * dy + tbz[j] * dz;
             }
         }
-        // `depths[..found]` holds the f of `grid_minima[..found]`, ascending.
+        // Whether each grid point is a grid minimum: true on the edges of the box along each
+        // parameter, else not undercut by its two neighbours or the start of a − to + sign
+        // change of that gradient component. Fixed ranges and non-short-circuit `&` and `|`
+        // keep these loops free of branches.
+        let mut minimum = [[true; N]; N];
+        for i in 1..N - 1 {
+            for j in 0..N {
+                let here = f[i][j];
+                minimum[i][j] = ((f[i - 1][j] >= here) & (f[i + 1][j] >= here))
+                    | ((g_a[i][j] <= 0.0) & (g_a[i + 1][j] >= 0.0));
+            }
+        }
+        for i in 0..N {
+            for j in 1..N - 1 {
+                let here = f[i][j];
+                minimum[i][j] &= ((f[i][j - 1] >= here) & (f[i][j + 1] >= here))
+                    | ((g_b[i][j] <= 0.0) & (g_b[i][j + 1] >= 0.0));
+            }
+        }
+        // `depths[..found]` holds the f of `grid_minima[..found]`, ascending (ties in the
+        // order of the grid).
         let mut depths = [f64::INFINITY; MAX_GRID_STARTS];
         let mut grid_minima = [[0.0; 2]; MAX_GRID_STARTS];
         let mut found = 0;
-        // Non-short-circuit `&` and `|` keep this hot loop free of unpredictable branches.
         for i in 0..N {
-            let (before, after) = (i.saturating_sub(1), (i + 1).min(N - 1));
             for j in 0..N {
                 let here = f[i][j];
-                let along_a = (i == 0)
-                    | (i == N - 1)
-                    | ((f[before][j] >= here) & (f[after][j] >= here))
-                    | ((g_a[i][j] <= 0.0) & (g_a[after][j] >= 0.0));
-                let (left, right) = (j.saturating_sub(1), (j + 1).min(N - 1));
-                let along_b = (j == 0)
-                    | (j == N - 1)
-                    | ((f[i][left] >= here) & (f[i][right] >= here))
-                    | ((g_b[i][j] <= 0.0) & (g_b[i][right] >= 0.0));
-                if !(along_a & along_b & (here < depths[MAX_GRID_STARTS - 1])) {
+                if !(minimum[i][j] & (here < depths[MAX_GRID_STARTS - 1])) {
                     continue;
                 }
                 let at = depths[..found].partition_point(|&d| d <= here);
@@ -97,7 +106,7 @@ impl Starts {
                 grid_minima[at] = [grid(i), grid(j)];
             }
         }
-        let chord = closest_chord_parameters(a.chord(), b.chord());
+        let chord = closest_chord_parameters(a.segment.chord(), b.segment.chord());
         Starts { chord: [chord.0, chord.1], grid_minima, found, depth: depths[0] }
     }
 
