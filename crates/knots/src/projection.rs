@@ -29,13 +29,26 @@ struct Edge {
     max: DVec2,
 }
 
+/// The bounding box of an edge in sweep order.
+#[derive(Debug, Clone, Copy)]
+struct SweepBox {
+    min: DVec2,
+    max: DVec2,
+    edge: usize,
+}
+
 /// The buffers of [`Projector::crossings`], kept between calls so that voting over many
 /// directions allocates once.
 #[derive(Debug, Default)]
 pub(crate) struct Projector {
+    /// The vertices projected: position in the view plane and height along the view.
+    points: Vec<(DVec2, f64)>,
     edges: Vec<Edge>,
-    /// (leftmost x as a [`total_order_key`], edge index), sorted for the sweep.
-    by_left: Vec<(u64, usize)>,
+    /// Sort keys: the leftmost x of an edge as a [`total_order_key`] in the high 64 bits,
+    /// the edge's index in the low ones.
+    keys: Vec<u128>,
+    /// The edges' boxes sorted by leftmost x, then index.
+    sweep: Vec<SweepBox>,
     /// Crossing positions along the curve, sorted for the genericity test.
     positions: Vec<f64>,
 }
@@ -53,33 +66,44 @@ impl Projector {
     ) -> bool {
         let (e1, e2) = view.any_orthonormal_pair();
         let n = vertices.len();
-        let project = |x: DVec3| (DVec2::new(e1.dot(x), e2.dot(x)), view.dot(x));
-        let edges = &mut self.edges;
-        edges.clear();
-        edges.extend((0..n).map(|k| {
-            let (start, start_height) = project(vertices[k]);
-            let (end, end_height) = project(vertices[(k + 1) % n]);
+        self.points.clear();
+        self.points
+            .extend(vertices.iter().map(|&x| (DVec2::new(e1.dot(x), e2.dot(x)), view.dot(x))));
+        let points = &self.points;
+        self.edges.clear();
+        self.edges.extend((0..n).map(|k| {
+            let ((start, start_height), (end, end_height)) = (points[k], points[(k + 1) % n]);
             Edge { start, end, start_height, end_height, min: start.min(end), max: start.max(end) }
         }));
+        let edges = &self.edges;
         // Sweep along x: edges sorted by their leftmost x (ties by index: every key is
         // distinct, so any sort gives this order); each edge meets only the edges that start
         // before it ends (most of the n²/2 pairs are never looked at).
-        self.by_left.clear();
-        self.by_left.extend(edges.iter().enumerate().map(|(k, e)| (total_order_key(e.min.x), k)));
-        self.by_left.sort_unstable();
+        self.keys.clear();
+        self.keys.extend(
+            edges
+                .iter()
+                .enumerate()
+                .map(|(k, e)| u128::from(total_order_key(e.min.x)) << 64 | k as u128),
+        );
+        self.keys.sort();
+        self.sweep.clear();
+        self.sweep.extend(self.keys.iter().map(|&key| {
+            let edge = key as u64 as usize;
+            SweepBox { min: edges[edge].min, max: edges[edge].max, edge }
+        }));
         let adjacent = |i: usize, j: usize| j == i + 1 || (i == 0 && j + 1 == n);
         found.clear();
-        for (k, &(_, a)) in self.by_left.iter().enumerate() {
-            for &(_, b) in &self.by_left[k + 1..] {
-                if edges[b].min.x > edges[a].max.x {
+        for (k, a) in self.sweep.iter().enumerate() {
+            for b in &self.sweep[k + 1..] {
+                if b.min.x > a.max.x {
                     break;
                 }
-                let (i, j) = (a.min(b), a.max(b));
-                let (p, q) = (&edges[i], &edges[j]);
-                if adjacent(i, j) || p.max.y < q.min.y || q.max.y < p.min.y {
+                let (i, j) = (a.edge.min(b.edge), a.edge.max(b.edge));
+                if a.max.y < b.min.y || b.max.y < a.min.y || adjacent(i, j) {
                     continue;
                 }
-                match crossing(p, i, q, j) {
+                match crossing(&edges[i], i, &edges[j], j) {
                     Some(Some(crossing)) => found.push(crossing),
                     Some(None) => {}
                     None => return false,
