@@ -27,6 +27,7 @@ pub mod rows;
 mod run;
 mod scenario;
 mod scenario_check;
+mod scientific;
 mod step_data;
 mod world;
 

@@ -23,6 +23,7 @@ use crate::forces::{DofLabel, GroupForces, RECORDED_GROUPS};
 use crate::npy::NpyWriter;
 use crate::output_file::OutputFile;
 use crate::report::StepReport;
+use crate::scientific::Scientific;
 
 /// Header of `forces.csv`: generalized constraint forces per joint, axis and group, averaged
 /// over the steps since the previous frame (dyn·cm).
@@ -277,8 +278,10 @@ impl Recorder {
             let name = GroupForces::group_name(group);
             for (label, value) in frame.labels.iter().zip(values) {
                 self.forces.line(format_args!(
-                    "{prefix},{},{},{name},{value:.6e}",
-                    label.joint, label.axis
+                    "{prefix},{},{},{name},{}",
+                    label.joint,
+                    label.axis,
+                    Scientific(*value)
                 ))?;
             }
         }
