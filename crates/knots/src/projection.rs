@@ -71,10 +71,17 @@ impl Projector {
             .extend(vertices.iter().map(|&x| (DVec2::new(e1.dot(x), e2.dot(x)), view.dot(x))));
         let points = &self.points;
         self.edges.clear();
-        self.edges.extend((0..n).map(|k| {
-            let ((start, start_height), (end, end_height)) = (points[k], points[(k + 1) % n]);
-            Edge { start, end, start_height, end_height, min: start.min(end), max: start.max(end) }
-        }));
+        let ends = points.iter().skip(1).chain(points.first());
+        self.edges.extend(points.iter().zip(ends).map(
+            |(&(start, start_height), &(end, end_height))| Edge {
+                start,
+                end,
+                start_height,
+                end_height,
+                min: start.min(end),
+                max: start.max(end),
+            },
+        ));
         let edges = &self.edges;
         // Sweep along x: edges sorted by their leftmost x (ties by index: every key is
         // distinct, so any sort gives this order); each edge meets only the edges that start
