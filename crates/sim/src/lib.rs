@@ -13,6 +13,7 @@ mod benchmark_chain;
 mod benchmark_state;
 mod checkpoint;
 mod error;
+mod force_columns;
 mod force_field;
 mod forces;
 mod hash;

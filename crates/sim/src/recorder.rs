@@ -19,6 +19,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::checkpoint::{CHECKPOINT_FILE, Checkpoint};
 use crate::error::SimError;
+use crate::force_columns::ForceColumns;
 use crate::forces::{DofLabel, GroupForces, RECORDED_GROUPS};
 use crate::npy::NpyWriter;
 use crate::output_file::OutputFile;
@@ -142,6 +143,7 @@ pub struct Recorder {
     q: NpyWriter,
     qdot: NpyWriter,
     thigmo: NpyWriter,
+    force_columns: ForceColumns,
 }
 
 /// The CSV files and their headers, in the order of [`Recorder::files`].
@@ -213,6 +215,7 @@ impl Recorder {
             q: q?,
             qdot: qdot?,
             thigmo: thigmo?,
+            force_columns: ForceColumns::default(),
         })
     }
 
@@ -274,15 +277,12 @@ impl Recorder {
     }
 
     fn write_forces(&mut self, frame: &Frame<'_>, prefix: &str) -> Result<(), SimError> {
-        for (values, group) in frame.forces.values.iter().zip(RECORDED_GROUPS) {
-            let name = GroupForces::group_name(group);
-            for (label, value) in frame.labels.iter().zip(values) {
-                self.forces.line(format_args!(
-                    "{prefix},{},{},{name},{}",
-                    label.joint,
-                    label.axis,
-                    Scientific(*value)
-                ))?;
+        let columns = self.force_columns.for_labels(frame.labels);
+        for (values, columns) in frame.forces.values.iter().zip(columns) {
+            for (columns, value) in columns.iter().zip(values) {
+                self.forces.bytes(prefix.as_bytes());
+                self.forces.bytes(columns.as_bytes());
+                self.forces.line(format_args!("{}", Scientific(*value)))?;
             }
         }
         Ok(())
