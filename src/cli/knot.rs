@@ -6,7 +6,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use glam::DVec3;
-use hagfish_knots::{KnotOptions, analyse_knot};
+use hagfish_knots::{KnotAnalyser, KnotOptions};
 
 use super::CliError;
 
@@ -35,14 +35,14 @@ pub fn run(args: &KnotArgs, out: &mut impl Write) -> Result<(), CliError> {
         reason: format!("cannot read the file: {e}"),
     })?;
     let frames = parse(&text, &args.file)?;
-    let options = KnotOptions::default();
+    let (options, mut analyser) = (KnotOptions::default(), KnotAnalyser::default());
     writeln!(
         out,
         "{:>6}  {:>9}  {:>6}  {:>9}  {:>14}  position_cm",
         "frame", "time_s", "knot", "agreement", "knotted_bodies"
     )?;
     for f in &frames {
-        match analyse_knot(&f.points, &options) {
+        match analyser.analyse(&f.points, &options) {
             Ok(k) => writeln!(
                 out,
                 "{:>6}  {:>9.4}  {:>6}  {:>9.3}  {:>14}  {}",

@@ -28,16 +28,29 @@ pub(crate) struct Crossing {
     pub(crate) positive: bool,
 }
 
-/// The Alexander polynomial of the knot diagram with these crossings (all positions
-/// distinct), or `None` if the determinant fails [`AlexanderPolynomial::is_knot_polynomial`]
-/// — which happens only if a coefficient exceeds the exact range of the modular
-/// determinant.
-pub(crate) fn diagram_polynomial(crossings: &[Crossing]) -> Option<AlexanderPolynomial> {
-    let count = crossings.len();
+/// Writes into `code` the rows of the diagram's Alexander matrix: for each crossing, in the
+/// order given, its over-arc, incoming and outgoing under-arc and 1 if it is positive (0 if
+/// not). Diagrams with fewer than 2 crossings (unknots) have the empty code. The code
+/// determines the matrix, hence the polynomial ([`code_polynomial`]).
+pub(crate) fn arc_code(crossings: &[Crossing], code: &mut Vec<usize>) {
+    code.clear();
+    if crossings.len() < 2 {
+        return;
+    }
+    for (crossing, arc) in crossings.iter().zip(arcs(crossings)) {
+        code.extend([arc.over, arc.incoming, arc.outgoing, usize::from(crossing.positive)]);
+    }
+}
+
+/// The Alexander polynomial of the diagram with this [`arc_code`] (positions of the
+/// crossings all distinct), or `None` if the determinant fails
+/// [`AlexanderPolynomial::is_knot_polynomial`] — which happens only if a coefficient exceeds
+/// the exact range of the modular determinant.
+pub(crate) fn code_polynomial(code: &[usize]) -> Option<AlexanderPolynomial> {
+    let count = code.len() / 4;
     if count < 2 {
         return Some(AlexanderPolynomial::unknot());
     }
-    let arcs = arcs(crossings);
     let m = count - 1;
     let (mut a, mut b) = (vec![0i64; m * m], vec![0i64; m * m]);
     let mut add = |row: usize, col: usize, constant: i64, linear: i64| {
@@ -46,14 +59,15 @@ pub(crate) fn diagram_polynomial(crossings: &[Crossing]) -> Option<AlexanderPoly
             b[row * m + col] += linear;
         }
     };
-    for (row, (crossing, arc)) in crossings.iter().zip(&arcs).enumerate() {
-        add(row, arc.over, 1, -1);
-        if crossing.positive {
-            add(row, arc.incoming, 0, 1);
-            add(row, arc.outgoing, -1, 0);
+    for (row, crossing) in code.chunks_exact(4).enumerate() {
+        let &[over, incoming, outgoing, positive] = crossing else { continue };
+        add(row, over, 1, -1);
+        if positive == 1 {
+            add(row, incoming, 0, 1);
+            add(row, outgoing, -1, 0);
         } else {
-            add(row, arc.incoming, -1, 0);
-            add(row, arc.outgoing, 0, 1);
+            add(row, incoming, -1, 0);
+            add(row, outgoing, 0, 1);
         }
     }
     let polynomial = AlexanderPolynomial::normalised(&pencil_determinant(&a, &b, m))?;
@@ -103,6 +117,13 @@ mod tests {
     /// Crossings from a Gauss code: (over position, under position, sign) per crossing.
     fn diagram(code: &[(f64, f64, bool)]) -> Vec<Crossing> {
         code.iter().map(|&(over, under, positive)| Crossing { over, under, positive }).collect()
+    }
+
+    /// The polynomial of the diagram with these crossings.
+    fn diagram_polynomial(crossings: &[Crossing]) -> Option<AlexanderPolynomial> {
+        let mut code = Vec::new();
+        arc_code(crossings, &mut code);
+        code_polynomial(&code)
     }
 
     #[test]

@@ -4,7 +4,7 @@ use glam::DVec3;
 
 use crate::closure::NormalisedCurve;
 use crate::extent::{knotted_extent, midpoint_arc_length};
-use crate::vote::{PROJECTION_ATTEMPTS, polygon_polynomial, vote};
+use crate::vote::{PROJECTION_ATTEMPTS, Workspace, polygon_polynomial, vote};
 use crate::{AlexanderPolynomial, KnotError, KnotOptions, KnotReport, KnotType};
 
 /// Minimum number of points of an open curve (3 edges; a knot needs more, but fewer points
@@ -16,7 +16,8 @@ pub const MIN_OPEN_POINTS: usize = 4;
 /// Alexander polynomial, optionally with the knotted sub-arc.
 ///
 /// Independent of position, orientation and units (the curve is normalised first), and
-/// deterministic.
+/// deterministic. To analyse many curves, [`KnotAnalyser::analyse`] gives the same reports
+/// faster.
 ///
 /// # Errors
 /// [`KnotError::InvalidOption`] for a zero direction count, [`KnotError::TooFewPoints`] for
@@ -25,23 +26,51 @@ pub const MIN_OPEN_POINTS: usize = 4;
 /// [`KnotError::NoGenericProjection`] if the curve passes through itself so that no closure
 /// could be evaluated.
 pub fn analyse_knot(points: &[DVec3], options: &KnotOptions) -> Result<KnotReport, KnotError> {
-    options.validate()?;
-    KnotError::check_points(points, MIN_OPEN_POINTS)?;
-    let curve = NormalisedCurve::new(points)?;
-    let winner = vote(&curve, options.directions)
-        .ok_or(KnotError::NoGenericProjection { directions: options.directions })?;
-    let knot = KnotType::from_polynomial(&winner.polynomial);
-    let extent = (options.extent && knot != KnotType::Unknot)
-        .then(|| knotted_extent(points, &winner.polynomial, options.extent_directions));
-    Ok(KnotReport {
-        knot,
-        determinant: winner.polynomial.determinant(),
-        polynomial: winner.polynomial,
-        agreement: winner.agreement,
-        directions_evaluated: winner.evaluated,
-        extent,
-        position: extent.map(|(first, last)| midpoint_arc_length(points, first, last)),
-    })
+    KnotAnalyser::default().analyse(points, options)
+}
+
+/// The knot analysis of [`analyse_knot`], keeping its buffers and the polynomials of the
+/// diagrams it has met from one curve to the next: the frames of a run meet the same few
+/// diagrams again and again. Its reports are those of [`analyse_knot`], bit for bit.
+#[derive(Debug, Default)]
+pub struct KnotAnalyser {
+    workspace: Workspace,
+}
+
+impl KnotAnalyser {
+    /// [`analyse_knot`]`(points, options)`.
+    ///
+    /// # Errors
+    /// Those of [`analyse_knot`].
+    pub fn analyse(
+        &mut self,
+        points: &[DVec3],
+        options: &KnotOptions,
+    ) -> Result<KnotReport, KnotError> {
+        options.validate()?;
+        KnotError::check_points(points, MIN_OPEN_POINTS)?;
+        let curve = NormalisedCurve::new(points)?;
+        let winner = vote(&curve, options.directions, &mut self.workspace)
+            .ok_or(KnotError::NoGenericProjection { directions: options.directions })?;
+        let knot = KnotType::from_polynomial(&winner.polynomial);
+        let extent = (options.extent && knot != KnotType::Unknot).then(|| {
+            knotted_extent(
+                points,
+                &winner.polynomial,
+                options.extent_directions,
+                &mut self.workspace,
+            )
+        });
+        Ok(KnotReport {
+            knot,
+            determinant: winner.polynomial.determinant(),
+            polynomial: winner.polynomial,
+            agreement: winner.agreement,
+            directions_evaluated: winner.evaluated,
+            extent,
+            position: extent.map(|(first, last)| midpoint_arc_length(points, first, last)),
+        })
+    }
 }
 
 /// Alexander polynomial of the closed polygon `vertices` (the last vertex joins the first;
@@ -55,6 +84,6 @@ pub fn analyse_knot(points: &[DVec3], options: &KnotOptions) -> Result<KnotRepor
 pub fn closed_polygon_polynomial(vertices: &[DVec3]) -> Result<AlexanderPolynomial, KnotError> {
     KnotError::check_points(vertices, 3)?;
     let curve = NormalisedCurve::new(vertices)?;
-    polygon_polynomial(curve.as_closed_polygon(), DVec3::Z)
+    polygon_polynomial(curve.as_closed_polygon(), DVec3::Z, &mut Workspace::default())
         .ok_or(KnotError::NoGenericProjection { directions: PROJECTION_ATTEMPTS })
 }

@@ -11,7 +11,7 @@ use glam::DVec3;
 use crate::AlexanderPolynomial;
 use crate::analysis::MIN_OPEN_POINTS;
 use crate::closure::NormalisedCurve;
-use crate::vote::vote;
+use crate::vote::{Workspace, elects};
 
 /// First and last vertex index of the smallest sub-arc of `points` whose closure still has
 /// polynomial `target`, voting with `directions` directions per candidate sub-arc.
@@ -19,13 +19,12 @@ pub(crate) fn knotted_extent(
     points: &[DVec3],
     target: &AlexanderPolynomial,
     directions: usize,
+    workspace: &mut Workspace,
 ) -> (usize, usize) {
     let n = points.len();
-    let knotted = |i: usize, j: usize| {
+    let mut knotted = |i: usize, j: usize| {
         NormalisedCurve::new(&points[i..=j])
-            .ok()
-            .and_then(|curve| vote(&curve, directions))
-            .is_some_and(|winner| &winner.polynomial == target)
+            .is_ok_and(|curve| elects(&curve, directions, target, workspace))
     };
     // Largest start i with [i, n − 1] knotted; i = n − 3 leaves too few points.
     let (mut knotted_start, mut lost_start) = (0, n + 1 - MIN_OPEN_POINTS);

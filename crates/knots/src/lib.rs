@@ -19,13 +19,16 @@
 //!    expanded through the characteristic polynomial of (A + B)⁻¹B over 𝔽ₚ, p = 2⁶¹ − 1,
 //!    in O(c³), and the residues are read as integers in (−p/2, p/2]. The result is
 //!    ±tᵏΔ(t) of degree ≤ c − 1; it is normalised to Δ(0) > 0 ([`AlexanderPolynomial`])
-//!    and checked to be palindromic with |Δ(1)| = 1.
+//!    and checked to be palindromic with |Δ(1)| = 1. The polynomial depends only on the
+//!    diagram's arc labels and signs, so it is remembered by them (`memo.rs`): a vote, and
+//!    the frames of a run analysed by one [`KnotAnalyser`], meet the same diagrams again.
 //! 5. **Vote**: the most frequent polynomial wins (ties to the simpler); `agreement` is its
 //!    share. Directions whose rays pierce the knotted region are the minority when the
 //!    ends stick out of it.
 //! 6. **Name** it ([`KnotType`], prime knots up to 6 crossings) and optionally locate the
 //!    **extent** (`extent.rs`): the smallest sub-arc whose own closure keeps the type, by a
-//!    binary search per end with `extent_directions` directions per vote.
+//!    binary search per end with `extent_directions` directions per vote; each of those
+//!    votes stops once the remaining directions cannot change whether the type wins.
 //!
 //! Limits: the Alexander polynomial does not see chirality and misses a few knots (e.g.
 //! Δ = 1 for the Conway and Kinoshita–Terasaka knots); a polynomial with a coefficient
@@ -46,6 +49,7 @@ mod directions;
 mod error;
 mod extent;
 mod knot_type;
+mod memo;
 mod modular;
 mod options;
 mod polynomial;
@@ -53,7 +57,7 @@ mod projection;
 mod report;
 mod vote;
 
-pub use analysis::{MIN_OPEN_POINTS, analyse_knot, closed_polygon_polynomial};
+pub use analysis::{KnotAnalyser, MIN_OPEN_POINTS, analyse_knot, closed_polygon_polynomial};
 pub use closure::CLOSURE_DISTANCE;
 pub use error::KnotError;
 pub use knot_type::KnotType;

@@ -36,10 +36,14 @@ impl Residue {
         self.0 == 0
     }
 
-    /// The multiplicative inverse a^(p−2) (Fermat), or `None` for zero.
+    /// The multiplicative inverse a^(p−2) (Fermat), or `None` for zero. ±1, their own
+    /// inverses and nearly every pivot of an Alexander matrix, are returned at once.
     pub(crate) fn inverse(self) -> Option<Self> {
         if self.is_zero() {
             return None;
+        }
+        if self == Residue::ONE || self == -Residue::ONE {
+            return Some(self);
         }
         let (mut base, mut exponent, mut result) = (self, MODULUS - 2, Residue::ONE);
         while exponent > 0 {
@@ -133,6 +137,9 @@ mod tests {
         assert_eq!(Residue::dot(&x, &y), expected);
         let inverse = a.inverse().expect("non-zero");
         assert_eq!(a * inverse, Residue::ONE);
+        for unit in [Residue::ONE, -Residue::ONE] {
+            assert_eq!(unit.inverse().map(|inverse| inverse * unit), Some(Residue::ONE));
+        }
         assert_eq!(Residue::ZERO.inverse(), None);
         let big = Residue::from_i64(MODULUS as i64 - 1);
         assert_eq!((big * big).to_symmetric(), 1);

@@ -19,6 +19,7 @@ use crate::alexander::Crossing;
 pub(crate) const GENERICITY_TOLERANCE: f64 = 1e-9;
 
 /// One edge of the projected polygon with its bounding box.
+#[derive(Debug)]
 struct Edge {
     start: DVec2,
     end: DVec2,
@@ -28,42 +29,103 @@ struct Edge {
     max: DVec2,
 }
 
-/// Crossings of the closed polygon `vertices` (the last vertex joins the first) seen along
-/// the unit vector `view`, or `None` if this projection is not generic. Crossing positions
-/// are `edge index + parameter along the edge`.
-pub(crate) fn crossings(vertices: &[DVec3], view: DVec3) -> Option<Vec<Crossing>> {
-    let (e1, e2) = view.any_orthonormal_pair();
-    let n = vertices.len();
-    let project = |x: DVec3| (DVec2::new(e1.dot(x), e2.dot(x)), view.dot(x));
-    let edges: Vec<Edge> = (0..n)
-        .map(|k| {
-            let (start, start_height) = project(vertices[k]);
-            let (end, end_height) = project(vertices[(k + 1) % n]);
-            Edge { start, end, start_height, end_height, min: start.min(end), max: start.max(end) }
-        })
-        .collect();
-    // Sweep along x: edges sorted by their leftmost x; each edge meets only the edges that
-    // start before it ends (most of the n²/2 pairs are never looked at).
-    let mut by_left: Vec<usize> = (0..n).collect();
-    by_left.sort_by(|&a, &b| edges[a].min.x.total_cmp(&edges[b].min.x).then(a.cmp(&b)));
-    let adjacent = |i: usize, j: usize| j == i + 1 || (i == 0 && j + 1 == n);
-    let mut found = Vec::new();
-    for (k, &a) in by_left.iter().enumerate() {
-        for &b in &by_left[k + 1..] {
-            if edges[b].min.x > edges[a].max.x {
-                break;
-            }
-            let (i, j) = (a.min(b), a.max(b));
-            let (p, q) = (&edges[i], &edges[j]);
-            if adjacent(i, j) || p.max.y < q.min.y || q.max.y < p.min.y {
-                continue;
-            }
-            if let Some(crossing) = crossing(p, i, q, j)? {
-                found.push(crossing);
+/// The bounding box of an edge in sweep order.
+#[derive(Debug, Clone, Copy)]
+struct SweepBox {
+    min: DVec2,
+    max: DVec2,
+    edge: usize,
+}
+
+/// The buffers of [`Projector::crossings`], kept between calls so that voting over many
+/// directions allocates once.
+#[derive(Debug, Default)]
+pub(crate) struct Projector {
+    /// The vertices projected: position in the view plane and height along the view.
+    points: Vec<(DVec2, f64)>,
+    edges: Vec<Edge>,
+    /// Sort keys: the leftmost x of an edge as a [`total_order_key`] in the high 64 bits,
+    /// the edge's index in the low ones.
+    keys: Vec<u128>,
+    /// The edges' boxes sorted by leftmost x, then index.
+    sweep: Vec<SweepBox>,
+    /// Crossing positions along the curve, sorted for the genericity test.
+    positions: Vec<f64>,
+}
+
+impl Projector {
+    /// Writes into `found` the crossings of the closed polygon `vertices` (the last vertex
+    /// joins the first) seen along the unit vector `view`, and returns whether this
+    /// projection is generic (`found` means nothing if not). Crossing positions are `edge
+    /// index + parameter along the edge`.
+    pub(crate) fn crossings(
+        &mut self,
+        vertices: &[DVec3],
+        view: DVec3,
+        found: &mut Vec<Crossing>,
+    ) -> bool {
+        let (e1, e2) = view.any_orthonormal_pair();
+        let n = vertices.len();
+        self.points.clear();
+        self.points
+            .extend(vertices.iter().map(|&x| (DVec2::new(e1.dot(x), e2.dot(x)), view.dot(x))));
+        let points = &self.points;
+        self.edges.clear();
+        let ends = points.iter().skip(1).chain(points.first());
+        self.edges.extend(points.iter().zip(ends).map(
+            |(&(start, start_height), &(end, end_height))| Edge {
+                start,
+                end,
+                start_height,
+                end_height,
+                min: start.min(end),
+                max: start.max(end),
+            },
+        ));
+        let edges = &self.edges;
+        // Sweep along x: edges sorted by their leftmost x (ties by index: every key is
+        // distinct, so any sort gives this order); each edge meets only the edges that start
+        // before it ends (most of the n²/2 pairs are never looked at).
+        self.keys.clear();
+        self.keys.extend(
+            edges
+                .iter()
+                .enumerate()
+                .map(|(k, e)| u128::from(total_order_key(e.min.x)) << 64 | k as u128),
+        );
+        self.keys.sort();
+        self.sweep.clear();
+        self.sweep.extend(self.keys.iter().map(|&key| {
+            let edge = key as u64 as usize;
+            SweepBox { min: edges[edge].min, max: edges[edge].max, edge }
+        }));
+        let adjacent = |i: usize, j: usize| j == i + 1 || (i == 0 && j + 1 == n);
+        found.clear();
+        for (k, a) in self.sweep.iter().enumerate() {
+            for b in &self.sweep[k + 1..] {
+                if b.min.x > a.max.x {
+                    break;
+                }
+                let (i, j) = (a.edge.min(b.edge), a.edge.max(b.edge));
+                if a.max.y < b.min.y || b.max.y < a.min.y || adjacent(i, j) {
+                    continue;
+                }
+                match crossing(&edges[i], i, &edges[j], j) {
+                    Some(Some(crossing)) => found.push(crossing),
+                    Some(None) => {}
+                    None => return false,
+                }
             }
         }
+        distinct_positions(found, edges, &mut self.positions)
     }
-    distinct_positions(&found, &edges).then_some(found)
+}
+
+/// The bits of `x` as an integer that orders like [`f64::total_cmp`] (negative values have
+/// all bits flipped, the others the sign bit set), so that keys sort as plain integers.
+fn total_order_key(x: f64) -> u64 {
+    let bits = x.to_bits();
+    if bits >> 63 == 1 { !bits } else { bits | 1 << 63 }
 }
 
 /// Side of a point relative to an oriented line: `cross` = (line direction) × (point −
@@ -118,10 +180,11 @@ fn crossing(p: &Edge, i: usize, q: &Edge, j: usize) -> Option<Option<Crossing>> 
 }
 
 /// Whether no two crossings lie within the margin of each other along the same edge (which
-/// would make their order, hence the diagram, unreliable).
-fn distinct_positions(crossings: &[Crossing], edges: &[Edge]) -> bool {
-    let mut positions: Vec<f64> = crossings.iter().flat_map(|c| [c.over, c.under]).collect();
-    positions.sort_by(f64::total_cmp);
+/// would make their order, hence the diagram, unreliable); `positions` is scratch.
+fn distinct_positions(crossings: &[Crossing], edges: &[Edge], positions: &mut Vec<f64>) -> bool {
+    positions.clear();
+    positions.extend(crossings.iter().flat_map(|c| [c.over, c.under]));
+    positions.sort_unstable_by(f64::total_cmp);
     positions.windows(2).all(|pair| {
         let edge = pair[0].floor();
         // A position is `edge index + t` with t strictly inside (0, 1) (see `side`'s margin).
@@ -135,6 +198,16 @@ mod tests {
     use super::*;
 
     #[test]
+    fn total_order_keys_sort_like_total_cmp() {
+        let mut values =
+            [3.5, -0.0, 0.0, -1e300, f64::MIN_POSITIVE, -f64::MIN_POSITIVE, 1e-300, -2.0];
+        let mut keys: Vec<u64> = values.iter().map(|&x| total_order_key(x)).collect();
+        values.sort_by(f64::total_cmp);
+        keys.sort_unstable();
+        assert_eq!(keys, values.map(total_order_key));
+    }
+
+    #[test]
     fn a_square_with_a_crossing_diagonal_is_found_and_degenerate_views_rejected() {
         // A bow-tie: edges 0 (0,0,0)→(1,1,1) and 2 (1,0,0)→(0,1,0) cross above (0.5, 0.5).
         let bow_tie = [
@@ -143,10 +216,11 @@ mod tests {
             DVec3::new(1.0, 0.0, 0.0),
             DVec3::new(0.0, 1.0, 0.0),
         ];
-        let found = crossings(&bow_tie, DVec3::Z).expect("generic");
+        let (mut projector, mut found) = (Projector::default(), Vec::new());
+        assert!(projector.crossings(&bow_tie, DVec3::Z, &mut found), "generic");
         assert_eq!(found.len(), 1);
         assert!((found[0].over - 0.5).abs() < 1e-12 && (found[0].under - 2.5).abs() < 1e-12);
         // Seen along x, vertices 0 and 2 project to the same point.
-        assert_eq!(crossings(&bow_tie, DVec3::X), None);
+        assert!(!projector.crossings(&bow_tie, DVec3::X, &mut found));
     }
 }

@@ -62,7 +62,16 @@ impl CsvFile {
         let width = self.header.len();
         self.text.lines().enumerate().skip(1).filter(|(_, l)| !l.trim().is_empty()).map(
             move |(i, l)| {
-                let fields: Vec<&str> = l.split(',').map(str::trim).collect();
+                let mut fields = Vec::with_capacity(width);
+                let mut start = 0;
+                // A byte scan: `,` is ASCII, so every cut falls between characters.
+                for (i, byte) in l.bytes().enumerate() {
+                    if byte == b',' {
+                        fields.push(l[start..i].trim());
+                        start = i + 1;
+                    }
+                }
+                fields.push(l[start..].trim());
                 if fields.len() == width {
                     Ok(Record { path: &self.path, line: i + 1, fields })
                 } else {

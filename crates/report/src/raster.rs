@@ -48,12 +48,19 @@ impl Raster {
     /// `first + shade` with shade ∈ 0..SHADES from the Lambert term (ambient 0.25).
     pub fn sphere(&mut self, sphere: Sphere, first: u8) {
         let r = sphere.radius.max(0.5);
+        // No point of the sphere is nearer than its front, centre depth + r (dz ≤ 1, and
+        // rounding is monotonic): a pixel already nearer than that keeps its colour.
+        let front = sphere.depth + r;
         let x0 = ((sphere.x - r).floor().max(0.0)) as usize;
         let y0 = ((sphere.y - r).floor().max(0.0)) as usize;
         let x1 = ((sphere.x + r).ceil().max(0.0) as usize).min(self.width);
         let y1 = ((sphere.y + r).ceil().max(0.0) as usize).min(self.height);
         for py in y0..y1 {
             for px in x0..x1 {
+                let i = py * self.width + px;
+                if front <= self.depth[i] {
+                    continue;
+                }
                 let dx = (px as f32 + 0.5 - sphere.x) / r;
                 let dy = (sphere.y - py as f32 - 0.5) / r;
                 let d2 = dx * dx + dy * dy;
@@ -61,7 +68,6 @@ impl Raster {
                     continue;
                 }
                 let dz = (1.0 - d2).sqrt();
-                let i = py * self.width + px;
                 let z = sphere.depth + dz * r;
                 if z <= self.depth[i] {
                     continue;

@@ -9,6 +9,7 @@
 //! every step. Floating-point vectors are stored as the hexadecimal bits of each value, so
 //! they come back exactly.
 
+use std::fmt::Write as _;
 use std::path::Path;
 
 use hagfish_anatomy::DataFile;
@@ -32,8 +33,13 @@ pub struct ExactF64s(pub Vec<f64>);
 
 impl Serialize for ExactF64s {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        let words: Vec<String> = self.0.iter().map(|v| format!("{:016x}", v.to_bits())).collect();
-        serializer.serialize_str(&words.join(" "))
+        let mut words = String::with_capacity(17 * self.0.len());
+        for (k, v) in self.0.iter().enumerate() {
+            let separator = if k == 0 { "" } else { " " };
+            // Writing to a `String` cannot fail.
+            let _ = write!(words, "{separator}{:016x}", v.to_bits());
+        }
+        serializer.serialize_str(&words)
     }
 }
 
@@ -110,8 +116,12 @@ impl Checkpoint {
     /// over it, so a killed run leaves either the old or the new checkpoint.
     pub fn write(&self, path: &Path) -> Result<(), SimError> {
         let fail = |source| SimError::Output { path: path.to_path_buf(), source };
-        let text = ron::ser::to_string_pretty(self, ron::ser::PrettyConfig::default())
-            .map_err(|e| fail(std::io::Error::other(e)))?;
+        // Every string of a checkpoint (hash, hexadecimal words, file names) is plain ASCII
+        // without quotes or backslashes, which RON writes alike escaped or not; not escaping
+        // spares a pass over every character.
+        let config = ron::ser::PrettyConfig::default().escape_strings(false);
+        let text =
+            ron::ser::to_string_pretty(self, config).map_err(|e| fail(std::io::Error::other(e)))?;
         let temporary = path.with_extension("ron.partial");
         std::fs::write(&temporary, text).map_err(fail)?;
         std::fs::rename(&temporary, path).map_err(fail)

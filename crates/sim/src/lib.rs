@@ -14,6 +14,7 @@ mod benchmark_state;
 mod checkpoint;
 mod contact_prediction;
 mod error;
+mod force_columns;
 mod force_field;
 mod forces;
 mod hash;
@@ -28,6 +29,7 @@ pub mod rows;
 mod run;
 mod scenario;
 mod scenario_check;
+mod scientific;
 mod step_data;
 mod world;
 

@@ -55,7 +55,9 @@ impl OutputFile {
 
     /// Appends `line` and a newline (in memory until the next flush).
     pub(crate) fn line(&mut self, line: std::fmt::Arguments<'_>) -> Result<(), SimError> {
-        writeln!(self.pending, "{line}").map_err(|source| output(&self.path, source))
+        self.pending.write_fmt(line).map_err(|source| output(&self.path, source))?;
+        self.pending.push(b'\n');
+        Ok(())
     }
 
     /// Appends raw bytes (in memory until the next flush).

@@ -19,10 +19,12 @@ use serde::{Deserialize, Serialize};
 
 use crate::checkpoint::{CHECKPOINT_FILE, Checkpoint};
 use crate::error::SimError;
+use crate::force_columns::ForceColumns;
 use crate::forces::{DofLabel, GroupForces, RECORDED_GROUPS};
 use crate::npy::NpyWriter;
 use crate::output_file::OutputFile;
 use crate::report::StepReport;
+use crate::scientific::Scientific;
 
 /// Header of `forces.csv`: generalized constraint forces per joint, axis and group, averaged
 /// over the steps since the previous frame (dyn·cm).
@@ -141,6 +143,7 @@ pub struct Recorder {
     q: NpyWriter,
     qdot: NpyWriter,
     thigmo: NpyWriter,
+    force_columns: ForceColumns,
 }
 
 /// The CSV files and their headers, in the order of [`Recorder::files`].
@@ -212,6 +215,7 @@ impl Recorder {
             q: q?,
             qdot: qdot?,
             thigmo: thigmo?,
+            force_columns: ForceColumns::default(),
         })
     }
 
@@ -224,17 +228,15 @@ impl Recorder {
         csv.into_iter().chain(npy).collect()
     }
 
-    fn write_centreline(&mut self, frame: &Frame<'_>) -> Result<(), SimError> {
+    fn write_centreline(&mut self, frame: &Frame<'_>, prefix: &str) -> Result<(), SimError> {
         for (body, c) in frame.centres.iter().enumerate() {
-            self.centreline.line(format_args!(
-                "{},{:.4},{body},{:.6},{:.6},{:.6}",
-                frame.index, frame.time, c.x, c.y, c.z
-            ))?;
+            self.centreline
+                .line(format_args!("{prefix},{body},{:.6},{:.6},{:.6}", c.x, c.y, c.z))?;
         }
         Ok(())
     }
 
-    fn write_metrics(&mut self, frame: &Frame<'_>) -> Result<(), SimError> {
+    fn write_metrics(&mut self, frame: &Frame<'_>, prefix: &str) -> Result<(), SimError> {
         let (knot, agreement, first, last, position) = match frame.knot {
             Some(k) => (
                 k.knot.to_string(),
@@ -258,9 +260,7 @@ impl Recorder {
             )
         });
         self.metrics.line(format_args!(
-            "{},{:.4},{},{},{},{knot},{agreement},{first},{last},{position},{:.6},{:.6},{:.6},{:.4},{span},{:?},{:?},{},{},{:.3e}",
-            frame.index,
-            frame.time,
+            "{prefix},{},{},{},{knot},{agreement},{first},{last},{position},{:.6},{:.6},{:.6},{:.4},{span},{:?},{:?},{},{},{:.3e}",
             frame.phase,
             s.self_contacts,
             s.wall_contacts,
@@ -276,26 +276,23 @@ impl Recorder {
         ))
     }
 
-    fn write_forces(&mut self, frame: &Frame<'_>) -> Result<(), SimError> {
-        for (values, group) in frame.forces.values.iter().zip(RECORDED_GROUPS) {
-            let name = GroupForces::group_name(group);
-            for (label, value) in frame.labels.iter().zip(values) {
-                self.forces.line(format_args!(
-                    "{},{:.4},{},{},{name},{value:.6e}",
-                    frame.index, frame.time, label.joint, label.axis
-                ))?;
+    fn write_forces(&mut self, frame: &Frame<'_>, prefix: &str) -> Result<(), SimError> {
+        let columns = self.force_columns.for_labels(frame.labels);
+        for (values, columns) in frame.forces.values.iter().zip(columns) {
+            for (columns, value) in columns.iter().zip(values) {
+                self.forces.bytes(prefix.as_bytes());
+                self.forces.bytes(columns.as_bytes());
+                self.forces.line(format_args!("{}", Scientific(*value)))?;
             }
         }
         Ok(())
     }
 
-    fn write_contacts(&mut self, frame: &Frame<'_>) -> Result<(), SimError> {
+    fn write_contacts(&mut self, frame: &Frame<'_>, prefix: &str) -> Result<(), SimError> {
         for (k, c) in frame.contacts.iter().enumerate() {
             let (a, b) = (c.point_a, c.point_b);
             self.contacts.line(format_args!(
-                "{},{:.4},{k},{:.6},{:.6},{:.4},{:.4},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6}",
-                frame.index,
-                frame.time,
+                "{prefix},{k},{:.6},{:.6},{:.4},{:.4},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6}",
                 c.u_a,
                 c.u_b,
                 frame.centreline.arc_length(c.u_a),
@@ -314,12 +311,14 @@ impl Recorder {
 }
 
 impl FrameSink for Recorder {
-    /// Appends one frame to every file, each file's rows in one write.
+    /// Appends one frame to every file, each file's rows in one write. Every CSV row starts
+    /// with the frame's index and time, formatted once.
     fn record(&mut self, frame: &Frame<'_>) -> Result<(), SimError> {
-        self.write_centreline(frame)?;
-        self.write_metrics(frame)?;
-        self.write_forces(frame)?;
-        self.write_contacts(frame)?;
+        let prefix = format!("{},{:.4}", frame.index, frame.time);
+        self.write_centreline(frame, &prefix)?;
+        self.write_metrics(frame, &prefix)?;
+        self.write_forces(frame, &prefix)?;
+        self.write_contacts(frame, &prefix)?;
         for file in [&mut self.centreline, &mut self.metrics, &mut self.forces, &mut self.contacts]
         {
             file.flush()?;

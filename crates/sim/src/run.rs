@@ -7,7 +7,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use glam::DVec3;
 use hagfish_control::{KnotSpan, PhasedController};
-use hagfish_knots::{KnotOptions, KnotReport, analyse_knot};
+use hagfish_knots::{KnotAnalyser, KnotOptions, KnotReport};
 use hagfish_solver::RowGroup;
 use hagfish_tree::State;
 
@@ -183,6 +183,7 @@ pub fn run(
 struct Recording {
     hash: String,
     knot_options: KnotOptions,
+    knots: KnotAnalyser,
     centres: Vec<DVec3>,
     labels: Vec<crate::forces::DofLabel>,
     forces: GroupForces,
@@ -195,6 +196,7 @@ impl Recording {
         Self {
             hash,
             knot_options: KnotOptions::default(),
+            knots: KnotAnalyser::default(),
             centres: Vec::with_capacity(world.model().body_count()),
             labels: dof_labels(world.model()),
             forces: GroupForces::default(),
@@ -214,7 +216,7 @@ impl Recording {
         duration: f64,
     ) -> Result<(), SimError> {
         world.body_centres(&mut self.centres);
-        let knot = analyse_knot(&self.centres, &self.knot_options).ok();
+        let knot = self.knots.analyse(&self.centres, &self.knot_options).ok();
         let dofs = world.model().dof_count();
         self.forces.finish_interval(dofs, world.options().time_step);
         let data = world.data();
