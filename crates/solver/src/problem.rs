@@ -31,7 +31,7 @@ pub struct Problem<'a> {
 }
 
 impl<'a> Problem<'a> {
-    /// Validates and wraps M̃ (`mass`, n × n, symmetric; the lower triangle is factored and the
+    /// Validates and wraps M̃ (`mass`, n × n, symmetric; the upper triangle is factored and the
     /// full matrix enters the residuals), f̃ (`force`, length n) and the rows (over n DOFs).
     pub fn new(
         mass: MatRef<'a, f64>,
