@@ -1,5 +1,5 @@
 //! The sparse maximal-coordinate backend in the whole pipeline: from the same state it gives
-//! the dense reduced path's `q̇¹` and multipliers (to 1e-9 relative) on the 100-body ES103
+//! the dense reduced path's `q̇¹` (to 1e-9 relative) and multipliers (to 1e-8) on the 100-body ES103
 //! hagfish — with the head rows only, with joint-limit, wall and self-contact rows while a
 //! force drags the tail around, and in the knotted benchmark state (`form.ron` at 22.65 s) with
 //! its self contacts and re-solves —
@@ -20,12 +20,20 @@ fn relative_error(a: &[f64], b: &[f64]) -> f64 {
     diff / norm.max(1e-300)
 }
 
+/// λ of nearly dependent contact rows is fixed only to about cond(W_FF)·ε, so the backends'
+/// multipliers agree less closely than their velocities: over the compared states of
+/// `sparse_steps_like_dense_with_head_limit_wall_and_contact_rows`, up to 7.9e-10 relative
+/// with the forward dense Cholesky and 1.3e-9 with the reverse-order one (q̇¹: 1.5e-11 and
+/// 1.3e-11).
+const MULTIPLIER_SPREAD: f64 = 10.0;
+
 fn with_backend(options: &StepOptions, backend: DynamicsBackend) -> StepOptions {
     StepOptions { backend, ..options.clone() }
 }
 
 /// One step from `state` on each backend (fresh worlds, so neither is warm-started). Checks
-/// that q̇¹ (and λ, when both steps have the same rows) agree to `tolerance` (relative) and that
+/// that q̇¹ agrees to `tolerance` (relative), λ (when both steps have the same rows) to
+/// [`MULTIPLIER_SPREAD`] × `tolerance`, and that
 /// the sparse answer satisfies `M̃q̇ = f̃ + Cᵀλ` with the dense M̃ to rounding; returns the
 /// dense step's solve path and rows per group.
 fn compare_one_step(
@@ -52,7 +60,8 @@ fn compare_one_step(
     if rows == sparse_rows {
         if !lambda.is_empty() {
             let multiplier_error = relative_error(lambda, dense.solver.multipliers());
-            assert!(multiplier_error < tolerance, "λ differs by {multiplier_error:e} (relative)");
+            let bound = MULTIPLIER_SPREAD * tolerance;
+            assert!(multiplier_error < bound, "λ differs by {multiplier_error:e} (relative)");
         }
     } else {
         // A joint whose first-solve velocity lands on its limit to rounding gets an
