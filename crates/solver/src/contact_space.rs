@@ -15,6 +15,12 @@
 //!
 //! W is not regularised: duplicated or degenerate rows make it singular, and the active-set
 //! method (`active_set.rs`) keeps the rows it factors linearly independent instead.
+//!
+//! Trailing zeros: a row cᵢ vanishing from entry eᵢ on (a contact on body k in reduced
+//! coordinates rooted at the head: eᵢ = the DOFs of joints 0..k) gives a column L⁻¹cᵢ that
+//! vanishes there too when L is upper triangular ([`FactoredMass::keeps_trailing_zeros`],
+//! the dense factor). Then Y's column i costs eᵢ²/2 instead of n²/2, and
+//! Wᵢⱼ = Σ_{k < min(eᵢ, eⱼ)} YₖᵢYₖⱼ skips the zero tails. Other factors use eᵢ = n.
 
 use faer::linalg::matmul::matmul;
 use faer::{Accum, Mat, MatRef, Par};
@@ -23,10 +29,20 @@ use crate::linalg::{column, column_mut};
 use crate::mass_operator::FactoredMass;
 use crate::problem::Problem;
 
-/// Y, W, z, r and b of one solve (sizes n × m, m × m, n, m, m).
+/// Columns per block of the product W = YᵀY.
+const W_BLOCK: usize = 8;
+
+/// Y, W, z, r and b of one solve (sizes n × m, m × m, n, m, m), the support eᵢ of Y's
+/// columns (entries eᵢ.. of column i are zero), and the scratch of the build: the rows by
+/// decreasing support (`order`), their supports, Y and W in that order.
 #[derive(Debug)]
 pub(crate) struct ContactSpace {
     y: Mat<f64>,
+    support: Vec<usize>,
+    order: Vec<usize>,
+    sorted_support: Vec<usize>,
+    sorted: Mat<f64>,
+    sorted_w: Mat<f64>,
     w: Mat<f64>,
     z: Vec<f64>,
     r: Vec<f64>,
@@ -38,6 +54,11 @@ impl ContactSpace {
     pub(crate) fn new() -> Self {
         Self {
             y: Mat::zeros(0, 0),
+            support: Vec::new(),
+            order: Vec::new(),
+            sorted_support: Vec::new(),
+            sorted: Mat::zeros(0, 0),
+            sorted_w: Mat::zeros(0, 0),
             w: Mat::zeros(0, 0),
             z: Vec::new(),
             r: Vec::new(),
@@ -48,6 +69,11 @@ impl ContactSpace {
     /// Reserves room for problems of up to `dofs` velocities and `rows` rows.
     pub(crate) fn reserve(&mut self, dofs: usize, rows: usize) {
         self.y.reserve(dofs, rows);
+        self.support.reserve(rows);
+        self.order.reserve(rows);
+        self.sorted_support.reserve(rows);
+        self.sorted.reserve(dofs, rows);
+        self.sorted_w.reserve(rows, rows);
         self.w.reserve(rows, rows);
         self.z.reserve(dofs);
         self.r.reserve(rows);
@@ -55,15 +81,53 @@ impl ContactSpace {
     }
 
     /// Forms Y = L⁻¹Cᵀ, W = YᵀY, z = L⁻¹f̃ and r = b − Yᵀz for `problem`, with `factor`
-    /// holding a factor of its M̃ (M̃ = L Lᵀ).
+    /// holding a factor of its M̃ (M̃ = L Lᵀ); skips the rows' trailing zeros when the factor
+    /// keeps them (module docs).
     pub(crate) fn build(&mut self, factor: &dyn FactoredMass, problem: &Problem<'_>) {
         let rows = problem.rows();
         let (n, m) = (problem.dofs(), rows.len());
+        self.support.clear();
+        self.support.extend((0..m).map(|i| match factor.keeps_trailing_zeros() {
+            true => rows.row(i).iter().rposition(|&c| c != 0.0).map_or(0, |last| last + 1),
+            false => n,
+        }));
+        // Columns by decreasing support (ties by index): Y's columns in `sorted`, their
+        // supports in `sorted_support`.
+        self.order.clear();
+        self.order.extend(0..m);
+        let support = &self.support;
+        self.order.sort_unstable_by_key(|&i| (core::cmp::Reverse(support[i]), i));
+        self.sorted_support.clear();
+        self.sorted_support.extend(self.order.iter().map(|&i| support[i]));
+        self.sorted.resize_with(n, m, |_, _| 0.0);
+        for (k, &i) in self.order.iter().enumerate() {
+            self.sorted.col_as_slice_mut(k).copy_from_slice(rows.row(i));
+        }
+        factor.solve_lower_supported(self.sorted.as_mut(), &self.sorted_support);
         self.y.resize_with(n, m, |_, _| 0.0);
-        self.y.copy_from(rows.transposed());
-        factor.solve_lower(self.y.as_mut());
+        for (k, &i) in self.order.iter().enumerate() {
+            self.y.col_as_slice_mut(i).copy_from_slice(self.sorted.col_as_slice(k));
+        }
+        // W in sorted order by column blocks [a, b): W[..b, a..b] = Y[..e_a, ..b]ᵀY[..e_a, a..b]
+        // (e_a, the block's largest support, bounds every product in it); the upper triangle
+        // is scattered to both triangles of W in row order.
         self.w.resize_with(m, m, |_, _| 0.0);
-        matmul(self.w.as_mut(), Accum::Replace, self.y.transpose(), self.y.as_ref(), 1.0, Par::Seq);
+        self.sorted_w.resize_with(m, m, |_, _| 0.0);
+        for a in (0..m).step_by(W_BLOCK) {
+            let b = (a + W_BLOCK).min(m);
+            let rows_used = self.sorted_support[a];
+            let left = self.sorted.as_ref().submatrix(0, 0, rows_used, b);
+            let right = self.sorted.as_ref().submatrix(0, a, rows_used, b - a);
+            let target = self.sorted_w.as_mut().submatrix_mut(0, a, b, b - a);
+            matmul(target, Accum::Replace, left.transpose(), right, 1.0, Par::Seq);
+        }
+        for (l, &j) in self.order.iter().enumerate() {
+            for (k, &i) in self.order[..=l].iter().enumerate() {
+                let value = self.sorted_w[(k, l)];
+                self.w[(i, j)] = value;
+                self.w[(j, i)] = value;
+            }
+        }
 
         self.update_force(factor, problem);
     }
@@ -99,9 +163,9 @@ impl ContactSpace {
         self.z.len()
     }
 
-    /// Column i of Y = L⁻¹Cᵀ, i.e. L⁻¹cᵢ (n).
+    /// Column i of Y = L⁻¹Cᵀ, i.e. L⁻¹cᵢ, up to its support eᵢ ≤ n (the rest is zero).
     pub(crate) fn y_column(&self, i: usize) -> &[f64] {
-        self.y.col_as_slice(i)
+        &self.y.col_as_slice(i)[..self.support[i]]
     }
 
     /// W = YᵀY (m × m).
@@ -130,5 +194,76 @@ impl ContactSpace {
     pub(crate) fn recover(&self, factor: &dyn FactoredMass, lambda: &[f64], qdot: &mut [f64]) {
         self.lift(lambda, qdot);
         factor.solve_upper(column_mut(qdot));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use faer::linalg::solvers::Llt;
+    use faer::{MatMut, Side};
+    use proptest::prelude::*;
+
+    use super::*;
+    use crate::mass_factor::MassFactor;
+    use crate::mass_factor::tests::{random_spd, relative_gap, stream};
+    use crate::rows::{RowGroup, RowKind, Rows};
+
+    /// faer's lower Cholesky factor M̃ = LLᵀ: a factor that does not keep trailing zeros (the
+    /// default path of [`FactoredMass::solve_lower_supported`]).
+    #[derive(Debug)]
+    struct LowerFactor(Llt<f64>);
+
+    impl FactoredMass for LowerFactor {
+        fn solve_lower(&self, x: MatMut<'_, f64>) {
+            let l = self.0.L();
+            faer::linalg::triangular_solve::solve_lower_triangular_in_place(l, x, Par::Seq);
+        }
+
+        fn solve_upper(&self, x: MatMut<'_, f64>) {
+            let lt = self.0.L().transpose();
+            faer::linalg::triangular_solve::solve_upper_triangular_in_place(lt, x, Par::Seq);
+        }
+    }
+
+    /// Rows with random trailing zeros (and a few all-zero and full rows) give the same W, r and
+    /// Yλ with the reverse factor (tails skipped) as with faer's LLᵀ (tails filled).
+    fn tails_are_exact(n: usize, m: usize, seed: u64) -> Result<(), String> {
+        let mut next = stream(seed);
+        let mass = random_spd(n, &mut next);
+        let force: Vec<f64> = (0..n).map(|_| next()).collect();
+        let mut rows = Rows::new(n);
+        for _ in 0..m {
+            let end = ((next() + 1.0) * 0.5 * (n + 1) as f64) as usize % (n + 1);
+            let row = rows.push_zeroed(RowKind::Inequality, RowGroup::Contact, next());
+            row[..end].iter_mut().for_each(|c| *c = next());
+        }
+        let problem = Problem::new(mass.as_ref(), &force, &rows).map_err(|e| e.to_string())?;
+        let mut reverse = MassFactor::new();
+        reverse.factor(mass.as_ref()).map_err(|e| e.to_string())?;
+        let lower = LowerFactor(mass.llt(Side::Lower).map_err(|e| format!("{e:?}"))?);
+        let (mut tailed, mut filled) = (ContactSpace::new(), ContactSpace::new());
+        tailed.build(&reverse, &problem);
+        filled.build(&lower, &problem);
+        let gap = relative_gap(tailed.w(), filled.w());
+        let symmetric = (0..m).all(|i| (0..m).all(|j| tailed.w()[(i, j)] == tailed.w()[(j, i)]));
+        let r_gap = relative_gap(column(tailed.r()), column(filled.r()));
+        let lambda: Vec<f64> = (0..m).map(|_| next()).collect();
+        let (mut a, mut b) = (vec![0.0; n], vec![0.0; n]);
+        tailed.recover(&reverse, &lambda, &mut a);
+        filled.recover(&lower, &lambda, &mut b);
+        let q_gap = relative_gap(column(&a), column(&b));
+        if gap > 1e-10 || r_gap > 1e-10 || q_gap > 1e-8 || !symmetric {
+            return Err(format!("W {gap:e}, r {r_gap:e}, q̇ {q_gap:e}, symmetric {symmetric}"));
+        }
+        Ok(())
+    }
+
+    proptest! {
+        #[test]
+        fn trailing_zeros_are_skipped_exactly(
+            n in 1usize..=60, m in 0usize..=30, seed in any::<u64>()
+        ) {
+            tails_are_exact(n, m, seed).map_err(TestCaseError::fail)?;
+        }
     }
 }

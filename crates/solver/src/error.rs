@@ -48,7 +48,8 @@ pub enum SolverError {
     /// definite (for M̃ = M_r + hD + h²K this means a negative stiffness or a broken M_r).
     #[error("mass matrix is not positive definite (non-positive Cholesky pivot at DOF {pivot})")]
     NotPositiveDefinite {
-        /// Index of the first failing pivot.
+        /// DOF of the first failing pivot in the factor's elimination order (the dense factor
+        /// eliminates the DOFs from the last to the first, see `mass_factor.rs`).
         pivot: usize,
     },
     /// A soft inequality row has a penalty weight that is not finite and strictly positive.

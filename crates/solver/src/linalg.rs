@@ -16,9 +16,36 @@ pub(crate) fn column_mut(x: &mut [f64]) -> MatMut<'_, f64> {
     MatMut::from_column_major_slice_mut(x, n, 1)
 }
 
-/// xᵀy.
+/// Lanes of the partial sums in [`dot`] and [`dot_and_magnitude`]: independent sums the
+/// compiler can keep in vector registers (a single running sum cannot be vectorised without
+/// reordering it). The order of the additions is fixed, so results are deterministic.
+const LANES: usize = 4;
+
+/// xᵀy over the common length of x and y.
 pub(crate) fn dot(x: &[f64], y: &[f64]) -> f64 {
-    x.iter().zip(y).map(|(a, b)| a * b).sum()
+    dot_and_magnitude(x, y).0
+}
+
+/// (xᵀy, Σᵢ|xᵢyᵢ|) over the common length of x and y, in one pass with [`LANES`] partial sums.
+pub(crate) fn dot_and_magnitude(x: &[f64], y: &[f64]) -> (f64, f64) {
+    let len = x.len().min(y.len());
+    let (x, y) = (x[..len].chunks_exact(LANES), y[..len].chunks_exact(LANES));
+    let (x_tail, y_tail) = (x.remainder(), y.remainder());
+    let (mut sum, mut magnitude) = ([0.0; LANES], [0.0; LANES]);
+    for (a, b) in x.zip(y) {
+        for lane in 0..LANES {
+            let term = a[lane] * b[lane];
+            sum[lane] += term;
+            magnitude[lane] += term.abs();
+        }
+    }
+    for (lane, (a, b)) in x_tail.iter().zip(y_tail).enumerate() {
+        let term = a * b;
+        sum[lane] += term;
+        magnitude[lane] += term.abs();
+    }
+    let total = |s: [f64; LANES]| (s[0] + s[1]) + (s[2] + s[3]);
+    (total(sum), total(magnitude))
 }
 
 /// y ← y + a·x.

@@ -16,6 +16,22 @@ pub trait FactoredMass: core::fmt::Debug {
 
     /// x ← L⁻ᵀx for every column of x (n rows).
     fn solve_upper(&self, x: MatMut<'_, f64>);
+
+    /// True when L is upper triangular, so that L⁻¹ keeps trailing zeros: if x vanishes from
+    /// entry e on, so does L⁻¹x (constraint rows in reduced coordinates rooted at the head
+    /// vanish past their body's DOFs). Default: false.
+    fn keeps_trailing_zeros(&self) -> bool {
+        false
+    }
+
+    /// x ← L⁻¹x for columns x_j that vanish from entry `support[j]` on, `support`
+    /// non-increasing (one entry per column, each ≤ n). A factor that
+    /// [keeps trailing zeros](Self::keeps_trailing_zeros) skips them: O(Σⱼ supportⱼ²) instead
+    /// of O(n²) per column. Default: [`solve_lower`](Self::solve_lower), ignoring the support.
+    fn solve_lower_supported(&self, x: MatMut<'_, f64>, support: &[usize]) {
+        let _ = support;
+        self.solve_lower(x);
+    }
 }
 
 /// An effective mass given as an operator with its own factor: M̃x and the split of

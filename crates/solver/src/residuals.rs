@@ -9,7 +9,7 @@
 use faer::linalg::matmul::matmul;
 use faer::{Accum, Par};
 
-use crate::linalg::{column, column_mut, dot, norm_max};
+use crate::linalg::{column, column_mut, dot_and_magnitude, norm_max};
 use crate::problem::Problem;
 use crate::report::{Residuals, SlackUsage};
 use crate::rows::{RowGroup, RowKind};
@@ -19,8 +19,8 @@ pub(crate) fn row_residual(problem: &Problem<'_>, row: usize, qdot: &[f64]) -> (
     let rows = problem.rows();
     let coefficients = rows.row(row);
     let rhs = rows.rhs()[row];
-    let magnitude: f64 = coefficients.iter().zip(qdot).map(|(c, q)| (c * q).abs()).sum();
-    (dot(coefficients, qdot) - rhs, 1.0 + rhs.abs() + magnitude)
+    let (product, magnitude) = dot_and_magnitude(coefficients, qdot);
+    (product - rhs, 1.0 + rhs.abs() + magnitude)
 }
 
 /// `residual` ← f̃ + Cᵀλ − M̃q̇ (the negated stationarity residual, the refinement's r₁) using

@@ -115,11 +115,10 @@ impl ActiveSet {
         let (implied, data) =
             terms.fold((0.0, b[row].abs()), |(sum, size), t| (sum + t, size + t.abs()));
         let rho = b[row] - implied;
-        let column = dual.y_column(row);
-        zeroed(&mut self.lift, column.len());
+        zeroed(&mut self.lift, dual.dofs());
         dual.lift(lambda, &mut self.lift);
-        zeroed(&mut self.ray, column.len());
-        axpy(s, column, &mut self.ray);
+        zeroed(&mut self.ray, dual.dofs());
+        axpy(s, dual.y_column(row), &mut self.ray);
         for (&zp, &i) in self.z.iter().zip(self.free.indices()) {
             axpy(-s * zp, dual.y_column(i), &mut self.ray);
         }
