@@ -5,10 +5,11 @@
 //!   state.
 //! - `step/knotted/<backend>`: one whole pipeline step (kinematics, contact detection,
 //!   drag, dynamics, rows, constraint solve with its re-solves, integration) in the knotted
-//!   benchmark state (`hagfish_sim::knotted_world`: `data/scenarios/form.ron` at t = 22.65 s,
-//!   41–43 self contacts), with the contact-space QP (default) and with clarabel (reference); and
+//!   benchmark state (`hagfish_sim::knotted_world`: `data/scenarios/form.ron` at t = 21.64 s,
+//!   41 self contacts), with the contact-space QP (default) and with clarabel (reference);
 //!   `step/knotted/ContactSpace/SparseMaximal`, the same step on the sparse
-//!   maximal-coordinate backend (`StepOptions::backend`).
+//!   maximal-coordinate backend (`StepOptions::backend`); and
+//!   `step/knotted/ContactSpace/NoPrediction`, without contact prediction (its cost).
 //!   Per-stage benchmarks of the same state: `cargo bench -p hagfish-sim --bench stages`.
 
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
@@ -42,15 +43,23 @@ fn unconstrained(c: &mut Criterion) {
 fn knotted(c: &mut Criterion) {
     let (world, _) = knotted_world(env!("CARGO_MANIFEST_DIR").as_ref()).expect("knotted state");
     let knotted = world.state().clone();
-    for (backend, dynamics, name) in [
-        (QpBackend::ContactSpace, DynamicsBackend::DenseReduced, "ContactSpace"),
-        (QpBackend::Clarabel, DynamicsBackend::DenseReduced, "Clarabel"),
-        (QpBackend::ContactSpace, DynamicsBackend::SparseMaximal, "ContactSpace/SparseMaximal"),
+    let prediction = StepOptions::default().contact_prediction;
+    for (backend, dynamics, contact_prediction, name) in [
+        (QpBackend::ContactSpace, DynamicsBackend::DenseReduced, prediction, "ContactSpace"),
+        (QpBackend::Clarabel, DynamicsBackend::DenseReduced, prediction, "Clarabel"),
+        (
+            QpBackend::ContactSpace,
+            DynamicsBackend::SparseMaximal,
+            prediction,
+            "ContactSpace/SparseMaximal",
+        ),
+        (QpBackend::ContactSpace, DynamicsBackend::DenseReduced, None, "ContactSpace/NoPrediction"),
     ] {
         let model = world.model().clone();
         let options = StepOptions {
             solver: SolverOptions { backend, ..SolverOptions::default() },
             backend: dynamics,
+            contact_prediction,
             ..StepOptions::default()
         };
         let mut bench_world = World::new(model, options, knotted.clone()).expect("world");

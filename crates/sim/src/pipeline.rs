@@ -231,8 +231,9 @@ pub fn solve_and_resolve(
     solve_velocities(data)?;
     for round in 0..MAX_RESOLVES {
         let refreshed = round < options.velocity_product_iterations;
-        // Once per step: repeated, the prediction can feed on its own faster velocities.
-        let raised = if round < 2 { predict_contact_gaps(model, options, state, data) } else { 0 };
+        // After the first solve only: repeated, the prediction can feed on its own faster
+        // velocities (docs/physics.md).
+        let raised = if round == 0 { predict_contact_gaps(model, options, state, data) } else { 0 };
         if refreshed {
             refresh_velocity_products(model, options, state, data);
         }

@@ -134,17 +134,12 @@ fn head_drift(records: &[Record]) -> f64 {
 
 #[test]
 fn thesis_tightens_then_slides_the_knot_to_the_head() {
-    let growing = PERTURBATIONS.iter().filter(|&&p| check_thesis(p)).count();
-    println!(
-        "thesis: the slide's last-quarter mean |f| exceeds its first-quarter mean in {growing} of \
-         {} runs (reported, not asserted: docs/physics.md)",
-        PERTURBATIONS.len()
-    );
+    for perturbation in PERTURBATIONS {
+        check_thesis(perturbation);
+    }
 }
 
-/// Checks one run of `thesis.ron`; returns whether the slide's force field grew from its first
-/// to its last quarter.
-fn check_thesis(perturbation: f64) -> bool {
+fn check_thesis(perturbation: f64) {
     let (records, summary) = run("thesis", perturbation);
     let label = format!("thesis, δh/h = {perturbation:e}");
 
@@ -192,9 +187,7 @@ fn check_thesis(perturbation: f64) -> bool {
     assert!(penetration < 0.02, "{label}: penetration {penetration} of the radius");
     assert!(drift < 1e-6, "{label}: the head stays fixed: {drift} cm");
 
-    // Force field (thesis §6.3). Whether the last quarter's mean exceeds the first's is
-    // reported, not asserted: it does in some perturbed runs and not in others
-    // (docs/physics.md, "Thigmotaxis").
+    // Force field (thesis §6.3).
     let stats = summary.force_field.stats("slide").expect("slide frames");
     println!("{label}: force field over the slide: {stats:?}");
     assert!(stats.tailward_samples > 0, "{label}: the knot has joints tail-ward of it");
@@ -203,7 +196,10 @@ fn check_thesis(perturbation: f64) -> bool {
         "{label}: zero force tail-ward of the knot in ≥ 95 % of samples: {}",
         stats.tailward_zero_fraction
     );
-    stats.last_quarter_mean_dyn_cm > stats.first_quarter_mean_dyn_cm
+    assert!(
+        stats.last_quarter_mean_dyn_cm > stats.first_quarter_mean_dyn_cm,
+        "{label}: the force grows as the knot nears the head: {stats:?}"
+    );
 }
 
 #[test]
