@@ -215,7 +215,10 @@ fn sigterm_stops_after_a_frame_with_a_resumable_run() {
     let stopped = manifest(&dir);
     assert_eq!(stopped["status"], "interrupted");
     let frames = stopped["frames"].as_u64().expect("frames");
-    assert!((101..301).contains(&frames), "{frames}");
+    // 100 frames were on disk when the signal was sent; the run finishes the frame it is in
+    // (or none, if the signal arrived between a frame's rows and the check after it) and
+    // stops before the last of its 301.
+    assert!((100..301).contains(&frames), "{frames}");
     assert_eq!(csv_rows(&dir.join("metrics.csv")).len() as u64, frames);
 
     resume(&dir);
