@@ -4,7 +4,7 @@
 //!
 //! One projected Newton search on the segment pair holding (u_a, u_b), started from those
 //! parameters; when the result sits on an inner segment end, the search moves on to the
-//! neighbouring segment (at most [`MAX_SEGMENT_MOVES`] times) while the distance decreases.
+//! neighbouring segment (at most twice) while the distance decreases.
 //! It follows one basin and is cheap (a few iterations): right for a small displacement, not
 //! for finding contacts. Near the bend that joins two strands it can walk toward the bend,
 //! where the distance falls to zero: a caller compares how far the points moved with how far
@@ -32,7 +32,7 @@ pub struct NearbyClosestPoints {
 /// The local minimum of |x(u_b) − x(u_a)| on `centreline` reached from (u_a, u_b) by
 /// projected Newton searches on the segment pair holding the current parameters
 /// ([`Centreline::locate`]), moving across inner segment ends (at most
-/// [`MAX_SEGMENT_MOVES`] times) while the distance decreases.
+/// two times) while the distance decreases.
 pub fn closest_points_near(centreline: &Centreline, u_a: f64, u_b: f64) -> NearbyClosestPoints {
     let segments = centreline.segment_count();
     let ((mut k_a, s_a), (mut k_b, s_b)) = (centreline.locate(u_a), centreline.locate(u_b));
