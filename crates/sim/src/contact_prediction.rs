@@ -2,7 +2,7 @@
 //! `g + h·nᵀ(ẋ_b − ẋ_a) ≥ g_target`, but the gap at the end of the step is a nonlinear function of
 //! `q + h q̇`: body rotations curve the paths of the contact points, and where two curved strands
 //! slide past each other the closest points move along them. At h = 0.01 s with strands sliding at
-//! 2–4 cm/s that second-order error reached 2–3 % of the radius (`docs/physics.md`).
+//! 2–4 cm/s that second-order error reached 2.1 % of the radius (`docs/physics.md`).
 //!
 //! The predictor evaluates the gap after the step exactly, `g⁺ = |x_b⁺ − x_a⁺| − r_a − r_b`, at the
 //! closest points near the contact's parameters on the centreline of the predicted positions
@@ -10,11 +10,14 @@
 //! target `g_target = g + h·b(g)` (0 for an open contact; `(1 − β)g` for a penetration pushed out
 //! by the fraction β) by more than the tolerance, the row's bound becomes
 //!
-//! `b ← max(b, v + (g_target − g⁺)/h)`, with `v = nᵀ(ẋ_b − ẋ_a)` the achieved normal speed,
+//! `b ← max(b, v + min(g_target − g⁺, MAX_CORRECTION)/h)`, with `v = nᵀ(ẋ_b − ẋ_a)` the
+//! achieved normal speed,
 //!
 //! the normal speed that, to first order in the correction, lifts `g⁺` to `g_target`; the step is
 //! then solved again with the same M̃ and rows (a predictor–corrector on the bounds, as the
-//! joint-limit rows added for overshooting joints).
+//! joint-limit rows added for overshooting joints). The pipeline predicts after the first solve
+//! of a step only and restores the bounds if the raised ones leave no solution
+//! (`pipeline::solve_and_resolve`).
 
 use glam::DVec3;
 use hagfish_geometry::{Centreline, PAIRS_PER_BODY, SelfContact, closest_points_near};
@@ -27,8 +30,8 @@ use crate::rows::unilateral_rhs;
 /// closest points for the prediction to count (25°).
 const NORMAL_AGREEMENT: f64 = 0.9;
 
-/// Largest correction of one row's gap target per step (cm, ≈ 2.5 % of the ES103 radius): the
-/// second-order error of one step is far smaller; a larger predicted shortfall means the
+/// Largest correction of one row's gap per step (cm, ≈ 2.5 % of the ES103 radius): above the
+/// largest one-step second-order error seen (0.013 cm); a larger predicted shortfall means the
 /// prediction left the contact's basin.
 const MAX_CORRECTION: f64 = 0.02;
 
