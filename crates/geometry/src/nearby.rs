@@ -6,9 +6,10 @@
 //! parameters; when the result sits on an inner segment end, the search moves on to the
 //! neighbouring segment (at most twice) while the distance decreases.
 //! It follows one basin and is cheap (a few iterations): right for a small displacement, not
-//! for finding contacts. Near the bend that joins two strands it can walk toward the bend,
-//! where the distance falls to zero: a caller compares how far the points moved with how far
-//! the strands can have slid.
+//! for finding contacts. Along two strands lying side by side the distance is flat and the
+//! result can wander a body or more along them: a caller checks that it still fits the contact
+//! it started from (the contact predictor compares the line between the points with the
+//! contact's normal).
 
 use crate::centreline::Centreline;
 use crate::narrow_phase::{NewtonStatus, search};
@@ -69,8 +70,8 @@ mod tests {
 
     use super::*;
 
-    /// Two parallel straight strands 1 cm apart in z, crossing at an angle in the x–y plane:
-    /// centres of strand A along x, strand B along a tilted line, joined far away.
+    /// Two straight strands 1 cm apart in z that cross at an angle in the x–y plane: centres
+    /// of strand A along x, of strand B along a tilted line, one chain.
     fn crossing(angle: f64, offset: f64) -> Centreline {
         let mut centres: Vec<DVec3> =
             (0..20).map(|i| DVec3::new(f64::from(i) - 10.0, 0.0, 0.0)).collect();
