@@ -84,7 +84,7 @@ impl Until {
 
     /// True once a knot condition holds for the knot at `span` (the duration and `hold_s`
     /// are not looked at).
-    pub fn knot_condition(&self, span: Option<&KnotSpan>) -> bool {
+    fn knot_condition(&self, span: Option<&KnotSpan>) -> bool {
         let at_most = |limit: Option<f64>, value: Option<f64>| {
             limit.zip(value).is_some_and(|(limit, value)| value <= limit)
         };

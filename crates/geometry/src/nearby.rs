@@ -37,13 +37,14 @@ pub struct NearbyClosestPoints {
 pub fn closest_points_near(centreline: &Centreline, u_a: f64, u_b: f64) -> NearbyClosestPoints {
     let segments = centreline.segment_count();
     let ((mut k_a, s_a), (mut k_b, s_b)) = (centreline.locate(u_a), centreline.locate(u_b));
+    // A parameter on an inner segment end continues on the neighbouring segment.
+    let across = |k: usize, s: f64| match s {
+        0.0 if k > 0 => Some((k - 1, 1.0)),
+        1.0 if k + 1 < segments => Some((k + 1, 0.0)),
+        _ => None,
+    };
     let mut found = search(&centreline.segment(k_a), &centreline.segment(k_b), [s_a, s_b]);
     for _ in 0..MAX_SEGMENT_MOVES {
-        let across = |k: usize, s: f64| match s {
-            0.0 if k > 0 => Some((k - 1, 1.0)),
-            1.0 if k + 1 < segments => Some((k + 1, 0.0)),
-            _ => None,
-        };
         let (next_a, next_b) = (across(k_a, found.s_a), across(k_b, found.s_b));
         if next_a.is_none() && next_b.is_none() {
             break;

@@ -24,6 +24,7 @@ use hagfish_geometry::{Centreline, PAIRS_PER_BODY, SelfContact, closest_points_n
 use hagfish_solver::{RowGroup, Rows};
 use hagfish_tree::{Data, Model, State};
 
+use crate::options::StepOptions;
 use crate::rows::unilateral_rhs;
 
 /// cos of the largest angle between a contact's normal and the line between the predicted
@@ -63,20 +64,20 @@ impl ContactPredictor {
 
     /// Raises the bounds of the self-contact rows in `rows` (one per contact of `contacts`, in
     /// order, group [`RowGroup::Contact`]) whose gap after the step with velocity `qdot` would
-    /// fall more than `tolerance` (cm) below the row's target (module docs). Returns how many
-    /// bounds were raised.
-    #[allow(clippy::too_many_arguments)]
+    /// fall more than the tolerance of [`StepOptions::contact_prediction`] below the row's target
+    /// (module docs; nothing when that option is `None`). Returns how many bounds were raised.
     pub(crate) fn tighten_contact_rows(
         &mut self,
         model: &Model,
+        options: &StepOptions,
         state: &State,
         qdot: &[f64],
         contacts: &[SelfContact],
         rows: &mut Rows,
-        time_step: f64,
-        push_out: f64,
-        tolerance: f64,
     ) -> usize {
+        self.raised.clear();
+        let Some(tolerance) = options.contact_prediction else { return 0 };
+        let (time_step, push_out) = (options.time_step, options.push_out);
         let Some(first_row) = rows.groups().iter().position(|g| *g == RowGroup::Contact) else {
             return 0;
         };
@@ -84,7 +85,6 @@ impl ContactPredictor {
             rows.groups().iter().filter(|g| **g == RowGroup::Contact).count(),
             contacts.len()
         );
-        self.raised.clear();
         if !self.predict_centreline(model, state, qdot, time_step) {
             return 0;
         }

@@ -202,16 +202,13 @@ pub fn predict_contact_gaps(
     state: &State,
     data: &mut StepData,
 ) -> usize {
-    let Some(tolerance) = options.contact_prediction else { return 0 };
     let raised = data.predictor.tighten_contact_rows(
         model,
+        options,
         state,
         data.solver.velocity(),
         &data.self_contacts,
         &mut data.rows,
-        options.time_step,
-        options.push_out,
-        tolerance,
     );
     data.report.predicted_contact_rows += raised;
     raised

@@ -96,6 +96,16 @@ fn first_and_last(frames: &[&Record], measure: impl Fn(&KnotSpan) -> f64) -> (f6
     (first, last)
 }
 
+/// The span (cm) over the first and the last 0.5 s of a phase, printed after `label`.
+fn span_change(frames: &[&Record], label: &str) -> (f64, f64) {
+    let (before, after) = first_and_last(frames, KnotSpan::length_cm);
+    println!(
+        "{label}: span {before:.2} → {after:.2} cm ({:+.1} %)",
+        100.0 * (after / before - 1.0)
+    );
+    (before, after)
+}
+
 /// Largest tail-ward move of the knot's position (its 0.5 s mean) within any 1 s window (cm),
 /// and the same for single frames (reported: it measures the flicker of the contacts at the
 /// knot's ends as much as the knot).
@@ -144,11 +154,7 @@ fn check_thesis(perturbation: f64) {
     let label = format!("thesis, δh/h = {perturbation:e}");
 
     let tighten = phase(&records, "tighten");
-    let (before, after) = first_and_last(&tighten, KnotSpan::length_cm);
-    println!(
-        "{label}: tighten: span {before:.2} → {after:.2} cm ({:+.1} %)",
-        100.0 * (after / before - 1.0)
-    );
+    let (before, after) = span_change(&tighten, &format!("{label}: tighten"));
     assert!(after <= 0.8 * before, "{label}: tightening shrinks the span by ≥ 20 %");
 
     let slide = phase(&records, "slide");
@@ -208,11 +214,7 @@ fn loosening_grows_the_span() {
         let (records, _) = run("loosen", perturbation);
         let label = format!("loosen, δh/h = {perturbation:e}");
         let loosen = phase(&records, "loosen");
-        let (before, after) = first_and_last(&loosen, KnotSpan::length_cm);
-        println!(
-            "{label}: span {before:.2} → {after:.2} cm ({:+.1} %)",
-            100.0 * (after / before - 1.0)
-        );
+        let (before, after) = span_change(&loosen, &label);
         assert!(after >= 1.2 * before, "{label}: loosening grows the span by ≥ 20 %");
         assert!(trefoil_fraction(&loosen) >= 0.99, "{label}: still a trefoil");
         let penetration = max_penetration(&records);
