@@ -2,11 +2,11 @@
 
 use crate::broad_phase::{BroadPhase, BroadPhaseOptions};
 use crate::centreline::Centreline;
-use crate::chord::chord_distance;
+use crate::chord::{chord_distance, closest_chord_parameters};
 use crate::cluster::{Candidate, keep_deepest_per_cluster};
 use crate::contact::SelfContact;
 use crate::error::GeometryError;
-use crate::narrow_phase::{NewtonStatus, sampled_closest_points_within};
+use crate::narrow_phase::{ClosestPoints, NewtonStatus, closest_points_within_after, search};
 use crate::sampled_segment::SampledSegment;
 
 /// The distance below which segments k_a and k_b may be in contact: the largest tube radii
@@ -16,12 +16,18 @@ fn reach(radii: &[f64], (k_a, k_b): (usize, usize), margin: f64) -> f64 {
     radii[k_a].max(radii[k_a + 1]) + radii[k_b].max(radii[k_b + 1]) + margin
 }
 
-/// Whether segments `a` and `b` can come closer than `reach` by their chords: each segment
-/// lies within its [`crate::Segment::chord_deviation_bound`] σ of its chord, so the spline
-/// distance is at least d_chord − σ_a − σ_b.
-fn may_touch(a: &SampledSegment, b: &SampledSegment, reach: f64) -> bool {
-    chord_distance(a.segment.chord(), b.segment.chord()) - a.chord_deviation - b.chord_deviation
-        < reach
+/// Whether segments `a` and `b` can come closer than `reach` by their chords, whose closest
+/// points are at `chord_parameters`: each segment lies within its
+/// [`crate::Segment::chord_deviation_bound`] σ of its chord, so the spline distance is at
+/// least d_chord − σ_a − σ_b.
+fn may_touch(
+    a: &SampledSegment,
+    b: &SampledSegment,
+    chord_parameters: [f64; 2],
+    reach: f64,
+) -> bool {
+    let chord_distance = chord_distance(a.segment.chord(), b.segment.chord(), chord_parameters);
+    chord_distance - a.chord_deviation - b.chord_deviation < reach
 }
 
 /// Options of the [`ContactDetector`].
@@ -58,9 +64,13 @@ pub struct DetectionReport {
     pub candidate_pairs: usize,
     /// Distinct segment pairs around the candidate body pairs.
     pub segment_pairs: usize,
-    /// Segment pairs close enough to touch (by the chord bound, then by the seed-grid bound
-    /// of [`crate::closest_points_within`]) and hence searched.
+    /// Segment pairs close enough to touch by the chord bound, and hence searched from their
+    /// chords' closest points.
     pub searched: usize,
+    /// Of those, the pairs whose first search found no contact and that the seed-grid bound
+    /// of [`crate::closest_points_within`] could not rule out: searched again from every
+    /// start of [`crate::closest_points`].
+    pub searched_from_grid: usize,
     /// Segment pairs whose Newton search did not converge (kept, with their status, if
     /// they are contacts).
     pub newton_failures: usize,
@@ -81,10 +91,19 @@ pub const PAIRS_PER_BODY: usize = 64;
 /// Per call: the broad phase proposes body pairs (with an index gap two less than
 /// `index_gap`, so that no pair whose spline parameters differ by more than `index_gap`
 /// is lost); the segments touching each body ({i−1, i} × {j−1, j}, deduplicated) that can
-/// touch by the chord bound and by the seed-grid bound are searched for their closest points; records with
+/// touch by the chord bound are searched for their closest points; records with
 /// gap < margin and u_b − u_a > index_gap are kept, and duplicates merged (see
 /// `cluster.rs`: this also drops a closest point clamped to a segment end that is the
 /// same point as the neighbouring segment's result). No allocation after warm-up.
+///
+/// A pair is searched first from its chords' closest points alone. If that search converges
+/// to a contact, the pair is a contact there; only otherwise is it searched from every start
+/// of [`crate::closest_points`] (if the seed-grid bound cannot rule it out). The other starts
+/// exist to find the deepest of several minima of one pair, and a pair that is a contact is
+/// nearly always one of a block of neighbouring pairs that see one crossing, of which only the
+/// deepest record is kept: so no contact is missed, and the kept records are as deep as with
+/// every start on every pair (`crates/sim/tests/self_contact.rs`: within 1e-13 cm along the
+/// tangled trajectory of `form.ron`), for ≈ 1/7 of the searches (`docs/performance.md`).
 #[derive(Debug, Clone)]
 pub struct ContactDetector {
     options: DetectorOptions,
@@ -193,27 +212,40 @@ impl ContactDetector {
             (0..centreline.segment_count()).map(|k| SampledSegment::new(centreline.segment(k))),
         );
         let (margin, index_gap) = (self.options.margin, self.options.index_gap as f64);
-        let mut searched = 0;
-        let mut newton_failures = 0;
-        self.candidates.clear();
-        for &(k_a, k_b) in &self.segment_pairs {
-            let reach = reach(centreline.radii(), (k_a, k_b), margin);
-            let (a, b) = (&self.segments[k_a], &self.segments[k_b]);
-            if !may_touch(a, b, reach) {
-                continue;
-            }
-            let Some(closest) = sampled_closest_points_within(a, b, reach) else { continue };
-            searched += 1;
-            if closest.status != NewtonStatus::Converged {
-                newton_failures += 1;
-            }
+        // A search result as a contact candidate: within the margin and outside the
+        // chain-index exclusion.
+        let candidate = |(k_a, k_b): (usize, usize), closest: ClosestPoints| {
             let u_a = k_a as f64 + closest.s_a;
             let u_b = k_b as f64 + closest.s_b;
             let radii = centreline.radius(u_a) + centreline.radius(u_b);
             let gap = closest.distance_squared.sqrt() - radii;
-            if gap < margin && u_b - u_a > index_gap {
-                self.candidates.push(Candidate { u_a, u_b, gap, status: closest.status });
+            (gap < margin && u_b - u_a > index_gap).then_some(Candidate {
+                u_a,
+                u_b,
+                gap,
+                status: closest.status,
+            })
+        };
+        let (mut searched, mut searched_from_grid, mut newton_failures) = (0, 0, 0);
+        self.candidates.clear();
+        for &pair in &self.segment_pairs {
+            let reach = reach(centreline.radii(), pair, margin);
+            let (a, b) = (&self.segments[pair.0], &self.segments[pair.1]);
+            let chord = closest_chord_parameters(a.segment.chord(), b.segment.chord());
+            if !may_touch(a, b, chord, reach) {
+                continue;
             }
+            searched += 1;
+            let first = search(&a.segment, &b.segment, chord);
+            let found = match candidate(pair, first) {
+                Some(found) if first.status == NewtonStatus::Converged => Some(found),
+                _ => closest_points_within_after(a, b, first, reach).and_then(|closest| {
+                    searched_from_grid += 1;
+                    newton_failures += usize::from(closest.status != NewtonStatus::Converged);
+                    candidate(pair, closest)
+                }),
+            };
+            self.candidates.extend(found);
         }
         let raw_contacts = self.candidates.len();
         let merged = keep_deepest_per_cluster(&mut self.candidates, self.options.cluster_radius);
@@ -225,6 +257,7 @@ impl ContactDetector {
             candidate_pairs: self.body_pairs.len(),
             segment_pairs: self.segment_pairs.len(),
             searched,
+            searched_from_grid,
             newton_failures,
             raw_contacts,
             merged,

@@ -237,7 +237,9 @@ fn improves(found: &ClosestPoints, best: &ClosestPoints) -> bool {
 /// is closer), or the closest failed one if none converged.
 pub fn closest_points(a: &Segment, b: &Segment) -> ClosestPoints {
     let (a, b) = (SampledSegment::new(*a), SampledSegment::new(*b));
-    search_from(&a.segment, &b.segment, &Starts::new(&a, &b))
+    let starts = Starts::new(&a, &b);
+    let first = search(&a.segment, &b.segment, starts.chord());
+    search_from_grid(&a.segment, &b.segment, &starts, first)
 }
 
 /// [`closest_points`] of `a` and `b` if they may come closer than `reach`, or `None` (no
@@ -245,35 +247,52 @@ pub fn closest_points(a: &Segment, b: &Segment) -> ClosestPoints {
 /// closest grid point minus half a grid interval times the segments' speed bounds (with a
 /// relative allowance of 10⁻⁹ for rounding).
 pub fn closest_points_within(a: &Segment, b: &Segment, reach: f64) -> Option<ClosestPoints> {
-    sampled_closest_points_within(&SampledSegment::new(*a), &SampledSegment::new(*b), reach)
+    let (a, b) = (SampledSegment::new(*a), SampledSegment::new(*b));
+    let starts = Starts::new(&a, &b);
+    may_come_within(&a, &b, &starts, reach).then(|| {
+        let first = search(&a.segment, &b.segment, starts.chord());
+        search_from_grid(&a.segment, &b.segment, &starts, first)
+    })
 }
 
-/// [`closest_points_within`] on segments whose seed-grid samples and bounds are already
-/// computed (the detector samples each segment once per detection).
-pub(crate) fn sampled_closest_points_within(
+/// The rest of [`closest_points_within`] once the search from the chords' closest points
+/// has returned `first`: `None` if the seed grid proves every distance ≥ `reach`, else the
+/// best of `first` and the searches from the grid minima and the edge probe (the same
+/// result as [`closest_points_within`], without repeating the first search).
+pub(crate) fn closest_points_within_after(
     a: &SampledSegment,
     b: &SampledSegment,
+    first: ClosestPoints,
     reach: f64,
 ) -> Option<ClosestPoints> {
     let starts = Starts::new(a, b);
+    may_come_within(a, b, &starts, reach)
+        .then(|| search_from_grid(&a.segment, &b.segment, &starts, first))
+}
+
+/// Whether the seed grid of `starts` leaves the segments a chance to come closer than
+/// `reach` (see [`closest_points_within`]).
+fn may_come_within(a: &SampledSegment, b: &SampledSegment, starts: &Starts, reach: f64) -> bool {
     let bound = starts.distance_lower_bound([a.speed_bound, b.speed_bound]);
-    (bound < reach * (1.0 + ROUNDING_ALLOWANCE))
-        .then(|| search_from(&a.segment, &b.segment, &starts))
+    bound < reach * (1.0 + ROUNDING_ALLOWANCE)
 }
 
 /// Relative allowance for rounding in the pruning bound of [`closest_points_within`].
 const ROUNDING_ALLOWANCE: f64 = 1e-9;
 
-/// The searches of [`closest_points`] from `starts`.
-fn search_from(a: &Segment, b: &Segment, starts: &Starts) -> ClosestPoints {
+/// The searches of [`closest_points`] after the one from the chord start (whose result is
+/// `first`): from the grid minima of `starts`, then from the edge probe; the best result.
+fn search_from_grid(
+    a: &Segment,
+    b: &Segment,
+    starts: &Starts,
+    first: ClosestPoints,
+) -> ClosestPoints {
     let keep_better = |best: ClosestPoints, start: [f64; 2]| {
         let found = search(a, b, start);
         if improves(&found, &best) { found } else { best }
     };
-    let best = starts
-        .grid_minima()
-        .iter()
-        .fold(search(a, b, starts.chord()), |best, &start| keep_better(best, start));
+    let best = starts.grid_minima().iter().fold(first, |best, &start| keep_better(best, start));
     match probe_next_to_bound(a, b, [best.s_a, best.s_b], best.distance_squared) {
         Some(start) => keep_better(best, start),
         None => best,

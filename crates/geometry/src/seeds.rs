@@ -107,7 +107,7 @@ impl Starts {
             }
         }
         let chord = closest_chord_parameters(a.segment.chord(), b.segment.chord());
-        Starts { chord: [chord.0, chord.1], grid_minima, found, depth: depths[0] }
+        Starts { chord, grid_minima, found, depth: depths[0] }
     }
 
     /// The closest points of the two chords.
