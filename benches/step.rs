@@ -5,7 +5,7 @@
 //!   state.
 //! - `step/knotted/<backend>`: one whole pipeline step (kinematics, contact detection,
 //!   drag, dynamics, rows, constraint solve with its re-solves, integration) in the knotted
-//!   benchmark state (`hagfish_sim::knotted_world`: `data/scenarios/form.ron` at t = 21.64 s,
+//!   benchmark state (`hagfish_sim::knotted_world`: `data/scenarios/form.ron` at t = 23.13 s,
 //!   41 self contacts), with the contact-space QP (default) and with clarabel (reference);
 //!   `step/knotted/ContactSpace/SparseMaximal`, the same step on the sparse
 //!   maximal-coordinate backend (`StepOptions::backend`); and

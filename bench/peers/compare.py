@@ -2,7 +2,7 @@
 """Peer comparison: the knotted hagfish state stepped by MuJoCo and by hagfish.
 
 1. `cargo xtask knotted --export` writes the 100-body model and the knotted state
-   (data/scenarios/form.ron at t = 21.64 s) as JSON.
+   (data/scenarios/form.ron at t = 23.13 s) as JSON.
 2. This script builds the same chain in MuJoCo (MJCF generated from the JSON): masses,
    principal inertias, X-revolute and YZ-universal joints (two hinges, Y then Z), joint
    stiffness with the rest angles as spring references, damping, limits, one capsule per body

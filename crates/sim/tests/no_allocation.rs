@@ -1,5 +1,5 @@
 //! A step allocates nothing once warm. Two knotted states are stepped on with their
-//! scenario's own controller: the knotted benchmark state (`form.ron` at t = 21.64 s, about
+//! scenario's own controller: the knotted benchmark state (`form.ron` at t = 23.13 s, about
 //! 40 self contacts, knot-forming pull; on both dynamics backends) and `thesis.ron` at
 //! t = 21 s (thigmotaxis rows).
 //! After warm-up steps the next steps must not touch the heap (counted by an instrumented

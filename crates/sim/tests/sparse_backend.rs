@@ -1,7 +1,7 @@
 //! The sparse maximal-coordinate backend in the whole pipeline: from the same state it gives
 //! the dense reduced path's `q̇¹` (to 1e-9 relative) and multipliers (to 1e-9 or 10·cond(M̃)·ε) on the 100-body ES103
 //! hagfish — with the head rows only, with joint-limit, wall and self-contact rows while a
-//! force drags the tail around, and in the knotted benchmark state (`form.ron` at 21.64 s) with
+//! force drags the tail around, and in the knotted benchmark state (`form.ron` at 23.13 s) with
 //! its self contacts and re-solves —
 //! the whole `form.ron` run on it ties the same trefoil, and a 1000-body chain steps stably
 //! on it.
