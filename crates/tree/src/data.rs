@@ -8,6 +8,7 @@ use faer::Mat;
 use faer::dyn_stack::{MemBuffer, StackReq};
 use glam::DVec3;
 
+use crate::mass_matrix::ColumnScratch;
 use crate::model::Model;
 use crate::spatial::{RigidInertia, Spatial, Transform};
 
@@ -56,6 +57,7 @@ pub struct Data {
     pub qdot_next: Mat<f64>,
     pub(crate) composite: Vec<RigidInertia>,
     pub(crate) augmented: Vec<RigidInertia>,
+    pub(crate) columns: ColumnScratch,
     pub(crate) wrenches: Vec<Spatial>,
     pub(crate) accelerations: Vec<Spatial>,
     pub(crate) stack: MemBuffer,
@@ -94,6 +96,7 @@ impl Data {
             qdot_next: Mat::zeros(n, 1),
             composite: vec![RigidInertia::ZERO; nb],
             augmented: vec![RigidInertia::ZERO; nb],
+            columns: ColumnScratch::new(n, nb),
             wrenches: vec![Spatial::ZERO; nb],
             accelerations: vec![Spatial::ZERO; nb],
             stack: MemBuffer::new(req),

@@ -19,8 +19,63 @@ fn chain_and_motion() -> impl Strategy<Value = (ChainSpec, Vec<f64>, Vec<f64>, V
     })
 }
 
+/// A random tree: the bodies of a chain spec, each hanging from a random earlier body.
+fn tree_and_position() -> impl Strategy<Value = (ChainSpec, Vec<Option<usize>>, Vec<f64>)> {
+    chain_spec(2, 30).prop_flat_map(|spec| {
+        let count = spec.bodies.len();
+        let parents = (0..count)
+            .map(|i| if i == 0 { Just(None).boxed() } else { (0..i).prop_map(Some).boxed() })
+            .collect::<Vec<_>>();
+        let n = build_chain(&spec, DVec3::ZERO, 0.0, 0.0).dof_count();
+        (Just(spec), parents, vector(n, 1.5))
+    })
+}
+
+/// `M` against `Jᵀ M_m J` summed body by body.
+fn check_mass_matrix(model: &hagfish_tree::Model, data: &Data) -> Result<(), TestCaseError> {
+    let n = model.dof_count();
+    let m = &data.mass_matrix;
+    let mut reference = Mat::<f64>::zeros(n, n);
+    let mut jac = Mat::<f64>::zeros(6, n);
+    for (k, body) in model.bodies().iter().enumerate() {
+        body_jacobian(model, data, k, jac.as_mut());
+        let i = body.principal_inertia;
+        let diag = [i.x, i.y, i.z, body.mass, body.mass, body.mass];
+        for a in 0..n {
+            for b in 0..n {
+                reference[(a, b)] +=
+                    (0..6).map(|r| jac[(r, a)] * diag[r] * jac[(r, b)]).sum::<f64>();
+            }
+        }
+    }
+    let scale = (0..n).map(|a| m[(a, a)].abs()).fold(0.0, f64::max);
+    for a in 0..n {
+        for b in 0..n {
+            prop_assert_eq!(m[(a, b)], m[(b, a)]);
+            prop_assert!(
+                (m[(a, b)] - reference[(a, b)]).abs() < 1e-10 * scale,
+                "M[{a},{b}] = {} vs JᵀMJ {}",
+                m[(a, b)],
+                reference[(a, b)]
+            );
+        }
+    }
+    Ok(())
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// On branched trees the CRBA's column entries are the DOFs on each path to the root only
+    /// (its contiguous runs break at every branch): the rest of M must stay zero.
+    #[test]
+    fn mass_matrix_equals_jt_m_j_on_branched_trees((spec, parents, q) in tree_and_position()) {
+        let model = build_tree(&spec, &parents, DVec3::ZERO, 0.0, 0.0);
+        let qdot = vec![0.0; model.dof_count()];
+        let mut data = kinematics_at(&model, &q, &qdot);
+        mass_matrix(&model, &mut data);
+        check_mass_matrix(&model, &data)?;
+    }
 
     #[test]
     fn mass_matrix_is_spd_and_equals_jt_m_j((spec, q, qdot, _qddot) in chain_and_motion()) {
@@ -28,28 +83,8 @@ proptest! {
         let n = model.dof_count();
         let mut data = kinematics_at(&model, &q, &qdot);
         mass_matrix(&model, &mut data);
+        check_mass_matrix(&model, &data)?;
         let m = data.mass_matrix.clone();
-        // Jᵀ M_m J, body by body.
-        let mut reference = Mat::<f64>::zeros(n, n);
-        let mut jac = Mat::<f64>::zeros(6, n);
-        for (k, body) in model.bodies().iter().enumerate() {
-            body_jacobian(&model, &data, k, jac.as_mut());
-            let i = body.principal_inertia;
-            let diag = [i.x, i.y, i.z, body.mass, body.mass, body.mass];
-            for a in 0..n {
-                for b in 0..n {
-                    reference[(a, b)] += (0..6).map(|r| jac[(r, a)] * diag[r] * jac[(r, b)]).sum::<f64>();
-                }
-            }
-        }
-        let scale = (0..n).map(|a| m[(a, a)].abs()).fold(0.0, f64::max);
-        for a in 0..n {
-            for b in 0..n {
-                prop_assert_eq!(m[(a, b)], m[(b, a)]);
-                prop_assert!((m[(a, b)] - reference[(a, b)]).abs() < 1e-10 * scale,
-                    "M[{a},{b}] = {} vs JᵀMJ {}", m[(a, b)], reference[(a, b)]);
-            }
-        }
         let mut factor = m.clone();
         let mut buffer = faer::dyn_stack::MemBuffer::new(
             llt::factor::cholesky_in_place_scratch::<f64>(n, faer::Par::Seq, Default::default()));

@@ -19,9 +19,22 @@ pub fn chain_spec(min: usize, max: usize) -> impl Strategy<Value = ChainSpec> {
 /// Builds a chain: code 0 = revolute about +X, 1 = universal YZ, 2 = revolute about a tilted
 /// axis. Joint offsets carry a small rotation so that frames are not all aligned.
 pub fn build_chain(spec: &ChainSpec, gravity: DVec3, damping: f64, stiffness: f64) -> Model {
+    let parents: Vec<Option<usize>> = (0..spec.bodies.len()).map(|i| i.checked_sub(1)).collect();
+    build_tree(spec, &parents, gravity, damping, stiffness)
+}
+
+/// Builds the bodies of `spec` as in [`build_chain`], but body `i` hangs from `parents[i]`
+/// (`< i`, or `None` for a root), so that branches share their ancestors' DOFs.
+pub fn build_tree(
+    spec: &ChainSpec,
+    parents: &[Option<usize>],
+    gravity: DVec3,
+    damping: f64,
+    stiffness: f64,
+) -> Model {
     let mut builder = ModelBuilder::new().gravity(gravity);
-    let mut previous_length = 0.0;
     for (i, &(code, length, radius, mass, tilt)) in spec.bodies.iter().enumerate() {
+        let previous_length = parents[i].map_or(0.0, |p| spec.bodies[p].1);
         let joint = match code {
             0 => JointKind::Revolute { axis: DVec3::X },
             1 => JointKind::UniversalYz,
@@ -34,7 +47,7 @@ pub fn build_chain(spec: &ChainSpec, gravity: DVec3, damping: f64, stiffness: f6
             translation: DVec3::new(previous_length, 0.0, 0.0),
         };
         builder.add_body(BodySpec {
-            parent: i.checked_sub(1),
+            parent: parents[i],
             joint,
             joint_offset,
             body_offset: Transform::from_translation(DVec3::new(length / 2.0, 0.0, 0.0)),
@@ -44,7 +57,6 @@ pub fn build_chain(spec: &ChainSpec, gravity: DVec3, damping: f64, stiffness: f6
             length,
             dofs,
         });
-        previous_length = length;
     }
     builder.build().expect("valid test chain")
 }
