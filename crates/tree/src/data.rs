@@ -8,9 +8,8 @@ use faer::Mat;
 use faer::dyn_stack::{MemBuffer, StackReq};
 use glam::DVec3;
 
-use crate::mass_matrix::ColumnScratch;
 use crate::model::Model;
-use crate::spatial::{RigidInertia, Spatial, Transform};
+use crate::spatial::{RigidInertia, Spatial, SpatialComponents, Transform};
 
 /// Derived quantities and scratch for one model. Create with [`Data::new`]; reuse across steps
 /// so that stepping does not allocate.
@@ -22,6 +21,8 @@ pub struct Data {
     /// World twist at the origin of each DOF's unit motion, `s_a` (kinematics). Column `a` of
     /// the world Jacobian.
     pub axes: Vec<Spatial>,
+    /// The same axes stored by component (kinematics), for loops over many DOFs.
+    pub axis_components: SpatialComponents,
     /// Time derivative of each axis, `ṡ_a = V_frame ×ₘ s_a` (kinematics).
     pub axis_rates: Vec<Spatial>,
     /// World twist at the origin of each body, `V_i = Σ_{a ∈ anc(i)} s_a q̇_a` (kinematics).
@@ -57,7 +58,6 @@ pub struct Data {
     pub qdot_next: Mat<f64>,
     pub(crate) composite: Vec<RigidInertia>,
     pub(crate) augmented: Vec<RigidInertia>,
-    pub(crate) columns: ColumnScratch,
     pub(crate) wrenches: Vec<Spatial>,
     pub(crate) accelerations: Vec<Spatial>,
     pub(crate) stack: MemBuffer,
@@ -80,6 +80,7 @@ impl Data {
             joint_frames: vec![Transform::IDENTITY; nb],
             body_frames: vec![Transform::IDENTITY; nb],
             axes: vec![Spatial::ZERO; n],
+            axis_components: SpatialComponents::with_capacity(n),
             axis_rates: vec![Spatial::ZERO; n],
             velocities: vec![Spatial::ZERO; nb],
             bias_accelerations: vec![Spatial::ZERO; nb],
@@ -96,7 +97,6 @@ impl Data {
             qdot_next: Mat::zeros(n, 1),
             composite: vec![RigidInertia::ZERO; nb],
             augmented: vec![RigidInertia::ZERO; nb],
-            columns: ColumnScratch::new(n, nb),
             wrenches: vec![Spatial::ZERO; nb],
             accelerations: vec![Spatial::ZERO; nb],
             stack: MemBuffer::new(req),

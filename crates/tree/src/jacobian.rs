@@ -80,9 +80,11 @@ pub fn add_point_row(
 /// Adds `Σ_k scale_k · nᵀ P_{b_k}(x_k)` to `row` for the points `(b_k, x_k, scale_k)` (at most
 /// 64), in one walk from the highest-numbered body to its root instead of one walk per
 /// point: a DOF a on that path gets `n·v_a C + ((X × n)·ω_a)` with `C = Σ scale_k` and
-/// `X = Σ scale_k x_k` over the points at or below it. Points whose bodies are not on that
-/// path are added one by one ([`add_point_row`]). Equal to the sum of the single-point rows up
-/// to rounding.
+/// `X = Σ scale_k x_k` over the points at or below it. Above the lowest-numbered point's body
+/// C and X no longer change, and that stretch is added run by run over
+/// [`crate::Data::axis_components`] as `s_a · (X × n; C n)`. Points whose bodies are not on
+/// the path are added one by one ([`add_point_row`]). Equal to the sum of the single-point
+/// rows up to rounding.
 pub fn add_point_rows(
     model: &Model,
     data: &Data,
@@ -90,7 +92,11 @@ pub fn add_point_rows(
     n: DVec3,
     row: &mut [f64],
 ) {
-    let Some(deepest) = points.iter().map(|p| p.0).max() else { return };
+    let (Some(deepest), Some(shallowest)) =
+        (points.iter().map(|p| p.0).max(), points.iter().map(|p| p.0).min())
+    else {
+        return;
+    };
     if points.len() > 64 {
         for &(body, x, scale) in points {
             add_point_row(model, data, body, x, n, scale, row);
@@ -114,6 +120,18 @@ pub fn add_point_rows(
             row[a] += total * n.dot(s.linear) + moment_arm.dot(s.angular);
         }
         next = joint.parent;
+        if body == shallowest {
+            break;
+        }
+    }
+    if let Some(parent) = next {
+        let coefficients = Spatial::new(moment.cross(n), total * n);
+        for run in model.path_dof_runs(parent) {
+            let products = data.axis_components.dots(run.clone(), &coefficients);
+            for (entry, product) in row[run].iter_mut().zip(products) {
+                *entry += product;
+            }
+        }
     }
     for (k, &(body, x, scale)) in points.iter().enumerate() {
         if on_path & (1 << k) == 0 {

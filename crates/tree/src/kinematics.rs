@@ -11,7 +11,7 @@ use crate::data::Data;
 use crate::model::Model;
 use crate::spatial::{RigidInertia, Spatial, Transform};
 
-/// Fills `joint_frames`, `body_frames`, `axes`, `axis_rates`, `velocities`,
+/// Fills `joint_frames`, `body_frames`, `axes` (and `axis_components`), `axis_rates`, `velocities`,
 /// `bias_accelerations` and `inertias` of `data` for the configuration `q` and rates `qdot`.
 /// The lengths of `q` and `qdot` must equal `model.dof_count()` (see [`crate::State::validate`]).
 pub fn forward_kinematics(model: &Model, q: &[f64], qdot: &[f64], data: &mut Data) {
@@ -39,4 +39,5 @@ pub fn forward_kinematics(model: &Model, q: &[f64], qdot: &[f64], data: &mut Dat
         data.bias_accelerations[i] = accel;
         data.inertias[i] = RigidInertia::from_body(body.mass, body.principal_inertia, &body_frame);
     }
+    data.axis_components.fill_from(&data.axes);
 }

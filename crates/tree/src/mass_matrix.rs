@@ -13,22 +13,20 @@
 //!
 //! Run [`crate::forward_kinematics`] first.
 
-use std::ops::Range;
-
 use faer::Mat;
 
 use crate::data::Data;
 use crate::model::Model;
-use crate::spatial::{RigidInertia, Spatial};
+use crate::spatial::{RigidInertia, Spatial, SpatialComponents};
 
 /// Fills `data.mass_matrix` with `M(q)` (g·cm²/rad² for rotational DOFs).
 pub fn mass_matrix(model: &Model, data: &mut Data) {
     composite_rigid_body(
         model,
         &data.axes,
+        &data.axis_components,
         &data.inertias,
         &mut data.composite,
-        &mut data.columns,
         &mut data.mass_matrix,
     );
 }
@@ -46,9 +44,9 @@ pub fn effective_mass(model: &Model, data: &mut Data, h: f64) {
     composite_rigid_body(
         model,
         &data.axes,
+        &data.axis_components,
         &data.augmented,
         &mut data.composite,
-        &mut data.columns,
         &mut data.effective_mass,
     );
     for (a, dof) in model.dofs().iter().enumerate() {
@@ -56,69 +54,12 @@ pub fn effective_mass(model: &Model, data: &mut Data, h: f64) {
     }
 }
 
-/// Scratch of the CRBA's column loop, sized once per model.
-#[derive(Debug, Clone, Default)]
-pub(crate) struct ColumnScratch {
-    /// The axes `s_a`, one array per coordinate (ω_x, ω_y, ω_z, v_x, v_y, v_z): the inner
-    /// loop `M_ab = s_a · (I^c_j s_b)` over a then reads contiguous memory.
-    axes: [Vec<f64>; 6],
-    /// The DOFs on the path from a joint to the root, as contiguous ranges (one for a chain).
-    runs: Vec<Range<usize>>,
-}
-
-impl ColumnScratch {
-    /// Room for `dofs` axes and paths of up to `bodies` joints, so that the CRBA does not
-    /// allocate.
-    pub(crate) fn new(dofs: usize, bodies: usize) -> Self {
-        Self {
-            axes: std::array::from_fn(|_| Vec::with_capacity(dofs)),
-            runs: Vec::with_capacity(bodies),
-        }
-    }
-
-    /// Copies `axes` into the coordinate arrays.
-    fn load_axes(&mut self, axes: &[Spatial]) {
-        for (c, coordinate) in self.axes.iter_mut().enumerate() {
-            coordinate.clear();
-            coordinate.extend(axes.iter().map(|s| match c {
-                0..3 => s.angular[c],
-                _ => s.linear[c - 3],
-            }));
-        }
-    }
-
-    /// Fills `runs` with the DOFs on the path from joint `j` to the root, merging each joint's
-    /// DOFs into the run of its child when they are adjacent.
-    fn load_path(&mut self, model: &Model, j: usize) {
-        self.runs.clear();
-        for joint in model.path_to_root(j) {
-            let dofs = joint.dofs();
-            match self.runs.last_mut() {
-                Some(run) if run.start == dofs.end => run.start = dofs.start,
-                _ => self.runs.push(dofs),
-            }
-        }
-    }
-
-    /// `column[a] = s_a · p` for every `a` in `run`, with the operations in the order of
-    /// [`Spatial::dot`] (so the same values), over contiguous arrays.
-    fn write_products(&self, p: &Spatial, run: Range<usize>, column: &mut [f64]) {
-        let [wx, wy, wz, vx, vy, vz] = self.axes.each_ref().map(|c| &c[run.clone()]);
-        let column = &mut column[run];
-        for (a, out) in column.iter_mut().enumerate() {
-            let angular = wx[a] * p.angular.x + wy[a] * p.angular.y + wz[a] * p.angular.z;
-            let linear = vx[a] * p.linear.x + vy[a] * p.linear.y + vz[a] * p.linear.z;
-            *out = angular + linear;
-        }
-    }
-}
-
 fn composite_rigid_body(
     model: &Model,
     axes: &[Spatial],
+    axis_components: &SpatialComponents,
     inertias: &[RigidInertia],
     composite: &mut [RigidInertia],
-    scratch: &mut ColumnScratch,
     m: &mut Mat<f64>,
 ) {
     composite.copy_from_slice(inertias);
@@ -129,16 +70,17 @@ fn composite_rigid_body(
         }
     }
     m.fill(0.0);
-    scratch.load_axes(axes);
     // Column b holds s_aᵀ I^c_j s_b for the DOFs a on b's path: rows a ≤ b, since parents'
-    // DOFs come first. Fill those column entries, then mirror.
+    // DOFs come first. Fill those column entries, run by run, then mirror.
     for (j, joint) in model.joints().iter().enumerate() {
-        scratch.load_path(model, j);
-        for b in joint.dofs() {
-            let momentum = composite[j].apply(&axes[b]);
-            let column = m.col_as_slice_mut(b);
-            for run in &scratch.runs {
-                scratch.write_products(&momentum, run.clone(), column);
+        for run in model.path_dof_runs(j) {
+            for b in joint.dofs() {
+                let momentum = composite[j].apply(&axes[b]);
+                let products = axis_components.dots(run.clone(), &momentum);
+                for (entry, product) in m.col_as_slice_mut(b)[run.clone()].iter_mut().zip(products)
+                {
+                    *entry = product;
+                }
             }
         }
     }

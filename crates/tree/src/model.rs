@@ -286,6 +286,31 @@ impl Model {
     pub fn path_to_root(&self, body: usize) -> PathToRoot<'_> {
         PathToRoot { joints: &self.joints, next: Some(body) }
     }
+
+    /// The DOFs of [`Model::path_to_root`]`(body)` as maximal contiguous ranges, deepest
+    /// first: a joint's DOFs join the range of its child when they end where it starts. A
+    /// chain gives the single range `0..end`; each branch point starts a new range.
+    pub fn path_dof_runs(&self, body: usize) -> PathDofRuns<'_> {
+        PathDofRuns { path: self.path_to_root(body).peekable() }
+    }
+}
+
+/// Iterator over the DOF ranges of a path to the root; see [`Model::path_dof_runs`].
+#[derive(Clone, Debug)]
+pub struct PathDofRuns<'a> {
+    path: std::iter::Peekable<PathToRoot<'a>>,
+}
+
+impl Iterator for PathDofRuns<'_> {
+    type Item = std::ops::Range<usize>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        let mut run = self.path.next()?.dofs();
+        while let Some(joint) = self.path.next_if(|joint| joint.dofs().end == run.start) {
+            run.start = joint.dofs().start;
+        }
+        Some(run)
+    }
 }
 
 /// Iterator over the joints on the path from a body to its root; see [`Model::path_to_root`].

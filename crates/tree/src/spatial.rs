@@ -7,6 +7,8 @@
 //! vectors (wrenches) are `(n; f)` with the moment `n` taken about the world origin.
 //! Working at one point removes all frame-to-frame transforms from the recursions.
 
+use std::ops::Range;
+
 use glam::{DMat3, DVec3};
 
 /// A rigid transform `E = (R, p)`: maps a point `x` in the child frame to `R x + p`.
@@ -49,6 +51,45 @@ impl Transform {
     /// Maps a point from this frame to the parent frame: `R x + p`.
     pub fn transform_point(&self, x: DVec3) -> DVec3 {
         self.rotation * x + self.translation
+    }
+}
+
+/// Spatial vectors stored one array per component (ω_x, ω_y, ω_z, v_x, v_y, v_z), so that a
+/// loop over many of them against one fixed vector reads contiguous memory (and vectorises):
+/// the CRBA's `M_ab = s_a · (I^c s_b)` and the point rows' `nᵀP` over the joint axes `s_a`.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SpatialComponents {
+    components: [Vec<f64>; 6],
+}
+
+impl SpatialComponents {
+    /// Room for `count` vectors.
+    pub fn with_capacity(count: usize) -> Self {
+        Self { components: std::array::from_fn(|_| Vec::with_capacity(count)) }
+    }
+
+    /// Replaces the contents with `vectors`.
+    pub fn fill_from(&mut self, vectors: &[Spatial]) {
+        for (c, component) in self.components.iter_mut().enumerate() {
+            component.clear();
+            component.extend(vectors.iter().map(|s| match c {
+                0..3 => s.angular[c],
+                _ => s.linear[c - 3],
+            }));
+        }
+    }
+
+    /// [`Spatial::dot`] of each stored vector with index in `range` and `w`, in order and
+    /// with the same operations (so the same values).
+    ///
+    /// # Panics
+    /// If `range` reaches past the stored vectors.
+    pub fn dots(&self, range: Range<usize>, w: &Spatial) -> impl Iterator<Item = f64> + '_ {
+        let [wx, wy, wz, vx, vy, vz] = self.components.each_ref().map(|c| &c[range.clone()]);
+        let (a, l) = (w.angular, w.linear);
+        (0..range.len()).map(move |i| {
+            (wx[i] * a.x + wy[i] * a.y + wz[i] * a.z) + (vx[i] * l.x + vy[i] * l.y + vz[i] * l.z)
+        })
     }
 }
 
