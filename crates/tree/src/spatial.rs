@@ -273,6 +273,25 @@ mod tests {
     }
 
     #[test]
+    fn component_dots_equal_spatial_dots_bit_for_bit() {
+        let vectors: Vec<Spatial> = (0..7)
+            .map(|i| {
+                let t = f64::from(i);
+                Spatial::new(
+                    DVec3::new(t.sin(), 0.3 * t, -1.7 + t * t),
+                    DVec3::new(1.0 / (1.0 + t), t.cos(), 2.5),
+                )
+            })
+            .collect();
+        let w = Spatial::new(DVec3::new(0.7, -1.3, 0.11), DVec3::new(3.0, 0.2, -0.9));
+        let mut components = SpatialComponents::with_capacity(vectors.len());
+        components.fill_from(&vectors);
+        let dots: Vec<f64> = components.dots(2..6, &w).collect();
+        let expected: Vec<f64> = vectors[2..6].iter().map(|v| v.dot(&w)).collect();
+        assert_eq!(dots, expected);
+    }
+
+    #[test]
     fn inverse_composes_to_identity() {
         let e = frame();
         let id = e.mul(&e.inverse());

@@ -71,6 +71,13 @@ proptest! {
     #[test]
     fn mass_matrix_equals_jt_m_j_on_branched_trees((spec, parents, q) in tree_and_position()) {
         let model = build_tree(&spec, &parents, DVec3::ZERO, 0.0, 0.0);
+        for body in 0..model.body_count() {
+            let mut on_path: Vec<usize> = model.path_to_root(body).flat_map(|j| j.dofs()).collect();
+            on_path.sort_unstable();
+            let mut in_runs: Vec<usize> = model.path_dof_runs(body).flatten().collect();
+            in_runs.sort_unstable();
+            prop_assert_eq!(in_runs, on_path, "DOF runs of the path from body {}", body);
+        }
         let qdot = vec![0.0; model.dof_count()];
         let mut data = kinematics_at(&model, &q, &qdot);
         mass_matrix(&model, &mut data);
