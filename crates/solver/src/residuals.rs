@@ -48,6 +48,31 @@ pub(crate) fn stationarity(
     scale
 }
 
+/// The size of the stationarity residual t = M̃q̇ − f̃ − Cᵀλ of an answer: ‖t‖∞ and its
+/// scale 1 + ‖f̃‖∞ + ‖M̃q̇‖∞ + ‖Cᵀλ‖∞. The refinement measures it at every step; its last
+/// measurement, of the answer it returns, is the report's, so it is not formed twice.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Stationarity {
+    /// ‖t‖∞.
+    pub(crate) norm: f64,
+    /// 1 + ‖f̃‖∞ + ‖M̃q̇‖∞ + ‖Cᵀλ‖∞.
+    pub(crate) scale: f64,
+}
+
+impl Stationarity {
+    /// Measures (q̇, λ), leaving −t in `residual` (see [`stationarity`]; `work` is scratch).
+    pub(crate) fn measure(
+        problem: &Problem<'_>,
+        qdot: &[f64],
+        lambda: &[f64],
+        residual: &mut [f64],
+        work: &mut [f64],
+    ) -> Self {
+        let scale = stationarity(problem, qdot, lambda, residual, work);
+        Self { norm: norm_max(residual), scale }
+    }
+}
+
 /// The report's view of an answer: residuals, slack, rows with a non-negligible λ.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub(crate) struct Evaluation {
@@ -56,22 +81,20 @@ pub(crate) struct Evaluation {
     pub(crate) active_per_group: [usize; RowGroup::COUNT],
 }
 
-/// Evaluates (q̇, λ); `acceptance` sets the thresholds for "slack used" and "active".
-/// `residual` and `work` are n-vectors of scratch.
+/// Evaluates (q̇, λ), whose stationarity residual is `stationarity` (as
+/// [`Stationarity::measure`] gives it); `acceptance` sets the thresholds for "slack used"
+/// and "active".
 pub(crate) fn evaluate(
     problem: &Problem<'_>,
     qdot: &[f64],
     lambda: &[f64],
+    stationarity: Stationarity,
     acceptance: f64,
-    residual: &mut [f64],
-    work: &mut [f64],
 ) -> Evaluation {
-    let scale = stationarity(problem, qdot, lambda, residual, work);
-    let stationarity = norm_max(residual);
     let mut out = Evaluation {
         residuals: Residuals {
-            stationarity,
-            stationarity_relative: stationarity / scale,
+            stationarity: stationarity.norm,
+            stationarity_relative: stationarity.norm / stationarity.scale,
             ..Residuals::default()
         },
         ..Evaluation::default()
@@ -130,17 +153,21 @@ mod tests {
         let problem = Problem::new(mass.as_ref(), &[-1.0, 0.0], &rows)?;
         // Exact answer: q̇ = (0, 1), λ = (1, 1), slack 1 on the soft row.
         let (mut a, mut b) = ([0.0; 2], [0.0; 2]);
-        let exact = evaluate(&problem, &[0.0, 1.0], &[1.0, 1.0], 1e-9, &mut a, &mut b);
+        let mut evaluate = |qdot: &[f64], lambda: &[f64]| {
+            let measured = Stationarity::measure(&problem, qdot, lambda, &mut a, &mut b);
+            evaluate(&problem, qdot, lambda, measured, 1e-9)
+        };
+        let exact = evaluate(&[0.0, 1.0], &[1.0, 1.0]);
         assert_eq!(exact.residuals.worst_relative, 0.0);
         assert_eq!(exact.slack, SlackUsage { count: 1, max: 1.0 });
         assert_eq!(exact.active_per_group, [0, 0, 1, 0, 1]);
         // Penetrating the wall (stationarity still exact).
-        let wrong = evaluate(&problem, &[-0.5, 1.0], &[0.5, 1.0], 1e-9, &mut a, &mut b);
+        let wrong = evaluate(&[-0.5, 1.0], &[0.5, 1.0]);
         assert_eq!(wrong.residuals.primal, 0.5);
         assert_eq!(wrong.residuals.complementarity, 0.25);
         assert_eq!(wrong.residuals.stationarity, 0.0);
         // A soft multiplier above its weight.
-        let wrong = evaluate(&problem, &[0.0, 2.0], &[1.0, 2.0], 1e-9, &mut a, &mut b);
+        let wrong = evaluate(&[0.0, 2.0], &[1.0, 2.0]);
         assert_eq!(wrong.residuals.dual, 1.0);
         assert_eq!(wrong.slack.count, 0);
         assert!(wrong.residuals.worst_relative > 0.1);
