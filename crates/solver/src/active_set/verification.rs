@@ -41,12 +41,13 @@ impl ActiveSet {
     ) -> Option<usize> {
         let mut worst: Option<(usize, f64)> = None;
         for (row, bound) in self.bound.iter().enumerate() {
-            let (residual, scale) = row_residual(problem, row, qdot);
-            let violation = match bound {
-                Bound::Lower => -residual / scale,
-                Bound::Upper => residual / scale,
+            let sign = match bound {
+                Bound::Lower => -1.0,
+                Bound::Upper => 1.0,
                 Bound::Free | Bound::Redundant => continue,
             };
+            let (residual, scale) = row_residual(problem, row, qdot);
+            let violation = sign * residual / scale;
             if violation > tolerance && worst.is_none_or(|(_, top)| violation > top) {
                 worst = Some((row, violation));
             }
