@@ -23,6 +23,13 @@ pub(crate) fn row_residual(problem: &Problem<'_>, row: usize, qdot: &[f64]) -> (
     (product - rhs, 1.0 + rhs.abs() + magnitude)
 }
 
+/// (vᵢ, sᵢ) of [`row_residual`] for every row, into `out` (m pairs; grow-only): measured once
+/// per answer for the primal verification and the report.
+pub(crate) fn row_residuals(problem: &Problem<'_>, qdot: &[f64], out: &mut Vec<(f64, f64)>) {
+    out.clear();
+    out.extend((0..problem.rows().len()).map(|i| row_residual(problem, i, qdot)));
+}
+
 /// `residual` ← f̃ + Cᵀλ − M̃q̇ (the negated stationarity residual, the refinement's r₁) using
 /// `work` for Cᵀλ; returns the scale 1 + ‖f̃‖∞ + ‖M̃q̇‖∞ + ‖Cᵀλ‖∞.
 pub(crate) fn stationarity(
@@ -81,14 +88,14 @@ pub(crate) struct Evaluation {
     pub(crate) active_per_group: [usize; RowGroup::COUNT],
 }
 
-/// Evaluates (q̇, λ), whose stationarity residual is `stationarity` (as
-/// [`Stationarity::measure`] gives it); `acceptance` sets the thresholds for "slack used"
-/// and "active".
+/// Evaluates an answer (q̇, λ) from λ, its stationarity residual (as
+/// [`Stationarity::measure`] gives it) and its row residuals (as [`row_residuals`] gives
+/// them); `acceptance` sets the thresholds for "slack used" and "active".
 pub(crate) fn evaluate(
     problem: &Problem<'_>,
-    qdot: &[f64],
     lambda: &[f64],
     stationarity: Stationarity,
+    row_residuals: &[(f64, f64)],
     acceptance: f64,
 ) -> Evaluation {
     let mut out = Evaluation {
@@ -102,9 +109,8 @@ pub(crate) fn evaluate(
     let lambda_scale = 1.0 + norm_max(lambda);
     let rows = problem.rows();
     let mut worst = out.residuals.stationarity_relative;
-    for (i, (&kind, &group)) in rows.kinds().iter().zip(rows.groups()).enumerate() {
-        let (v, s) = row_residual(problem, i, qdot);
-        let l = lambda[i];
+    let each_row = rows.kinds().iter().zip(rows.groups()).zip(row_residuals).zip(lambda);
+    for (((&kind, &group), &(v, s)), &l) in each_row {
         let (primal, dual, complementarity) = match kind {
             RowKind::Equality => (v.abs(), 0.0, 0.0),
             RowKind::Inequality => ((-v).max(0.0), (-l).max(0.0), (l * v).abs()),
@@ -152,10 +158,11 @@ mod tests {
         rows.push(soft, RowGroup::Thigmo, 2.0, &[0.0, 1.0])?;
         let problem = Problem::new(mass.as_ref(), &[-1.0, 0.0], &rows)?;
         // Exact answer: q̇ = (0, 1), λ = (1, 1), slack 1 on the soft row.
-        let (mut a, mut b) = ([0.0; 2], [0.0; 2]);
+        let (mut a, mut b, mut rows) = ([0.0; 2], [0.0; 2], Vec::new());
         let mut evaluate = |qdot: &[f64], lambda: &[f64]| {
             let measured = Stationarity::measure(&problem, qdot, lambda, &mut a, &mut b);
-            evaluate(&problem, qdot, lambda, measured, 1e-9)
+            row_residuals(&problem, qdot, &mut rows);
+            evaluate(&problem, lambda, measured, &rows, 1e-9)
         };
         let exact = evaluate(&[0.0, 1.0], &[1.0, 1.0]);
         assert_eq!(exact.residuals.worst_relative, 0.0);

@@ -40,7 +40,7 @@ use crate::options::{QpBackend, SolverOptions, WarmStart};
 use crate::problem::Problem;
 use crate::refine::{FactoredSystem, Refined, Refinement};
 use crate::report::{SolvePath, SolveReport, SolveStatus};
-use crate::residuals::{Evaluation, Stationarity, evaluate};
+use crate::residuals::{Evaluation, Stationarity, evaluate, row_residuals};
 use crate::rows::RowGroup;
 
 /// How often a refined answer may send a violated bound row back to the active-set method.
@@ -59,6 +59,8 @@ pub struct SolverWorkspace {
     impulses: Mat<f64>,
     residual: Vec<f64>,
     work: Vec<f64>,
+    /// (vᵢ, sᵢ) of every row at the answer (`residuals::row_residuals`).
+    row_residuals: Vec<(f64, f64)>,
     report: SolveReport,
     /// True when `mass` and `dual` hold the factor and matrices of the last solve's M̃ and rows.
     contact_space_ready: bool,
@@ -93,6 +95,7 @@ impl SolverWorkspace {
             impulses: Mat::zeros(0, RowGroup::COUNT),
             residual: Vec::new(),
             work: Vec::new(),
+            row_residuals: Vec::new(),
             report: SolveReport::default(),
             contact_space_ready: false,
         }
@@ -109,6 +112,7 @@ impl SolverWorkspace {
             buffer.reserve(dofs);
         }
         self.multipliers.reserve(rows);
+        self.row_residuals.reserve(rows);
     }
 
     /// The options in use.
@@ -175,6 +179,7 @@ impl SolverWorkspace {
             Some(QpBackend::Clarabel) => {
                 let outcome =
                     clarabel_reference::solve(problem, &mut self.velocity, &mut self.multipliers);
+                row_residuals(problem, &self.velocity, &mut self.row_residuals);
                 (outcome.status, outcome.iterations, Refined { steps: 0, stationarity: None })
             }
             _ => self.solve_contact_space(problem, reuse)?,
@@ -186,9 +191,9 @@ impl SolverWorkspace {
         });
         let evaluation = evaluate(
             problem,
-            &self.velocity,
             &self.multipliers,
             stationarity,
+            &self.row_residuals,
             self.options.acceptance,
         );
         self.report = SolveReport {
@@ -238,7 +243,8 @@ impl SolverWorkspace {
     /// Factor, dual, active set, recovery, refinement and primal verification; returns the
     /// method's own status (`Solved`, `MaxIterations` or `Infeasible`), the active-set
     /// iterations and what the refinements did (all their steps, the last one's
-    /// stationarity: it refined the answer returned).
+    /// stationarity: it refined the answer returned). Leaves the row residuals of the answer
+    /// in `row_residuals`.
     fn solve_contact_space(
         &mut self,
         problem: &Problem<'_>,
@@ -281,11 +287,12 @@ impl SolverWorkspace {
                 self.options.max_refinement_steps,
             );
             refined = Refined { steps: refined.steps + run.steps, ..run };
+            row_residuals(problem, &self.velocity, &mut self.row_residuals);
             if outcome.termination != Termination::Optimal || pass == VERIFICATION_PASSES {
                 break;
             }
             let tolerance = self.options.release_tolerance;
-            let Some(row) = self.active.violated_bound(problem, &self.velocity, tolerance) else {
+            let Some(row) = self.active.violated_bound(&self.row_residuals, tolerance) else {
                 break;
             };
             let left = ActiveSetLimits {
@@ -296,7 +303,7 @@ impl SolverWorkspace {
             iterations += outcome.iterations;
         }
         let contradiction =
-            self.active.redundant_violated(problem, &self.velocity, self.options.acceptance);
+            self.active.redundant_violated(&self.row_residuals, self.options.acceptance);
         let status = match outcome.termination {
             Termination::Optimal if contradiction => SolveStatus::Infeasible,
             Termination::Optimal => SolveStatus::Solved,
@@ -358,7 +365,9 @@ mod tests {
         let (mut residual, mut work) = (vec![0.0; n], vec![0.0; n]);
         let (qdot, lambda) = (workspace.velocity(), workspace.multipliers());
         let fresh = Stationarity::measure(&problem, qdot, lambda, &mut residual, &mut work);
-        let evaluation = evaluate(&problem, qdot, lambda, fresh, options.acceptance);
+        let mut residuals = Vec::new();
+        row_residuals(&problem, qdot, &mut residuals);
+        let evaluation = evaluate(&problem, lambda, fresh, &residuals, options.acceptance);
         assert_eq!(report.residuals, evaluation.residuals);
     }
 
