@@ -165,6 +165,11 @@ impl ContactSpace {
         self.z.len()
     }
 
+    /// The supports eᵢ (m): row i and Y's column i vanish from entry eᵢ on.
+    pub(crate) fn supports(&self) -> &[usize] {
+        &self.support
+    }
+
     /// Column i of Y = L⁻¹Cᵀ, i.e. L⁻¹cᵢ, up to its support eᵢ ≤ n (the rest is zero).
     pub(crate) fn y_column(&self, i: usize) -> &[f64] {
         &self.y.col_as_slice(i)[..self.support[i]]

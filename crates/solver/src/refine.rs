@@ -79,7 +79,7 @@ impl Refinement {
                 Stationarity::measure(problem, qdot, lambda, &mut self.residual, &mut self.work);
             let mut relative = measured.norm / measured.scale;
             for (r2, &i) in self.compact.iter_mut().zip(free.indices()) {
-                let (v, s) = row_residual(problem, i, qdot);
+                let (v, s) = row_residual(problem, i, qdot, dual.supports()[i]);
                 *r2 = -v;
                 relative = relative.max(v.abs() / s);
             }

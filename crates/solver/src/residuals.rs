@@ -14,20 +14,38 @@ use crate::problem::Problem;
 use crate::report::{Residuals, SlackUsage};
 use crate::rows::{RowGroup, RowKind};
 
-/// vᵢ = cᵢᵀq̇ − bᵢ and its scale sᵢ = 1 + |bᵢ| + Σⱼ|cᵢⱼq̇ⱼ|.
-pub(crate) fn row_residual(problem: &Problem<'_>, row: usize, qdot: &[f64]) -> (f64, f64) {
+/// vᵢ = cᵢᵀq̇ − bᵢ and its scale sᵢ = 1 + |bᵢ| + Σⱼ|cᵢⱼq̇ⱼ|, summed over the entries
+/// `..support` only: cᵢ must vanish from `support` on (n always does; the contact space
+/// knows each row's support). For a finite q̇ that is the full sum bit for bit: the partial
+/// sums of [`dot_and_magnitude`] take entry j in lane j mod 4 either way, and a zero term
+/// leaves a lane's sum as it is (a sum of terms from +0 is never −0).
+pub(crate) fn row_residual(
+    problem: &Problem<'_>,
+    row: usize,
+    qdot: &[f64],
+    support: usize,
+) -> (f64, f64) {
     let rows = problem.rows();
     let coefficients = rows.row(row);
     let rhs = rows.rhs()[row];
-    let (product, magnitude) = dot_and_magnitude(coefficients, qdot);
+    let (product, magnitude) = dot_and_magnitude(coefficients, &qdot[..support]);
     (product - rhs, 1.0 + rhs.abs() + magnitude)
 }
 
 /// (vᵢ, sᵢ) of [`row_residual`] for every row, into `out` (m pairs; grow-only): measured once
-/// per answer for the primal verification and the report.
-pub(crate) fn row_residuals(problem: &Problem<'_>, qdot: &[f64], out: &mut Vec<(f64, f64)>) {
+/// per answer for the primal verification and the report. `supports` holds each row's
+/// support (see [`row_residual`]); `None`: every row is summed over all n entries.
+pub(crate) fn row_residuals(
+    problem: &Problem<'_>,
+    qdot: &[f64],
+    supports: Option<&[usize]>,
+    out: &mut Vec<(f64, f64)>,
+) {
     out.clear();
-    out.extend((0..problem.rows().len()).map(|i| row_residual(problem, i, qdot)));
+    out.extend((0..problem.rows().len()).map(|i| {
+        let support = supports.map_or(qdot.len(), |supports| supports[i]);
+        row_residual(problem, i, qdot, support)
+    }));
 }
 
 /// `residual` ← f̃ + Cᵀλ − M̃q̇ (the negated stationarity residual, the refinement's r₁) using
@@ -143,10 +161,34 @@ pub(crate) fn evaluate(
 #[cfg(test)]
 mod tests {
     use faer::Mat;
+    use proptest::prelude::*;
 
     use super::*;
     use crate::error::SolverError;
+    use crate::mass_factor::tests::stream;
     use crate::rows::Rows;
+
+    proptest! {
+        /// Summing a row over its support only gives its full residual and scale bit for bit.
+        #[test]
+        fn supported_row_residual_is_the_full_one(
+            n in 1usize..=40, end in 0usize..=40, seed in any::<u64>()
+        ) {
+            let (mut next, end) = (stream(seed), end.min(n));
+            let qdot: Vec<f64> = (0..n).map(|_| 1e3 * next()).collect();
+            let mut rows = Rows::new(n);
+            let row = rows.push_zeroed(RowKind::Inequality, RowGroup::Contact, next());
+            row[..end].iter_mut().for_each(|c| *c = next());
+            let mass = Mat::<f64>::identity(n, n);
+            let problem = Problem::new(mass.as_ref(), &qdot, &rows).map_err(|e| {
+                TestCaseError::fail(e.to_string())
+            })?;
+            let full = row_residual(&problem, 0, &qdot, n);
+            let supported = row_residual(&problem, 0, &qdot, end);
+            prop_assert_eq!(full.0.to_bits(), supported.0.to_bits());
+            prop_assert_eq!(full.1.to_bits(), supported.1.to_bits());
+        }
+    }
 
     #[test]
     fn residuals_of_a_hand_made_answer() -> Result<(), SolverError> {
@@ -161,7 +203,7 @@ mod tests {
         let (mut a, mut b, mut rows) = ([0.0; 2], [0.0; 2], Vec::new());
         let mut evaluate = |qdot: &[f64], lambda: &[f64]| {
             let measured = Stationarity::measure(&problem, qdot, lambda, &mut a, &mut b);
-            row_residuals(&problem, qdot, &mut rows);
+            row_residuals(&problem, qdot, None, &mut rows);
             evaluate(&problem, lambda, measured, &rows, 1e-9)
         };
         let exact = evaluate(&[0.0, 1.0], &[1.0, 1.0]);

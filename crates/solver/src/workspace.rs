@@ -179,7 +179,7 @@ impl SolverWorkspace {
             Some(QpBackend::Clarabel) => {
                 let outcome =
                     clarabel_reference::solve(problem, &mut self.velocity, &mut self.multipliers);
-                row_residuals(problem, &self.velocity, &mut self.row_residuals);
+                row_residuals(problem, &self.velocity, None, &mut self.row_residuals);
                 (outcome.status, outcome.iterations, Refined { steps: 0, stationarity: None })
             }
             _ => self.solve_contact_space(problem, reuse)?,
@@ -287,7 +287,8 @@ impl SolverWorkspace {
                 self.options.max_refinement_steps,
             );
             refined = Refined { steps: refined.steps + run.steps, ..run };
-            row_residuals(problem, &self.velocity, &mut self.row_residuals);
+            let supports = Some(self.dual.supports());
+            row_residuals(problem, &self.velocity, supports, &mut self.row_residuals);
             if outcome.termination != Termination::Optimal || pass == VERIFICATION_PASSES {
                 break;
             }
@@ -366,7 +367,7 @@ mod tests {
         let (qdot, lambda) = (workspace.velocity(), workspace.multipliers());
         let fresh = Stationarity::measure(&problem, qdot, lambda, &mut residual, &mut work);
         let mut residuals = Vec::new();
-        row_residuals(&problem, qdot, &mut residuals);
+        row_residuals(&problem, qdot, None, &mut residuals);
         let evaluation = evaluate(&problem, lambda, fresh, &residuals, options.acceptance);
         assert_eq!(report.residuals, evaluation.residuals);
     }
