@@ -13,7 +13,7 @@ use hagfish_solver::{FactoredMass, MassOperator};
 use crate::factor::{LANES, TreeFactor};
 
 impl FactoredMass for TreeFactor {
-    /// `x ← L⁻¹x` (the leaf-to-root pass), [`LANES`] columns at a time.
+    /// `x ← L⁻¹x` (the leaf-to-root pass) in batches of `LANES` (four) columns.
     fn solve_lower(&self, x: MatMut<'_, f64>) {
         let n = x.nrows();
         solve_lower_batched(self, x, |_| n);
@@ -26,13 +26,13 @@ impl FactoredMass for TreeFactor {
         }
     }
 
-    /// The tree factor keeps the zeros past the joint of entry `end − 1`
-    /// ([`TreeFactor::lower_support`]).
+    /// The tree factor keeps the zeros past the joint of entry `end − 1`: the end of that
+    /// joint's DOFs (0 when `end` is 0).
     fn lower_support(&self, end: usize) -> Option<usize> {
         Some(TreeFactor::lower_support(self, end))
     }
 
-    /// `x ← L⁻¹x`, [`LANES`] columns at a time, each batch over the bodies of its largest
+    /// `x ← L⁻¹x` in batches of `LANES` (four) columns, each over the bodies of its largest
     /// support only.
     fn solve_lower_supported(&self, x: MatMut<'_, f64>, support: &[usize]) {
         solve_lower_batched(self, x, |j| support[j]);
