@@ -124,7 +124,9 @@ pub fn solve_velocities(data: &mut StepData) -> Result<(), hagfish_solver::Solve
 /// Optional stage 6b: re-evaluates the velocity-product (Coriolis, centrifugal, gyroscopic)
 /// force at the velocity just solved for and re-forms `f̃ = M q̇⁰ + h f_r` (the momentum `M q̇⁰`
 /// and `M̃` are kept), so that the next solve treats it implicitly (a fixed-point iteration).
-/// Applied forces are kept; positions are unchanged, so the rows stay valid.
+/// Applied forces are kept; positions are unchanged, so the rows stay valid, and so are the
+/// frames and axes of stage 1 in `data`: only the twists and velocity-product accelerations
+/// are formed again.
 pub fn refresh_velocity_products(
     model: &Model,
     options: &StepOptions,
@@ -133,7 +135,7 @@ pub fn refresh_velocity_products(
 ) {
     let guess = data.solver.velocity();
     data.velocity_guess.copy_from_slice(guess);
-    hagfish_tree::forward_kinematics(model, &state.q, &data.velocity_guess, &mut data.tree);
+    hagfish_tree::velocity_kinematics(model, &data.velocity_guess, &mut data.tree);
     hagfish_tree::generalized_force(model, &state.q, &mut data.tree);
     hagfish_tree::assemble_effective_momentum(&mut data.tree, options.time_step);
 }

@@ -16,11 +16,13 @@
 //! W is not regularised: duplicated or degenerate rows make it singular, and the active-set
 //! method (`active_set.rs`) keeps the rows it factors linearly independent instead.
 //!
-//! Trailing zeros: a row cᵢ vanishing from entry eᵢ on (a contact on body k in reduced
-//! coordinates rooted at the head: eᵢ = the DOFs of joints 0..k) gives a column L⁻¹cᵢ that
-//! vanishes there too when L is upper triangular ([`FactoredMass::keeps_trailing_zeros`],
-//! the dense factor). Then Y's column i costs eᵢ²/2 instead of n²/2, and
-//! Wᵢⱼ = Σ_{k < min(eᵢ, eⱼ)} YₖᵢYₖⱼ skips the zero tails. Other factors use eᵢ = n.
+//! Trailing zeros: a row cᵢ vanishing from entry e on (a contact on body k in reduced
+//! coordinates rooted at the head: e = the end of the DOFs of joints 0..k) gives a column
+//! L⁻¹cᵢ that vanishes from some eᵢ ≥ e on when the factor keeps trailing zeros
+//! ([`FactoredMass::lower_support`]: eᵢ = e for the dense upper-triangular factor, the end
+//! of joint k's DOFs for the tree factor). Then Y's column i costs eᵢ²/2 instead of n²/2
+//! (dense) or the bodies 0..=k instead of all (tree), and Wᵢⱼ = Σ_{k < min(eᵢ, eⱼ)} YₖᵢYₖⱼ
+//! skips the zero tails. Other factors use eᵢ = n.
 
 use faer::linalg::matmul::matmul;
 use faer::{Accum, Mat, MatRef, Par};
@@ -87,9 +89,9 @@ impl ContactSpace {
         let rows = problem.rows();
         let (n, m) = (problem.dofs(), rows.len());
         self.support.clear();
-        self.support.extend((0..m).map(|i| match factor.keeps_trailing_zeros() {
-            true => rows.row(i).iter().rposition(|&c| c != 0.0).map_or(0, |last| last + 1),
-            false => n,
+        self.support.extend((0..m).map(|i| {
+            let end = rows.row(i).iter().rposition(|&c| c != 0.0).map_or(0, |last| last + 1);
+            factor.lower_support(end).unwrap_or(n)
         }));
         // Columns by decreasing support (ties by index): Y's columns in `sorted`, their
         // supports in `sorted_support`.
@@ -161,6 +163,11 @@ impl ContactSpace {
     /// Number of DOFs n.
     pub(crate) fn dofs(&self) -> usize {
         self.z.len()
+    }
+
+    /// The supports eᵢ (m): row i and Y's column i vanish from entry eᵢ on.
+    pub(crate) fn supports(&self) -> &[usize] {
+        &self.support
     }
 
     /// Column i of Y = L⁻¹Cᵀ, i.e. L⁻¹cᵢ, up to its support eᵢ ≤ n (the rest is zero).

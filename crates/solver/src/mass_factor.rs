@@ -9,7 +9,7 @@
 //! nonzeros only in the DOFs of joints 0..k (its ancestors), i.e. trailing zeros. Back
 //! substitution with an upper-triangular U keeps them, U⁻¹c vanishes wherever c does from
 //! its last nonzero e on, and costs e²/2 instead of n²/2 (forward substitution with a lower
-//! L fills them). See [`FactoredMass::keeps_trailing_zeros`].
+//! L fills them). See [`FactoredMass::lower_support`].
 //!
 //! Only R is stored (U = PRP is applied by reversing the vectors around R's solves); it and
 //! the faer scratch are owned here and only reallocated when n grows.
@@ -123,9 +123,9 @@ impl FactoredMass for MassFactor {
         reverse_rows(x);
     }
 
-    /// U is upper triangular.
-    fn keeps_trailing_zeros(&self) -> bool {
-        true
+    /// U is upper triangular: U⁻¹x vanishes wherever x does from `end` on.
+    fn lower_support(&self, end: usize) -> Option<usize> {
+        Some(end)
     }
 
     /// Blocked forward substitution with R on Px, whose column j has n − supportⱼ leading

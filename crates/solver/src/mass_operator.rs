@@ -17,17 +17,21 @@ pub trait FactoredMass: core::fmt::Debug {
     /// x ← L⁻ᵀx for every column of x (n rows).
     fn solve_upper(&self, x: MatMut<'_, f64>);
 
-    /// True when L is upper triangular, so that L⁻¹ keeps trailing zeros: if x vanishes from
-    /// entry e on, so does L⁻¹x (constraint rows in reduced coordinates rooted at the head
-    /// vanish past their body's DOFs). Default: false.
-    fn keeps_trailing_zeros(&self) -> bool {
-        false
+    /// Where L⁻¹ keeps trailing zeros: for every x that vanishes from entry `end` on, L⁻¹x
+    /// vanishes from the returned entry e ≥ `end` on; `None` when L⁻¹x may fill them (the
+    /// default). Constraint rows in reduced coordinates rooted at the head vanish past their
+    /// body's DOFs: an upper-triangular L keeps exactly those zeros (e = `end`, the dense
+    /// factor), a factor eliminated leaf to root keeps those past the joint of entry `end` − 1.
+    fn lower_support(&self, end: usize) -> Option<usize> {
+        let _ = end;
+        None
     }
 
     /// x ← L⁻¹x for columns x_j that vanish from entry `support[j]` on, `support`
-    /// non-increasing (one entry per column, each ≤ n). A factor that
-    /// [keeps trailing zeros](Self::keeps_trailing_zeros) skips them: O(Σⱼ supportⱼ²) instead
-    /// of O(n²) per column. Default: [`solve_lower`](Self::solve_lower), ignoring the support.
+    /// non-increasing (one entry per column, each ≤ n, each a value of
+    /// [`lower_support`](Self::lower_support), so L⁻¹x_j vanishes there too). A factor that
+    /// keeps trailing zeros skips them (for the dense factor O(Σⱼ supportⱼ²) instead of O(n²)
+    /// per column). Default: [`solve_lower`](Self::solve_lower), ignoring the support.
     fn solve_lower_supported(&self, x: MatMut<'_, f64>, support: &[usize]) {
         let _ = support;
         self.solve_lower(x);

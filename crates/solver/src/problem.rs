@@ -125,10 +125,22 @@ fn check_finite(what: &'static str, row: usize, col: usize, value: f64) -> Resul
     if value.is_finite() { Ok(()) } else { Err(SolverError::NonFinite { what, row, col, value }) }
 }
 
+/// Independent partial sums of [`all_finite`] (one running sum is a chain of dependent
+/// additions; these vectorise).
+const FINITE_LANES: usize = 4;
+
 /// True when every value is finite: Σ 0·v is 0 for finite values and NaN as soon as one is
-/// infinite or NaN (branch-free).
+/// infinite or NaN (branch-free, in [`FINITE_LANES`] partial sums).
 fn all_finite(values: &[f64]) -> bool {
-    values.iter().fold(0.0, |sum, v| sum + v * 0.0) == 0.0
+    let chunks = values.chunks_exact(FINITE_LANES);
+    let tail = chunks.remainder().iter().fold(0.0, |sum, v| sum + v * 0.0);
+    let sums = chunks.fold([0.0; FINITE_LANES], |mut sums, chunk| {
+        for (sum, v) in sums.iter_mut().zip(chunk) {
+            *sum += v * 0.0;
+        }
+        sums
+    });
+    sums.iter().fold(tail, |total, sum| total + sum) == 0.0
 }
 
 /// Finite entries and symmetry up to rounding. A mirrored assembly (as the tree's CRBA)
@@ -254,6 +266,21 @@ mod tests {
             err,
             Some(SolverError::DimensionMismatch { what: "row coefficients", .. })
         ));
+    }
+
+    #[test]
+    fn all_finite_sees_every_position_of_every_length() {
+        for len in 0..=11 {
+            let mut values: Vec<f64> = (0..len).map(|i| 1e300 * (i as f64 - 4.5)).collect();
+            assert!(all_finite(&values), "length {len}");
+            for i in 0..len {
+                for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+                    let kept = std::mem::replace(&mut values[i], bad);
+                    assert!(!all_finite(&values), "length {len}, {bad} at {i}");
+                    values[i] = kept;
+                }
+            }
+        }
     }
 
     #[test]

@@ -18,10 +18,10 @@
 
 use crate::contact_space::ContactSpace;
 use crate::free_set::FreeSet;
-use crate::linalg::{axpy, column_mut, dot, norm_max, zeroed};
+use crate::linalg::{axpy, column_mut, dot, zeroed};
 use crate::mass_operator::FactoredMass;
 use crate::problem::Problem;
-use crate::residuals::{row_residual, stationarity};
+use crate::residuals::{Stationarity, row_residual};
 
 /// Relative residual below which refinement stops (a few units of rounding).
 const ROUNDING_LEVEL: f64 = 1e-15;
@@ -33,6 +33,15 @@ pub(crate) struct FactoredSystem<'a> {
     pub(crate) mass: &'a dyn FactoredMass,
     pub(crate) dual: &'a ContactSpace,
     pub(crate) free: &'a FreeSet,
+}
+
+/// What a refinement did: the corrections taken, and the stationarity of the answer it
+/// returns when its last act was to measure it (`None` when it stopped at `max_steps`
+/// after a correction).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Refined {
+    pub(crate) steps: usize,
+    pub(crate) stationarity: Option<Stationarity>,
 }
 
 /// Scratch of the refinement (n, n and m entries; grow-only).
@@ -51,14 +60,14 @@ impl Refinement {
         self.compact.reserve(rows);
     }
 
-    /// Refines (q̇, λ) in place for at most `max_steps` corrections; returns the number taken.
+    /// Refines (q̇, λ) in place for at most `max_steps` corrections.
     pub(crate) fn run(
         &mut self,
         system: FactoredSystem<'_>,
         lambda: &mut [f64],
         qdot: &mut [f64],
         max_steps: usize,
-    ) -> usize {
+    ) -> Refined {
         let FactoredSystem { problem, mass, dual, free } = system;
         zeroed(&mut self.residual, problem.dofs());
         zeroed(&mut self.work, problem.dofs());
@@ -66,15 +75,16 @@ impl Refinement {
         let mut previous = f64::INFINITY;
         for step in 0..max_steps {
             // r₁ = f̃ + Cᵀλ − M̃q̇ and r₂ = b_F − C_F q̇, with their relative size.
-            let scale = stationarity(problem, qdot, lambda, &mut self.residual, &mut self.work);
-            let mut relative = norm_max(&self.residual) / scale;
+            let measured =
+                Stationarity::measure(problem, qdot, lambda, &mut self.residual, &mut self.work);
+            let mut relative = measured.norm / measured.scale;
             for (r2, &i) in self.compact.iter_mut().zip(free.indices()) {
-                let (v, s) = row_residual(problem, i, qdot);
+                let (v, s) = row_residual(problem, i, qdot, dual.supports()[i]);
                 *r2 = -v;
                 relative = relative.max(v.abs() / s);
             }
             if relative <= ROUNDING_LEVEL || relative > 0.5 * previous {
-                return step;
+                return Refined { steps: step, stationarity: Some(measured) };
             }
             previous = relative;
             // u = L⁻¹r₁;  W_FF δλ = r₂ − Y_Fᵀu;  δq = L⁻ᵀ(u + Y_F δλ).
@@ -90,6 +100,6 @@ impl Refinement {
             mass.solve_upper(column_mut(&mut self.residual));
             axpy(1.0, &self.residual, qdot);
         }
-        max_steps
+        Refined { steps: max_steps, stationarity: None }
     }
 }

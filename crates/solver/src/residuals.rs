@@ -14,13 +14,38 @@ use crate::problem::Problem;
 use crate::report::{Residuals, SlackUsage};
 use crate::rows::{RowGroup, RowKind};
 
-/// vᵢ = cᵢᵀq̇ − bᵢ and its scale sᵢ = 1 + |bᵢ| + Σⱼ|cᵢⱼq̇ⱼ|.
-pub(crate) fn row_residual(problem: &Problem<'_>, row: usize, qdot: &[f64]) -> (f64, f64) {
+/// vᵢ = cᵢᵀq̇ − bᵢ and its scale sᵢ = 1 + |bᵢ| + Σⱼ|cᵢⱼq̇ⱼ|, summed over the entries
+/// `..support` only: cᵢ must vanish from `support` on (n always does; the contact space
+/// knows each row's support). For a finite q̇ that is the full sum bit for bit: the partial
+/// sums of [`dot_and_magnitude`] take entry j in lane j mod 4 either way, and a zero term
+/// leaves a lane's sum as it is (a sum of terms from +0 is never −0).
+pub(crate) fn row_residual(
+    problem: &Problem<'_>,
+    row: usize,
+    qdot: &[f64],
+    support: usize,
+) -> (f64, f64) {
     let rows = problem.rows();
     let coefficients = rows.row(row);
     let rhs = rows.rhs()[row];
-    let (product, magnitude) = dot_and_magnitude(coefficients, qdot);
+    let (product, magnitude) = dot_and_magnitude(coefficients, &qdot[..support]);
     (product - rhs, 1.0 + rhs.abs() + magnitude)
+}
+
+/// (vᵢ, sᵢ) of [`row_residual`] for every row, into `out` (m pairs; grow-only): measured once
+/// per answer for the primal verification and the report. `supports` holds each row's
+/// support (see [`row_residual`]); `None`: every row is summed over all n entries.
+pub(crate) fn row_residuals(
+    problem: &Problem<'_>,
+    qdot: &[f64],
+    supports: Option<&[usize]>,
+    out: &mut Vec<(f64, f64)>,
+) {
+    out.clear();
+    out.extend((0..problem.rows().len()).map(|i| {
+        let support = supports.map_or(qdot.len(), |supports| supports[i]);
+        row_residual(problem, i, qdot, support)
+    }));
 }
 
 /// `residual` ← f̃ + Cᵀλ − M̃q̇ (the negated stationarity residual, the refinement's r₁) using
@@ -48,6 +73,31 @@ pub(crate) fn stationarity(
     scale
 }
 
+/// The size of the stationarity residual t = M̃q̇ − f̃ − Cᵀλ of an answer: ‖t‖∞ and its
+/// scale 1 + ‖f̃‖∞ + ‖M̃q̇‖∞ + ‖Cᵀλ‖∞. The refinement measures it at every step; its last
+/// measurement, of the answer it returns, is the report's, so it is not formed twice.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Stationarity {
+    /// ‖t‖∞.
+    pub(crate) norm: f64,
+    /// 1 + ‖f̃‖∞ + ‖M̃q̇‖∞ + ‖Cᵀλ‖∞.
+    pub(crate) scale: f64,
+}
+
+impl Stationarity {
+    /// Measures (q̇, λ), leaving −t in `residual` (see [`stationarity`]; `work` is scratch).
+    pub(crate) fn measure(
+        problem: &Problem<'_>,
+        qdot: &[f64],
+        lambda: &[f64],
+        residual: &mut [f64],
+        work: &mut [f64],
+    ) -> Self {
+        let scale = stationarity(problem, qdot, lambda, residual, work);
+        Self { norm: norm_max(residual), scale }
+    }
+}
+
 /// The report's view of an answer: residuals, slack, rows with a non-negligible λ.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub(crate) struct Evaluation {
@@ -56,22 +106,20 @@ pub(crate) struct Evaluation {
     pub(crate) active_per_group: [usize; RowGroup::COUNT],
 }
 
-/// Evaluates (q̇, λ); `acceptance` sets the thresholds for "slack used" and "active".
-/// `residual` and `work` are n-vectors of scratch.
+/// Evaluates an answer (q̇, λ) from λ, its stationarity residual (as
+/// [`Stationarity::measure`] gives it) and its row residuals (as [`row_residuals`] gives
+/// them); `acceptance` sets the thresholds for "slack used" and "active".
 pub(crate) fn evaluate(
     problem: &Problem<'_>,
-    qdot: &[f64],
     lambda: &[f64],
+    stationarity: Stationarity,
+    row_residuals: &[(f64, f64)],
     acceptance: f64,
-    residual: &mut [f64],
-    work: &mut [f64],
 ) -> Evaluation {
-    let scale = stationarity(problem, qdot, lambda, residual, work);
-    let stationarity = norm_max(residual);
     let mut out = Evaluation {
         residuals: Residuals {
-            stationarity,
-            stationarity_relative: stationarity / scale,
+            stationarity: stationarity.norm,
+            stationarity_relative: stationarity.norm / stationarity.scale,
             ..Residuals::default()
         },
         ..Evaluation::default()
@@ -79,9 +127,8 @@ pub(crate) fn evaluate(
     let lambda_scale = 1.0 + norm_max(lambda);
     let rows = problem.rows();
     let mut worst = out.residuals.stationarity_relative;
-    for (i, (&kind, &group)) in rows.kinds().iter().zip(rows.groups()).enumerate() {
-        let (v, s) = row_residual(problem, i, qdot);
-        let l = lambda[i];
+    let each_row = rows.kinds().iter().zip(rows.groups()).zip(row_residuals).zip(lambda);
+    for (((&kind, &group), &(v, s)), &l) in each_row {
         let (primal, dual, complementarity) = match kind {
             RowKind::Equality => (v.abs(), 0.0, 0.0),
             RowKind::Inequality => ((-v).max(0.0), (-l).max(0.0), (l * v).abs()),
@@ -114,10 +161,34 @@ pub(crate) fn evaluate(
 #[cfg(test)]
 mod tests {
     use faer::Mat;
+    use proptest::prelude::*;
 
     use super::*;
     use crate::error::SolverError;
+    use crate::mass_factor::tests::stream;
     use crate::rows::Rows;
+
+    proptest! {
+        /// Summing a row over its support only gives its full residual and scale bit for bit.
+        #[test]
+        fn supported_row_residual_is_the_full_one(
+            n in 1usize..=40, end in 0usize..=40, seed in any::<u64>()
+        ) {
+            let (mut next, end) = (stream(seed), end.min(n));
+            let qdot: Vec<f64> = (0..n).map(|_| 1e3 * next()).collect();
+            let mut rows = Rows::new(n);
+            let row = rows.push_zeroed(RowKind::Inequality, RowGroup::Contact, next());
+            row[..end].iter_mut().for_each(|c| *c = next());
+            let mass = Mat::<f64>::identity(n, n);
+            let problem = Problem::new(mass.as_ref(), &qdot, &rows).map_err(|e| {
+                TestCaseError::fail(e.to_string())
+            })?;
+            let full = row_residual(&problem, 0, &qdot, n);
+            let supported = row_residual(&problem, 0, &qdot, end);
+            prop_assert_eq!(full.0.to_bits(), supported.0.to_bits());
+            prop_assert_eq!(full.1.to_bits(), supported.1.to_bits());
+        }
+    }
 
     #[test]
     fn residuals_of_a_hand_made_answer() -> Result<(), SolverError> {
@@ -129,18 +200,23 @@ mod tests {
         rows.push(soft, RowGroup::Thigmo, 2.0, &[0.0, 1.0])?;
         let problem = Problem::new(mass.as_ref(), &[-1.0, 0.0], &rows)?;
         // Exact answer: q̇ = (0, 1), λ = (1, 1), slack 1 on the soft row.
-        let (mut a, mut b) = ([0.0; 2], [0.0; 2]);
-        let exact = evaluate(&problem, &[0.0, 1.0], &[1.0, 1.0], 1e-9, &mut a, &mut b);
+        let (mut a, mut b, mut rows) = ([0.0; 2], [0.0; 2], Vec::new());
+        let mut evaluate = |qdot: &[f64], lambda: &[f64]| {
+            let measured = Stationarity::measure(&problem, qdot, lambda, &mut a, &mut b);
+            row_residuals(&problem, qdot, None, &mut rows);
+            evaluate(&problem, lambda, measured, &rows, 1e-9)
+        };
+        let exact = evaluate(&[0.0, 1.0], &[1.0, 1.0]);
         assert_eq!(exact.residuals.worst_relative, 0.0);
         assert_eq!(exact.slack, SlackUsage { count: 1, max: 1.0 });
         assert_eq!(exact.active_per_group, [0, 0, 1, 0, 1]);
         // Penetrating the wall (stationarity still exact).
-        let wrong = evaluate(&problem, &[-0.5, 1.0], &[0.5, 1.0], 1e-9, &mut a, &mut b);
+        let wrong = evaluate(&[-0.5, 1.0], &[0.5, 1.0]);
         assert_eq!(wrong.residuals.primal, 0.5);
         assert_eq!(wrong.residuals.complementarity, 0.25);
         assert_eq!(wrong.residuals.stationarity, 0.0);
         // A soft multiplier above its weight.
-        let wrong = evaluate(&problem, &[0.0, 2.0], &[1.0, 2.0], 1e-9, &mut a, &mut b);
+        let wrong = evaluate(&[0.0, 2.0], &[1.0, 2.0]);
         assert_eq!(wrong.residuals.dual, 1.0);
         assert_eq!(wrong.slack.count, 0);
         assert!(wrong.residuals.worst_relative > 0.1);

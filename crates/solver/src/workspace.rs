@@ -38,9 +38,9 @@ use crate::mass_factor::MassFactor;
 use crate::mass_operator::{FactoredMass, Mass};
 use crate::options::{QpBackend, SolverOptions, WarmStart};
 use crate::problem::Problem;
-use crate::refine::{FactoredSystem, Refinement};
+use crate::refine::{FactoredSystem, Refined, Refinement};
 use crate::report::{SolvePath, SolveReport, SolveStatus};
-use crate::residuals::{Evaluation, evaluate};
+use crate::residuals::{Evaluation, Stationarity, evaluate, row_residuals};
 use crate::rows::RowGroup;
 
 /// How often a refined answer may send a violated bound row back to the active-set method.
@@ -59,6 +59,8 @@ pub struct SolverWorkspace {
     impulses: Mat<f64>,
     residual: Vec<f64>,
     work: Vec<f64>,
+    /// (vᵢ, sᵢ) of every row at the answer (`residuals::row_residuals`).
+    row_residuals: Vec<(f64, f64)>,
     report: SolveReport,
     /// True when `mass` and `dual` hold the factor and matrices of the last solve's M̃ and rows.
     contact_space_ready: bool,
@@ -93,6 +95,7 @@ impl SolverWorkspace {
             impulses: Mat::zeros(0, RowGroup::COUNT),
             residual: Vec::new(),
             work: Vec::new(),
+            row_residuals: Vec::new(),
             report: SolveReport::default(),
             contact_space_ready: false,
         }
@@ -109,6 +112,7 @@ impl SolverWorkspace {
             buffer.reserve(dofs);
         }
         self.multipliers.reserve(rows);
+        self.row_residuals.reserve(rows);
     }
 
     /// The options in use.
@@ -171,29 +175,33 @@ impl SolverWorkspace {
         zeroed(&mut self.residual, n);
         zeroed(&mut self.work, n);
 
-        let (status, iterations, refinement_steps) = match backend {
+        let (status, iterations, refined) = match backend {
             Some(QpBackend::Clarabel) => {
                 let outcome =
                     clarabel_reference::solve(problem, &mut self.velocity, &mut self.multipliers);
-                (outcome.status, outcome.iterations, 0)
+                row_residuals(problem, &self.velocity, None, &mut self.row_residuals);
+                (outcome.status, outcome.iterations, Refined { steps: 0, stationarity: None })
             }
             _ => self.solve_contact_space(problem, reuse)?,
         };
         self.contact_space_ready = backend != Some(QpBackend::Clarabel);
+        let stationarity = refined.stationarity.unwrap_or_else(|| {
+            let (qdot, lambda) = (&self.velocity, &self.multipliers);
+            Stationarity::measure(problem, qdot, lambda, &mut self.residual, &mut self.work)
+        });
         let evaluation = evaluate(
             problem,
-            &self.velocity,
             &self.multipliers,
+            stationarity,
+            &self.row_residuals,
             self.options.acceptance,
-            &mut self.residual,
-            &mut self.work,
         );
         self.report = SolveReport {
             path,
             backend,
             status: self.judge(status, &evaluation),
             iterations,
-            refinement_steps,
+            refinement_steps: refined.steps,
             warm_started,
             rows_per_group: rows.count_per_group(),
             active_per_group: evaluation.active_per_group,
@@ -234,12 +242,14 @@ impl SolverWorkspace {
 
     /// Factor, dual, active set, recovery, refinement and primal verification; returns the
     /// method's own status (`Solved`, `MaxIterations` or `Infeasible`), the active-set
-    /// iterations and the refinement steps.
+    /// iterations and what the refinements did (all their steps, the last one's
+    /// stationarity: it refined the answer returned). Leaves the row residuals of the answer
+    /// in `row_residuals`.
     fn solve_contact_space(
         &mut self,
         problem: &Problem<'_>,
         reuse: Reuse,
-    ) -> Result<(SolveStatus, usize, usize), SolverError> {
+    ) -> Result<(SolveStatus, usize, Refined), SolverError> {
         if reuse == Reuse::Nothing {
             self.contact_space_ready = false;
             if let Mass::Dense(mass) = problem.mass() {
@@ -260,7 +270,8 @@ impl SolverWorkspace {
         };
         let mut outcome =
             self.active.solve(&self.dual, problem.rows().kinds(), &mut self.multipliers, limits);
-        let (mut iterations, mut steps) = (outcome.iterations, 0);
+        let mut iterations = outcome.iterations;
+        let mut refined = Refined { steps: 0, stationarity: None };
         for pass in 0..=VERIFICATION_PASSES {
             self.dual.recover(factor, &self.multipliers, &mut self.velocity);
             let system = FactoredSystem {
@@ -269,17 +280,20 @@ impl SolverWorkspace {
                 dual: &self.dual,
                 free: self.active.free(),
             };
-            steps += self.refinement.run(
+            let run = self.refinement.run(
                 system,
                 &mut self.multipliers,
                 &mut self.velocity,
                 self.options.max_refinement_steps,
             );
+            refined = Refined { steps: refined.steps + run.steps, ..run };
+            let supports = Some(self.dual.supports());
+            row_residuals(problem, &self.velocity, supports, &mut self.row_residuals);
             if outcome.termination != Termination::Optimal || pass == VERIFICATION_PASSES {
                 break;
             }
             let tolerance = self.options.release_tolerance;
-            let Some(row) = self.active.violated_bound(problem, &self.velocity, tolerance) else {
+            let Some(row) = self.active.violated_bound(&self.row_residuals, tolerance) else {
                 break;
             };
             let left = ActiveSetLimits {
@@ -290,14 +304,14 @@ impl SolverWorkspace {
             iterations += outcome.iterations;
         }
         let contradiction =
-            self.active.redundant_violated(problem, &self.velocity, self.options.acceptance);
+            self.active.redundant_violated(&self.row_residuals, self.options.acceptance);
         let status = match outcome.termination {
             Termination::Optimal if contradiction => SolveStatus::Infeasible,
             Termination::Optimal => SolveStatus::Solved,
             Termination::MaxIterations => SolveStatus::MaxIterations,
             Termination::Infeasible => SolveStatus::Infeasible,
         };
-        Ok((status, iterations, steps))
+        Ok((status, iterations, refined))
     }
 
     /// Final status: non-finite numbers are a numerical error; a "solved" answer whose
@@ -322,6 +336,48 @@ impl SolverWorkspace {
         self.impulses.fill(0.0);
         for (i, group) in rows.groups().iter().enumerate() {
             axpy(self.multipliers[i], rows.row(i), self.impulses.col_as_slice_mut(group.index()));
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::*;
+    use crate::mass_factor::tests::{random_spd, stream};
+    use crate::rows::{RowKind, Rows};
+
+    /// The report's residuals (whose stationarity comes from the refinement's last
+    /// measurement) equal a fresh evaluation of the answer, with and without refinement.
+    fn report_matches_fresh_evaluation(n: usize, m: usize, steps: usize, seed: u64) {
+        let mut next = stream(seed);
+        let mass = random_spd(n, &mut next);
+        let force: Vec<f64> = (0..n).map(|_| 10.0 * next()).collect();
+        let mut rows = Rows::new(n);
+        for _ in 0..m {
+            let row = rows.push_zeroed(RowKind::Inequality, RowGroup::Contact, next());
+            row.iter_mut().for_each(|c| *c = next());
+        }
+        let problem = Problem::new(mass.as_ref(), &force, &rows).expect("valid problem");
+        let options = SolverOptions { max_refinement_steps: steps, ..SolverOptions::default() };
+        let mut workspace = SolverWorkspace::new(options);
+        let report = *workspace.solve(&problem).expect("SPD");
+        let (mut residual, mut work) = (vec![0.0; n], vec![0.0; n]);
+        let (qdot, lambda) = (workspace.velocity(), workspace.multipliers());
+        let fresh = Stationarity::measure(&problem, qdot, lambda, &mut residual, &mut work);
+        let mut residuals = Vec::new();
+        row_residuals(&problem, qdot, None, &mut residuals);
+        let evaluation = evaluate(&problem, lambda, fresh, &residuals, options.acceptance);
+        assert_eq!(report.residuals, evaluation.residuals);
+    }
+
+    proptest! {
+        #[test]
+        fn reported_residuals_are_those_of_the_answer(
+            n in 1usize..=30, m in 0usize..=12, steps in 0usize..=3, seed in any::<u64>()
+        ) {
+            report_matches_fresh_evaluation(n, m, steps, seed);
         }
     }
 }

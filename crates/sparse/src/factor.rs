@@ -36,11 +36,18 @@ use std::ops::Range;
 use hagfish_solver::SolverError;
 use hagfish_tree::{Data, Model, RigidInertia, Spatial};
 
-use crate::block::Block6;
+use crate::block::{Block6, to_array};
 use crate::error::SparseError;
 
 /// Largest number of DOFs of one joint (a free joint).
 const MAX_JOINT_DOFS: usize = 6;
+
+/// Most columns that one leaf-to-root pass solves together
+/// ([`TreeFactor::solve_lower_lanes`]): the factor is read once for all of them.
+pub(crate) const LANES: usize = 4;
+
+/// A spatial vector per lane: component c (in the order of [`to_array`]) of lane k at `[c][k]`.
+type SpatialLanes = [[f64; LANES]; 6];
 
 /// The factor of one step's maximal-coordinate system. Create once per model with
 /// [`TreeFactor::new`] (the symbolic part), then per step [`TreeFactor::assemble`] and
@@ -51,6 +58,8 @@ pub struct TreeFactor {
     parents: Vec<Option<usize>>,
     /// The DOFs of each body's joint.
     dofs: Vec<Range<usize>>,
+    /// The body whose joint holds each DOF.
+    dof_bodies: Vec<usize>,
     /// World joint axes `s_a` (one per DOF), copied by `assemble`.
     axes: Vec<Spatial>,
     /// `Ĩ_i = I_i + h C_i` per body.
@@ -68,6 +77,10 @@ pub struct TreeFactor {
     factored: bool,
     /// Per-body spatial scratch of the passes.
     scratch: RefCell<Vec<Spatial>>,
+    /// Per-body scratch of the batched leaf-to-root pass (the bias `p` of each lane).
+    lane_bias: RefCell<Vec<SpatialLanes>>,
+    /// Interleaved columns of the batched pass, n × [`LANES`] (see `operator.rs`).
+    lane_columns: RefCell<Vec<f64>>,
 }
 
 impl TreeFactor {
@@ -86,6 +99,7 @@ impl TreeFactor {
         Ok(Self {
             parents: model.joints().iter().map(|j| j.parent).collect(),
             dofs,
+            dof_bodies: model.dof_joint().to_vec(),
             axes: vec![Spatial::ZERO; n],
             inertias: vec![RigidInertia::ZERO; nb],
             joint_diagonal: vec![0.0; n],
@@ -94,6 +108,8 @@ impl TreeFactor {
             pivots: vec![[0.0; MAX_JOINT_DOFS]; n],
             factored: false,
             scratch: RefCell::new(vec![Spatial::ZERO; nb]),
+            lane_bias: RefCell::new(vec![[[0.0; LANES]; 6]; nb]),
+            lane_columns: RefCell::new(vec![0.0; n * LANES]),
         })
     }
 
@@ -182,23 +198,71 @@ impl TreeFactor {
     /// `f ← L⁻¹ f` (one column of length n; module docs). Requires a successful
     /// [`factor`](Self::factor).
     pub fn solve_lower_column(&self, f: &mut [f64]) {
-        let mut bias = self.scratch.borrow_mut();
-        bias.fill(Spatial::ZERO);
-        for body in (0..self.parents.len()).rev() {
+        let (lanes, _) = f.as_chunks_mut::<1>();
+        self.solve_lower_lanes(lanes, lanes.len());
+    }
+
+    /// Where `L⁻¹` keeps trailing zeros: for an f that vanishes from DOF `end` on, `L⁻¹f`
+    /// vanishes from the end of the DOFs of the body holding DOF `end − 1` on (from 0 when
+    /// `end` is 0). The leaf-to-root pass forms a body's entries from its own and its
+    /// subtree's entries, and every later body (its subtree with it: children come after
+    /// parents) holds DOFs from `end` on only.
+    pub(crate) fn lower_support(&self, end: usize) -> usize {
+        end.checked_sub(1).map_or(0, |last| self.dofs[self.dof_bodies[last]].end)
+    }
+
+    /// The leaf-to-root pass `x ← L⁻¹x` (module docs) on K ≤ [`LANES`] columns at once,
+    /// interleaved (entry a of column k at `x[a][k]`), for columns that vanish from DOF
+    /// `support` on, a value of [`lower_support`](Self::lower_support) (n for any columns):
+    /// only the bodies holding the DOFs `..support` are visited (the later entries are zero
+    /// and stay zero), so `x` needs only those entries. Each lane goes through the operations
+    /// of a single column in the same order, so its result does not depend on the others.
+    pub(crate) fn solve_lower_lanes<const K: usize>(&self, x: &mut [[f64; K]], support: usize) {
+        const { assert!(K <= LANES) };
+        let bodies = support.checked_sub(1).map_or(0, |last| self.dof_bodies[last] + 1);
+        let mut bias = self.lane_bias.borrow_mut();
+        bias[..bodies].fill([[0.0; LANES]; 6]);
+        for body in (0..bodies).rev() {
             let range = self.dofs[body].clone();
-            let start = range.start;
             let p = bias[body];
             let mut contribution = p;
-            for a in range.clone() {
-                let done: f64 = self.pivots[a].iter().zip(&f[start..a]).map(|(r, y)| r * y).sum();
-                let value = f[a] - self.axes[a].dot(&p) - done;
-                f[a] = value / self.pivots[a][a - start];
-                contribution = contribution.add_scaled(&self.gains[a], f[a]);
+            let joint = &mut x[range.clone()];
+            for (i, a) in range.enumerate() {
+                let (axis, gain, row) =
+                    (to_array(&self.axes[a]), to_array(&self.gains[a]), &self.pivots[a]);
+                let (solved, rest) = joint.split_at_mut(i);
+                let entry = &mut rest[0];
+                // y_a = (f_a − s_aᵀp − Σ_{c<a} R_ac y_c) / R_aa, the sum from −0 as `Sum` does.
+                let mut done = [-0.0; K];
+                for (r, y) in row.iter().zip(solved.iter()) {
+                    for k in 0..K {
+                        done[k] += r * y[k];
+                    }
+                }
+                for k in 0..K {
+                    let twist = (axis[0] * p[0][k] + axis[1] * p[1][k] + axis[2] * p[2][k])
+                        + (axis[3] * p[3][k] + axis[4] * p[4][k] + axis[5] * p[5][k]);
+                    entry[k] = (entry[k] - twist - done[k]) / row[i];
+                }
+                for (c, g) in contribution.iter_mut().zip(&gain) {
+                    for k in 0..K {
+                        c[k] += g * entry[k];
+                    }
+                }
             }
             if let Some(parent) = self.parents[body] {
-                bias[parent] += contribution;
+                for (b, c) in bias[parent].iter_mut().zip(&contribution) {
+                    for k in 0..K {
+                        b[k] += c[k];
+                    }
+                }
             }
         }
+    }
+
+    /// The interleaved columns of the batched pass (n × [`LANES`] entries).
+    pub(crate) fn lane_columns(&self) -> std::cell::RefMut<'_, Vec<f64>> {
+        self.lane_columns.borrow_mut()
     }
 
     /// `y ← L⁻ᵀ y` (one column of length n; module docs). Requires a successful

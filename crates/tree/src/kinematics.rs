@@ -15,29 +15,48 @@ use crate::spatial::{RigidInertia, Spatial, Transform};
 /// `bias_accelerations` and `inertias` of `data` for the configuration `q` and rates `qdot`.
 /// The lengths of `q` and `qdot` must equal `model.dof_count()` (see [`crate::State::validate`]).
 pub fn forward_kinematics(model: &Model, q: &[f64], qdot: &[f64], data: &mut Data) {
+    position_kinematics(model, q, data);
+    velocity_kinematics(model, qdot, data);
+}
+
+/// The configuration half of [`forward_kinematics`]: `joint_frames`, `body_frames`, `axes`
+/// and `inertias` for `q`.
+fn position_kinematics(model: &Model, q: &[f64], data: &mut Data) {
     for (i, joint) in model.joints().iter().enumerate() {
-        let (parent_frame, mut twist, mut accel) = match joint.parent {
-            Some(p) => (data.joint_frames[p], data.velocities[p], data.bias_accelerations[p]),
-            None => (Transform::IDENTITY, Spatial::ZERO, Spatial::ZERO),
-        };
+        let parent_frame = joint.parent.map_or(Transform::IDENTITY, |p| data.joint_frames[p]);
         let mut frame = parent_frame.mul(&joint.offset);
         for (k, a) in joint.dofs().enumerate() {
             let local_axis = joint.kind.axis(k);
-            let axis = Spatial::revolute_axis(frame.rotation * local_axis, frame.translation);
-            let rate = twist.cross_motion(&axis);
-            data.axes[a] = axis;
-            data.axis_rates[a] = rate;
-            twist = twist.add_scaled(&axis, qdot[a]);
-            accel = accel.add_scaled(&rate, qdot[a]);
+            data.axes[a] = Spatial::revolute_axis(frame.rotation * local_axis, frame.translation);
             frame = frame.mul(&Transform::from_axis_angle(local_axis, q[a]));
         }
         let body = &model.bodies()[i];
         let body_frame = frame.mul(&body.offset);
         data.joint_frames[i] = frame;
         data.body_frames[i] = body_frame;
-        data.velocities[i] = twist;
-        data.bias_accelerations[i] = accel;
         data.inertias[i] = RigidInertia::from_body(body.mass, body.principal_inertia, &body_frame);
     }
     data.axis_components.fill_from(&data.axes);
+}
+
+/// The rate half of [`forward_kinematics`]: `axis_rates`, `velocities` and
+/// `bias_accelerations` for the rates `qdot`, from the `axes` already in `data`. Re-evaluates
+/// the velocity products at new rates when the configuration has not changed since the last
+/// [`forward_kinematics`] (the same numbers as calling it again, without the frames).
+pub fn velocity_kinematics(model: &Model, qdot: &[f64], data: &mut Data) {
+    for (i, joint) in model.joints().iter().enumerate() {
+        let (mut twist, mut accel) = match joint.parent {
+            Some(p) => (data.velocities[p], data.bias_accelerations[p]),
+            None => (Spatial::ZERO, Spatial::ZERO),
+        };
+        for a in joint.dofs() {
+            let axis = data.axes[a];
+            let rate = twist.cross_motion(&axis);
+            data.axis_rates[a] = rate;
+            twist = twist.add_scaled(&axis, qdot[a]);
+            accel = accel.add_scaled(&rate, qdot[a]);
+        }
+        data.velocities[i] = twist;
+        data.bias_accelerations[i] = accel;
+    }
 }

@@ -12,8 +12,6 @@
 
 use super::{ActiveSet, ActiveSetLimits, ActiveSetOutcome, Bound, Termination};
 use crate::contact_space::ContactSpace;
-use crate::problem::Problem;
-use crate::residuals::row_residual;
 
 impl ActiveSet {
     /// Continues after the primal verification found a bound row violated: releases it and
@@ -32,16 +30,11 @@ impl ActiveSet {
     }
 
     /// The bound row most violated in the primal at the refined q̇ (relative residual beyond
-    /// `tolerance`), if any (see the module docs).
-    pub(crate) fn violated_bound(
-        &self,
-        problem: &Problem<'_>,
-        qdot: &[f64],
-        tolerance: f64,
-    ) -> Option<usize> {
+    /// `tolerance`), if any (see the module docs); `residuals` are the rows' (vᵢ, sᵢ) at q̇
+    /// (`residuals::row_residuals`).
+    pub(crate) fn violated_bound(&self, residuals: &[(f64, f64)], tolerance: f64) -> Option<usize> {
         let mut worst: Option<(usize, f64)> = None;
-        for (row, bound) in self.bound.iter().enumerate() {
-            let (residual, scale) = row_residual(problem, row, qdot);
+        for (row, (bound, &(residual, scale))) in self.bound.iter().zip(residuals).enumerate() {
             let violation = match bound {
                 Bound::Lower => -residual / scale,
                 Bound::Upper => residual / scale,
@@ -55,18 +48,12 @@ impl ActiveSet {
     }
 
     /// True when an equality set aside as redundant is violated at the refined q̇ (relative
-    /// residual beyond `tolerance`): the equalities contradict each other.
-    pub(crate) fn redundant_violated(
-        &self,
-        problem: &Problem<'_>,
-        qdot: &[f64],
-        tolerance: f64,
-    ) -> bool {
-        self.bound.iter().enumerate().filter(|(_, bound)| **bound == Bound::Redundant).any(
-            |(i, _)| {
-                let (v, scale) = row_residual(problem, i, qdot);
-                v.abs() > tolerance * scale
-            },
-        )
+    /// residual beyond `tolerance`): the equalities contradict each other. `residuals` as
+    /// for [`violated_bound`](Self::violated_bound).
+    pub(crate) fn redundant_violated(&self, residuals: &[(f64, f64)], tolerance: f64) -> bool {
+        self.bound
+            .iter()
+            .zip(residuals)
+            .any(|(bound, &(v, scale))| *bound == Bound::Redundant && v.abs() > tolerance * scale)
     }
 }
