@@ -20,8 +20,9 @@ pub fn forward_kinematics(model: &Model, q: &[f64], qdot: &[f64], data: &mut Dat
 }
 
 /// The configuration half of [`forward_kinematics`]: `joint_frames`, `body_frames`, `axes`
-/// and `inertias` for `q`.
-fn position_kinematics(model: &Model, q: &[f64], data: &mut Data) {
+/// (and `axis_components`) and `inertias` for `q`; enough for positions (such as
+/// [`Data::body_centre`]) where no velocity is needed.
+pub fn position_kinematics(model: &Model, q: &[f64], data: &mut Data) {
     for (i, joint) in model.joints().iter().enumerate() {
         let parent_frame = joint.parent.map_or(Transform::IDENTITY, |p| data.joint_frames[p]);
         let mut frame = parent_frame.mul(&joint.offset);

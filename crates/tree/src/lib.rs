@@ -37,7 +37,7 @@ pub use integrator::{
     step_unconstrained,
 };
 pub use joint::{DofParams, JointKind};
-pub use kinematics::{forward_kinematics, velocity_kinematics};
+pub use kinematics::{forward_kinematics, position_kinematics, velocity_kinematics};
 pub use mass_matrix::{effective_mass, mass_matrix};
 pub use model::{Body, BodySpec, Joint, Model, ModelBuilder, PathDofRuns, PathToRoot};
 pub use spatial::{RigidInertia, Spatial, SpatialComponents, Transform};
