@@ -12,7 +12,8 @@
 3. It checks that the MuJoCo body centres of the exported q equal hagfish's (joint order and
    frames match), then times passive steps (no controller, no drag) from the knotted state at
    h = 1e-3 and 1e-2: median wall time per step over repeated runs, contacts, stability.
-4. It runs `cargo xtask knotted` for hagfish's numbers on the same state in the same run.
+4. It runs `cargo xtask knotted` for hagfish's numbers on the same state in the same run
+   (`--backend dense`, the default; `sparse` or `both` for the maximal-coordinate backend).
 
 Usage (from the workspace root):  python3 bench/peers/compare.py [--steps N] [--repeat R]
 """
@@ -195,6 +196,12 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--steps", type=int, default=100, help="steps per timed run")
     parser.add_argument("--repeat", type=int, default=20, help="timed runs per time step")
+    parser.add_argument(
+        "--backend",
+        choices=["dense", "sparse", "both"],
+        default="dense",
+        help="hagfish dynamics backend (dense: the default of every scenario)",
+    )
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as directory:
         path = os.path.join(directory, "knotted.json")
@@ -205,8 +212,13 @@ def main():
     results = []
     for h in (1e-3, 1e-2):
         results.append(time_mujoco(exported, h, args.steps, args.repeat))
-        hagfish = xtask("knotted", "--steps", str(args.steps), "--repeat", str(args.repeat), "--time-step", str(h))
-        results.append(json.loads(hagfish))
+        backends = ["dense", "sparse"] if args.backend == "both" else [args.backend]
+        for backend in backends:
+            hagfish = xtask(
+                "knotted", "--steps", str(args.steps), "--repeat", str(args.repeat),
+                "--time-step", str(h), "--backend", backend,
+            )
+            results.append(json.loads(hagfish))
     for r in results:
         print(json.dumps(r))
     print()

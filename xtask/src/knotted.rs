@@ -6,7 +6,7 @@
 //!   then Z).
 //! - timing: from the knotted state, `--repeat` runs of `--steps` steps at `--time-step` with
 //!   a passive body (no drag, no controller: the physics a peer simulator can reproduce);
-//!   prints the median and minimum wall time per step, the median per stage, the contacts,
+//!   the `--backend` (dense reduced by default); prints the median and minimum wall time per step, the median per stage, the contacts,
 //!   whether every run stayed finite and how far any body centre moved, as one JSON object.
 
 use std::fmt::Write as _;
@@ -14,7 +14,9 @@ use std::path::Path;
 use std::time::Instant;
 
 use hagfish_control::Passive;
-use hagfish_sim::{KNOTTED_SCENARIO, KNOTTED_TIME_S, StepOptions, World, knotted_world};
+use hagfish_sim::{
+    DynamicsBackend, KNOTTED_SCENARIO, KNOTTED_TIME_S, StepOptions, World, knotted_world,
+};
 use hagfish_tree::{JointKind, Model, State};
 
 /// What to do with the knotted state.
@@ -27,6 +29,8 @@ pub struct Request<'a> {
     pub repeat: usize,
     /// Time step of the timed runs (s).
     pub time_step: f64,
+    /// Dynamics backend of the timed runs.
+    pub backend: DynamicsBackend,
 }
 
 /// Runs the request in workspace `root`.
@@ -54,7 +58,11 @@ fn time(world: &World, request: &Request<'_>) -> Result<(), String> {
         return Ok(());
     }
     let knotted = world.state().clone();
-    let options = StepOptions { time_step: request.time_step, ..world.options().clone() };
+    let options = StepOptions {
+        time_step: request.time_step,
+        backend: request.backend,
+        ..world.options().clone()
+    };
     let mut timed =
         World::new(world.model().clone(), options, knotted.clone()).map_err(|e| e.to_string())?;
     let (mut per_step, mut contacts) = (Vec::new(), Vec::new());
@@ -93,8 +101,12 @@ fn time(world: &World, request: &Request<'_>) -> Result<(), String> {
         let separator = if i == 0 { "" } else { ", " };
         let _ = write!(stage_json, "{separator}\"{name}\": {:.2}", 1e6 * median(all));
     }
+    let simulator = match request.backend {
+        DynamicsBackend::DenseReduced => "hagfish",
+        DynamicsBackend::SparseMaximal => "hagfish sparse",
+    };
     println!(
-        "{{\"simulator\": \"hagfish\", \"state\": \"{KNOTTED_SCENARIO} at t = {KNOTTED_TIME_S} s\", \
+        "{{\"simulator\": \"{simulator}\", \"state\": \"{KNOTTED_SCENARIO} at t = {KNOTTED_TIME_S} s\", \
 \"time_step\": {}, \"steps\": {}, \"repeat\": {}, \"median_us_per_step\": {:.2}, \
 \"min_us_per_step\": {:.2}, \"steps_per_second\": {:.0}, \"median_contacts\": {}, \
 \"max_contacts\": {}, \"failed_runs\": {failures}, \"max_abs_qdot\": {:.4e}, \

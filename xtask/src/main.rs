@@ -3,7 +3,7 @@
 //! - `regress [--check | --bless] [SCENARIO…]`: runs every scenario of `data/scenarios`,
 //!   compares its metrics with the golden in `data/regress/<scenario>.ron` (`--check`, the
 //!   default) or rewrites the goldens (`--bless`). See `regress.rs`.
-//! - `knotted [--export PATH] [--steps N] [--repeat R] [--time-step H]`: exports and times
+//! - `knotted [--export PATH] [--steps N] [--repeat R] [--time-step H] [--backend B]`: exports and times
 //!   the knotted benchmark state (`knotted.rs`).
 
 mod golden;
@@ -17,6 +17,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
+use hagfish_sim::DynamicsBackend;
 
 /// Command line of `cargo xtask`.
 #[derive(Parser)]
@@ -54,6 +55,10 @@ enum Task {
         /// Time step of the timed runs (s).
         #[arg(long, default_value_t = 0.01)]
         time_step: f64,
+        /// Dynamics backend of the timed runs: `dense` (reduced, the default of every
+        /// scenario) or `sparse` (maximal coordinates).
+        #[arg(long, value_parser = ["dense", "sparse"], default_value = "dense")]
+        backend: String,
     },
 }
 
@@ -70,8 +75,13 @@ fn main() -> ExitCode {
             let mode = if bless { regress::Mode::Bless } else { regress::Mode::Check };
             regress::run(&workspace_root(), mode, &scenarios)
         }
-        Task::Knotted { export, steps, repeat, time_step } => {
-            let request = knotted::Request { export: export.as_deref(), steps, repeat, time_step };
+        Task::Knotted { export, steps, repeat, time_step, backend } => {
+            let backend = match backend.as_str() {
+                "sparse" => DynamicsBackend::SparseMaximal,
+                _ => DynamicsBackend::DenseReduced,
+            };
+            let request =
+                knotted::Request { export: export.as_deref(), steps, repeat, time_step, backend };
             knotted::run(&workspace_root(), &request).map(|()| true)
         }
     };
