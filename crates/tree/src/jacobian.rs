@@ -80,10 +80,11 @@ pub fn add_point_row(
 /// Adds `Σ_k scale_k · nᵀ P_{b_k}(x_k)` to `row` for the points `(b_k, x_k, scale_k)` (at most
 /// 64), in one walk from the highest-numbered body to its root instead of one walk per
 /// point: a DOF a on that path gets `n·v_a C + ((X × n)·ω_a)` with `C = Σ scale_k` and
-/// `X = Σ scale_k x_k` over the points at or below it. Above the lowest-numbered point's body
-/// C and X no longer change, and that stretch is added run by run over
-/// [`crate::Data::axis_components`] as `s_a · (X × n; C n)`. Points whose bodies are not on
-/// the path are added one by one ([`add_point_row`]). Equal to the sum of the single-point
+/// `X = Σ scale_k x_k` over the points at or below it. Once the walk has passed the
+/// lowest-numbered point's body (if that is on the path), C and X no longer change, and the
+/// rest of the path is added run by run over [`crate::Data::axis_components`] as
+/// `s_a · (X × n; C n)`. Points whose bodies are not on the path are added one by one
+/// ([`add_point_row`]). Equal to the sum of the single-point
 /// rows up to rounding.
 pub fn add_point_rows(
     model: &Model,

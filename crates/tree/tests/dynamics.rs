@@ -19,18 +19,6 @@ fn chain_and_motion() -> impl Strategy<Value = (ChainSpec, Vec<f64>, Vec<f64>, V
     })
 }
 
-/// A random tree: the bodies of a chain spec, each hanging from a random earlier body.
-fn tree_and_position() -> impl Strategy<Value = (ChainSpec, Vec<Option<usize>>, Vec<f64>)> {
-    chain_spec(2, 30).prop_flat_map(|spec| {
-        let count = spec.bodies.len();
-        let parents = (0..count)
-            .map(|i| if i == 0 { Just(None).boxed() } else { (0..i).prop_map(Some).boxed() })
-            .collect::<Vec<_>>();
-        let n = build_chain(&spec, DVec3::ZERO, 0.0, 0.0).dof_count();
-        (Just(spec), parents, vector(n, 1.5))
-    })
-}
-
 /// `M` against `Jᵀ M_m J` summed body by body.
 fn check_mass_matrix(model: &hagfish_tree::Model, data: &Data) -> Result<(), TestCaseError> {
     let n = model.dof_count();

@@ -24,6 +24,27 @@ fn chain_and_state() -> impl Strategy<Value = (ChainSpec, Vec<f64>, Vec<f64>, us
     })
 }
 
+/// `add_point_rows` against the sum of `add_point_row` over the points.
+fn check_blended_rows(
+    model: &hagfish_tree::Model,
+    data: &hagfish_tree::Data,
+    points: &[(usize, DVec3, f64)],
+    normal: DVec3,
+) -> Result<(), TestCaseError> {
+    let n = model.dof_count();
+    let mut blended = vec![0.0; n];
+    add_point_rows(model, data, points, normal, &mut blended);
+    let mut single = vec![0.0; n];
+    for &(b, x, scale) in points {
+        add_point_row(model, data, b, x, normal, scale, &mut single);
+    }
+    let scale = single.iter().fold(1.0_f64, |m, v| m.max(v.abs()));
+    for (a, (x, y)) in blended.iter().zip(&single).enumerate() {
+        prop_assert!((x - y).abs() <= 1e-12 * scale, "dof {a}: {x} vs {y}");
+    }
+    Ok(())
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(256))]
 
@@ -114,6 +135,28 @@ fn universal_joint_motion_subspace_matches_closed_form() {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(256))]
 
+    /// On branched trees some points hang off the deepest point's path, and the walk may
+    /// never meet the lowest-numbered point's body.
+    #[test]
+    fn blended_point_rows_equal_the_sum_of_single_point_rows_on_trees(
+        (spec, parents, q) in tree_and_position(),
+        first in 0usize..30,
+        scales in proptest::collection::vec(-2.0f64..2.0, 8)
+    ) {
+        let model = build_tree(&spec, &parents, DVec3::ZERO, 0.0, 0.0);
+        let (n, bodies) = (model.dof_count(), model.body_count());
+        let data = kinematics_at(&model, &q, &vec![0.0; n]);
+        let points: Vec<(usize, DVec3, f64)> = scales
+            .iter()
+            .enumerate()
+            .map(|(k, &scale)| {
+                let b = (first + 5 * k) % bodies;
+                (b, data.body_centre(b) + DVec3::new(0.1 * k as f64, 0.2, -0.1), scale)
+            })
+            .collect();
+        check_blended_rows(&model, &data, &points, DVec3::new(0.3, -0.8, 0.5).normalize())?;
+    }
+
     #[test]
     fn blended_point_rows_equal_the_sum_of_single_point_rows(
         (spec, q, _qdot, body, p) in chain_and_state(),
@@ -131,15 +174,6 @@ proptest! {
                 (b, data.body_centre(b) + DVec3::new(0.1 * k as f64, 0.2, -0.1), scale)
             })
             .collect();
-        let mut blended = vec![0.0; n];
-        add_point_rows(&model, &data, &points, normal, &mut blended);
-        let mut single = vec![0.0; n];
-        for &(b, x, scale) in &points {
-            add_point_row(&model, &data, b, x, normal, scale, &mut single);
-        }
-        let scale = single.iter().fold(1.0_f64, |m, v| m.max(v.abs()));
-        for (a, (x, y)) in blended.iter().zip(&single).enumerate() {
-            prop_assert!((x - y).abs() <= 1e-12 * scale, "dof {a}: {x} vs {y}");
-        }
+        check_blended_rows(&model, &data, &points, normal)?;
     }
 }

@@ -89,3 +89,15 @@ pub fn kinematics_at(model: &Model, q: &[f64], qdot: &[f64]) -> Data {
 pub fn vee(m: DMat3) -> DVec3 {
     DVec3::new(m.y_axis.z - m.z_axis.y, m.z_axis.x - m.x_axis.z, m.x_axis.y - m.y_axis.x) * 0.5
 }
+
+/// A random tree: the bodies of a chain spec, each hanging from a random earlier body.
+pub fn tree_and_position() -> impl Strategy<Value = (ChainSpec, Vec<Option<usize>>, Vec<f64>)> {
+    chain_spec(2, 30).prop_flat_map(|spec| {
+        let count = spec.bodies.len();
+        let parents = (0..count)
+            .map(|i| if i == 0 { Just(None).boxed() } else { (0..i).prop_map(Some).boxed() })
+            .collect::<Vec<_>>();
+        let n = build_chain(&spec, DVec3::ZERO, 0.0, 0.0).dof_count();
+        (Just(spec), parents, vector(n, 1.5))
+    })
+}
