@@ -24,6 +24,24 @@ fn chain_and_state() -> impl Strategy<Value = (ChainSpec, Vec<f64>, Vec<f64>, us
     })
 }
 
+/// One point per scale, on bodies `first`, `first + stride`, … (modulo `bodies`), each offset
+/// from its body's centre.
+fn spread_points(
+    data: &hagfish_tree::Data,
+    bodies: usize,
+    (first, stride): (usize, usize),
+    scales: &[f64],
+) -> Vec<(usize, DVec3, f64)> {
+    scales
+        .iter()
+        .enumerate()
+        .map(|(k, &scale)| {
+            let b = (first + stride * k) % bodies;
+            (b, data.body_centre(b) + DVec3::new(0.1 * k as f64, 0.2, -0.1), scale)
+        })
+        .collect()
+}
+
 /// `add_point_rows` against the sum of `add_point_row` over the points.
 fn check_blended_rows(
     model: &hagfish_tree::Model,
@@ -146,14 +164,7 @@ proptest! {
         let model = build_tree(&spec, &parents, DVec3::ZERO, 0.0, 0.0);
         let (n, bodies) = (model.dof_count(), model.body_count());
         let data = kinematics_at(&model, &q, &vec![0.0; n]);
-        let points: Vec<(usize, DVec3, f64)> = scales
-            .iter()
-            .enumerate()
-            .map(|(k, &scale)| {
-                let b = (first + 5 * k) % bodies;
-                (b, data.body_centre(b) + DVec3::new(0.1 * k as f64, 0.2, -0.1), scale)
-            })
-            .collect();
+        let points = spread_points(&data, bodies, (first, 5), &scales);
         check_blended_rows(&model, &data, &points, DVec3::new(0.3, -0.8, 0.5).normalize())?;
     }
 
@@ -166,14 +177,7 @@ proptest! {
         let (n, bodies) = (model.dof_count(), model.body_count());
         let data = kinematics_at(&model, &q, &vec![0.0; n]);
         let normal = DVec3::from(p).normalize_or(DVec3::X);
-        let points: Vec<(usize, DVec3, f64)> = scales
-            .iter()
-            .enumerate()
-            .map(|(k, &scale)| {
-                let b = (body + 3 * k) % bodies;
-                (b, data.body_centre(b) + DVec3::new(0.1 * k as f64, 0.2, -0.1), scale)
-            })
-            .collect();
+        let points = spread_points(&data, bodies, (body, 3), &scales);
         check_blended_rows(&model, &data, &points, normal)?;
     }
 }
