@@ -129,7 +129,7 @@ pub fn add_point_rows(
         let coefficients = Spatial::new(moment.cross(n), total * n);
         for run in model.path_dof_runs(parent) {
             let products = data.axis_components.dots(run.clone(), &coefficients);
-            for (entry, product) in row[run].iter_mut().zip(products) {
+            for (entry, product) in row[run.clone()].iter_mut().zip(products) {
                 *entry += product;
             }
         }

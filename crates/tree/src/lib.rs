@@ -39,6 +39,6 @@ pub use integrator::{
 pub use joint::{DofParams, JointKind};
 pub use kinematics::{forward_kinematics, position_kinematics, velocity_kinematics};
 pub use mass_matrix::{effective_mass, mass_matrix};
-pub use model::{Body, BodySpec, Joint, Model, ModelBuilder, PathDofRuns, PathToRoot};
+pub use model::{Body, BodySpec, Joint, Model, ModelBuilder, PathToRoot};
 pub use spatial::{RigidInertia, Spatial, SpatialComponents, Transform};
 pub use state::State;

@@ -6,6 +6,8 @@
 //! bodies visits parents before children and a backward loop visits children first. The
 //! DOFs of joint `i` are contiguous, in joint order.
 
+use std::ops::Range;
+
 use glam::DVec3;
 
 use crate::error::TreeError;
@@ -79,6 +81,10 @@ pub struct Model {
     dofs: Vec<DofParams>,
     dof_joint: Vec<usize>,
     gravity: DVec3,
+    /// [`Model::path_dof_runs`] of every body, concatenated: body `i`'s runs are
+    /// `path_runs[path_run_starts[i]..path_run_starts[i + 1]]`.
+    path_runs: Vec<Range<usize>>,
+    path_run_starts: Vec<usize>,
 }
 
 impl Model {
@@ -177,6 +183,8 @@ impl ModelBuilder {
             dofs: Vec::new(),
             dof_joint: Vec::new(),
             gravity: self.gravity,
+            path_runs: Vec::new(),
+            path_run_starts: vec![0],
         };
         if !self.gravity.is_finite() {
             return Err(TreeError::InvalidBody {
@@ -204,6 +212,11 @@ impl ModelBuilder {
                 radius: spec.radius,
                 length: spec.length,
             });
+        }
+        for body in 0..model.joints.len() {
+            let runs = merged_dof_runs(model.path_to_root(body));
+            model.path_runs.extend(runs);
+            model.path_run_starts.push(model.path_runs.len());
         }
         Ok(model)
     }
@@ -289,28 +302,25 @@ impl Model {
 
     /// The DOFs of [`Model::path_to_root`]`(body)` as maximal contiguous ranges, deepest
     /// first: a joint's DOFs join the range of its child when they end where it starts. A
-    /// chain gives the single range `0..end`; each branch point starts a new range.
-    pub fn path_dof_runs(&self, body: usize) -> PathDofRuns<'_> {
-        PathDofRuns { path: self.path_to_root(body).peekable() }
+    /// chain gives the single range `0..end`; each branch point starts a new range. Computed
+    /// once when the model is built.
+    pub fn path_dof_runs(&self, body: usize) -> &[Range<usize>] {
+        &self.path_runs[self.path_run_starts[body]..self.path_run_starts[body + 1]]
     }
 }
 
-/// Iterator over the DOF ranges of a path to the root; see [`Model::path_dof_runs`].
-#[derive(Clone, Debug)]
-pub struct PathDofRuns<'a> {
-    path: std::iter::Peekable<PathToRoot<'a>>,
-}
-
-impl Iterator for PathDofRuns<'_> {
-    type Item = std::ops::Range<usize>;
-
-    fn next(&mut self) -> Option<Self::Item> {
-        let mut run = self.path.next()?.dofs();
-        while let Some(joint) = self.path.next_if(|joint| joint.dofs().end == run.start) {
-            run.start = joint.dofs().start;
+/// The DOF ranges of the joints of `path` (deepest first), each merged into the previous
+/// range when it ends where that one starts.
+fn merged_dof_runs<'a>(path: impl Iterator<Item = &'a Joint>) -> Vec<Range<usize>> {
+    let mut runs: Vec<Range<usize>> = Vec::new();
+    for joint in path {
+        let dofs = joint.dofs();
+        match runs.last_mut() {
+            Some(run) if run.start == dofs.end => run.start = dofs.start,
+            _ => runs.push(dofs),
         }
-        Some(run)
     }
+    runs
 }
 
 /// Iterator over the joints on the path from a body to its root; see [`Model::path_to_root`].

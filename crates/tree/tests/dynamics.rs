@@ -62,7 +62,7 @@ proptest! {
         for body in 0..model.body_count() {
             let mut on_path: Vec<usize> = model.path_to_root(body).flat_map(|j| j.dofs()).collect();
             on_path.sort_unstable();
-            let mut in_runs: Vec<usize> = model.path_dof_runs(body).flatten().collect();
+            let mut in_runs: Vec<usize> = model.path_dof_runs(body).iter().cloned().flatten().collect();
             in_runs.sort_unstable();
             prop_assert_eq!(in_runs, on_path, "DOF runs of the path from body {}", body);
         }
