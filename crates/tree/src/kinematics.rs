@@ -11,8 +11,9 @@ use crate::data::Data;
 use crate::model::Model;
 use crate::spatial::{RigidInertia, Spatial, Transform};
 
-/// Fills `joint_frames`, `body_frames`, `axes` (and `axis_components`), `axis_rates`, `velocities`,
-/// `bias_accelerations` and `inertias` of `data` for the configuration `q` and rates `qdot`.
+/// Fills `joint_frames`, `body_frames`, `axes` (and `axis_components`), `axis_rates`,
+/// `velocities`, `bias_accelerations` and `inertias` of `data` for the configuration `q` and
+/// rates `qdot`.
 /// The lengths of `q` and `qdot` must equal `model.dof_count()` (see [`crate::State::validate`]).
 pub fn forward_kinematics(model: &Model, q: &[f64], qdot: &[f64], data: &mut Data) {
     position_kinematics(model, q, data);
