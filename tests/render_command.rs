@@ -122,8 +122,12 @@ fn a_directory_without_its_csv_files_is_exit_code_2_naming_the_file() {
     }
 }
 
-/// The Chromium binary: `chromium` on PATH (Debian's package; `.ci/run` installs it).
+/// The Chromium binary: `HAGFISH_CHROMIUM` (set by `cargo xtask test`, which finds or
+/// installs it), else `chromium` on PATH or in /usr/bin (Debian's package).
 fn chromium() -> PathBuf {
+    if let Some(given) = std::env::var_os("HAGFISH_CHROMIUM") {
+        return PathBuf::from(given);
+    }
     let path = std::env::var_os("PATH").unwrap_or_default();
     std::env::split_paths(&path)
         .chain([PathBuf::from("/usr/bin")])
@@ -131,7 +135,8 @@ fn chromium() -> PathBuf {
         .find(|p| p.is_file())
         .unwrap_or_else(|| {
             panic!(
-                "chromium not found on PATH: install it (apt-get install -y chromium; .ci/run does)"
+                "chromium not found: run the tests with `cargo xtask test`, which installs it, \
+                 or install Debian's chromium, or set HAGFISH_CHROMIUM"
             )
         })
 }

@@ -3,6 +3,8 @@
 //! - `regress [--check | --bless] [SCENARIO…]`: runs every scenario of `data/scenarios`,
 //!   compares its metrics with the golden in `data/regress/<scenario>.ron` (`--check`, the
 //!   default) or rewrites the goldens (`--bless`). See `regress.rs`.
+//! - `test`: the project's one test command — finds or installs Chromium, then runs the
+//!   regression and `cargo test --workspace --release` (`test_all.rs`).
 //! - `knotted [--export PATH] [--steps N] [--repeat R] [--time-step H] [--backend B]`: exports and times
 //!   the knotted benchmark state (`knotted.rs`).
 
@@ -11,6 +13,7 @@ mod knotted;
 mod metrics;
 mod regress;
 mod table;
+mod test_all;
 mod tolerance;
 
 use std::path::PathBuf;
@@ -41,6 +44,9 @@ enum Task {
         /// Scenario names (file stems in `data/scenarios`); all when none are given.
         scenarios: Vec<String>,
     },
+    /// Runs every test: finds or installs Chromium (for the report's browser test), then the
+    /// scenario regression and `cargo test --workspace --release`.
+    Test,
     /// Exports the knotted benchmark state as JSON and times passive steps from it.
     Knotted {
         /// Write the model and state as JSON to this file.
@@ -75,6 +81,7 @@ fn main() -> ExitCode {
             let mode = if bless { regress::Mode::Bless } else { regress::Mode::Check };
             regress::run(&workspace_root(), mode, &scenarios)
         }
+        Task::Test => test_all::run(&workspace_root()).map(|()| true),
         Task::Knotted { export, steps, repeat, time_step, backend } => {
             let backend = match backend.as_str() {
                 "sparse" => DynamicsBackend::SparseMaximal,
