@@ -18,6 +18,7 @@ use hagfish_control::{
 use hagfish_knots::KnotType;
 use hagfish_sim::{Frame, FrameSink, LoadedScenario, RunOptions, RunSummary, SimError};
 use hagfish_solver::RowGroup;
+use hagfish_tree::{Data, Model, position_kinematics};
 
 /// Relative changes of the time step: the scenario as written, then seven rounding-level
 /// perturbations.
@@ -35,19 +36,29 @@ struct Record {
     head: DVec3,
 }
 
-#[derive(Default)]
-struct Records(Vec<Record>);
+/// The recorded frames, and what places the head point of each.
+struct Records {
+    frames: Vec<Record>,
+    model: Model,
+    data: Data,
+}
+
+/// A point on the head body's surface, off its twist (X) axis, in the body's frame (cm): the
+/// body's centre lies on the root revolute axis, so only an off-axis point shows a twist of
+/// the head.
+const HEAD_POINT: DVec3 = DVec3::new(0.212, 0.89, 0.0);
 
 impl FrameSink for Records {
     fn record(&mut self, frame: &Frame<'_>) -> Result<(), SimError> {
-        self.0.push(Record {
+        position_kinematics(&self.model, &frame.state.q, &mut self.data);
+        self.frames.push(Record {
             time: frame.time,
             phase: frame.phase.to_string(),
             span: frame.span,
             trefoil: frame.knot.is_some_and(|k| k.knot == KnotType::Trefoil),
             penetration_relative: frame.maxima.self_penetration_relative,
             slack_rows: frame.step.solve.slack.count,
-            head: frame.centres[0],
+            head: self.data.body_frames[0].transform_point(HEAD_POINT),
         });
         Ok(())
     }
@@ -58,13 +69,15 @@ fn run(name: &str, perturbation: f64) -> (Vec<Record>, RunSummary) {
     let path = format!("{}/../../data/scenarios/{name}.ron", env!("CARGO_MANIFEST_DIR"));
     let mut loaded = LoadedScenario::load(&path).expect("scenario loads");
     loaded.scenario.time_step_s *= 1.0 + perturbation;
-    let mut records = Records::default();
+    let model = loaded.biometrics.to_model().expect("model builds");
+    let data = Data::new(&model);
+    let mut records = Records { frames: Vec::new(), model, data };
     let outcome = hagfish_sim::run(&loaded, RunOptions::default(), &mut records, &mut |_| {})
         .unwrap_or_else(|e| panic!("{name}: run does not start: {e}"));
     let summary = outcome.finished().unwrap_or_else(|e| {
         panic!("{name} (δh/h = {perturbation:e}): run diverged (a failed solve stops the run): {e}")
     });
-    (records.0, summary)
+    (records.frames, summary)
 }
 
 fn phase<'a>(records: &'a [Record], name: &str) -> Vec<&'a Record> {
