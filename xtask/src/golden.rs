@@ -31,12 +31,21 @@ pub struct Golden {
     pub platform: Platform,
     /// `(metric, value)` in table order (`metrics.rs`).
     pub metrics: Vec<(String, Value)>,
+    /// `(metric, spread)`: how far each metric moved over the rounding-level perturbations of
+    /// the bless (`tolerance.rs`); the tolerance is a multiple of it.
+    pub spreads: Vec<(String, f64)>,
 }
 
 const HEADER: &str = "// Golden metrics of data/scenarios/{name}.ron for `cargo xtask regress`.\n\
-// Written by `cargo xtask regress --bless`; tolerances per metric: xtask/src/tolerance.rs.\n";
+// Written by `cargo xtask regress --bless`: the values as written and their spreads under\n\
+// rounding-level perturbations of the time step; tolerances from them: xtask/src/tolerance.rs.\n";
 
 impl Golden {
+    /// The measured spread of metric `name` (0 for a metric the golden has no spread of).
+    pub fn spread(&self, name: &str) -> f64 {
+        self.spreads.iter().find(|(n, _)| n == name).map_or(0.0, |(_, s)| *s)
+    }
+
     /// Reads the golden at `path`, or `None` if there is no such file.
     pub fn read(path: &Path) -> Result<Option<Self>, String> {
         match std::fs::read_to_string(path) {

@@ -3,7 +3,7 @@
 //! (`metrics.rs`) and either compares them with `data/regress/<scenario>.ron` under the
 //! tolerances of `tolerance.rs` (check) or rewrites those goldens (bless).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
@@ -13,7 +13,7 @@ use hagfish_sim::{LoadedScenario, RunOptions};
 use crate::golden::{Golden, Platform};
 use crate::metrics::{Samples, Value, metrics};
 use crate::table::{self, Row};
-use crate::tolerance::{Tolerance, tolerance};
+use crate::tolerance::{PERTURBATIONS, Tolerance, spread, tolerance};
 
 /// Compare with the goldens, or rewrite them.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -37,23 +37,38 @@ pub fn run(root: &Path, mode: Mode, only: &[String]) -> Result<bool, String> {
     let selected: Vec<String> =
         scenarios.into_iter().filter(|s| only.is_empty() || only.contains(s)).collect();
     let goldens = root.join("data/regress");
-    let results = run_scenarios(&root.join("data/scenarios"), &selected)?;
+    let directory = root.join("data/scenarios");
     let platform = Platform::current();
     match mode {
         Mode::Bless => {
+            let results = run_scenarios(&directory, &selected, &PERTURBATIONS)?;
             std::fs::create_dir_all(&goldens).map_err(|e| format!("{}: {e}", goldens.display()))?;
-            for (name, values) in results {
+            for (name, runs) in results {
+                let (written, perturbed) = runs.split_first().ok_or("no run")?;
+                let spreads = written
+                    .iter()
+                    .map(|(metric, value)| {
+                        let others: Vec<Value> =
+                            perturbed.iter().filter_map(|run| find(run, metric)).collect();
+                        spread(metric, value, &others)
+                            .map(|s| (metric.clone(), s))
+                            .map_err(|e| format!("{name}: the behaviour depends on rounding: {e}"))
+                    })
+                    .collect::<Result<Vec<_>, String>>()?;
                 let path = goldens.join(format!("{name}.ron"));
-                Golden { platform: platform.clone(), metrics: values }.write(&name, &path)?;
+                let golden =
+                    Golden { platform: platform.clone(), metrics: written.clone(), spreads };
+                golden.write(&name, &path)?;
                 println!("blessed {}", path.display());
             }
             Ok(true)
         }
         Mode::Check => {
+            let results = run_scenarios(&directory, &selected, &[])?;
             let mut rows = Vec::new();
-            for (name, values) in results {
+            for (name, runs) in results {
                 let golden = Golden::read(&goldens.join(format!("{name}.ron")))?;
-                rows.extend(compare(&name, golden.as_ref(), &values, &platform));
+                rows.extend(compare(&name, golden.as_ref(), &runs[0], &platform));
             }
             table::print(&rows);
             let passed = rows.iter().all(|r| r.ok != Some(false));
@@ -67,6 +82,11 @@ pub fn run(root: &Path, mode: Mode, only: &[String]) -> Result<bool, String> {
             Ok(passed)
         }
     }
+}
+
+/// The value of metric `name` in `list`.
+fn find(list: &[(String, Value)], name: &str) -> Option<Value> {
+    list.iter().find(|(n, _)| n == name).map(|(_, v)| v.clone())
 }
 
 /// Stems of the `.ron` files in `directory`, sorted.
@@ -86,18 +106,28 @@ fn scenario_names(directory: &Path) -> Result<Vec<String>, String> {
 /// The metrics of one scenario, `(metric, value)` in table order.
 type Metrics = Vec<(String, Value)>;
 
-/// Runs the named scenarios on at most one thread per core; results in the given order.
-fn run_scenarios(directory: &Path, names: &[String]) -> Result<Vec<(String, Metrics)>, String> {
+/// Runs the named scenarios as written and then with their time step scaled by
+/// `1 + perturbation` for each of `perturbations`, on at most one thread per core; per
+/// scenario, in the given order, the metrics of the run as written and then of each perturbed
+/// run.
+fn run_scenarios(
+    directory: &Path,
+    names: &[String],
+    perturbations: &[f64],
+) -> Result<Vec<(String, Vec<Metrics>)>, String> {
+    let variants: Vec<f64> = std::iter::once(0.0).chain(perturbations.iter().copied()).collect();
+    let jobs: Vec<(&String, f64)> =
+        names.iter().flat_map(|n| variants.iter().map(move |&p| (n, p))).collect();
     let cores = std::thread::available_parallelism().map_or(1, usize::from);
     let next = AtomicUsize::new(0);
-    let results: Mutex<Vec<Option<Result<Metrics, String>>>> = Mutex::new(vec![None; names.len()]);
+    let results: Mutex<Vec<Option<Result<Metrics, String>>>> = Mutex::new(vec![None; jobs.len()]);
     std::thread::scope(|scope| {
-        for _ in 0..cores.min(names.len()) {
+        for _ in 0..cores.min(jobs.len()) {
             scope.spawn(|| {
                 loop {
                     let i = next.fetch_add(1, Ordering::Relaxed);
-                    let Some(name) = names.get(i) else { break };
-                    let result = run_one(&directory.join(format!("{name}.ron")));
+                    let Some(&(name, perturbation)) = jobs.get(i) else { break };
+                    let result = run_one(&directory.join(format!("{name}.ron")), perturbation);
                     if let Ok(mut all) = results.lock() {
                         all[i] = Some(result);
                     }
@@ -106,27 +136,34 @@ fn run_scenarios(directory: &Path, names: &[String]) -> Result<Vec<(String, Metr
         }
     });
     let results = results.into_inner().map_err(|_| "a scenario thread panicked".to_owned())?;
+    let mut results = results.into_iter();
     names
         .iter()
-        .zip(results)
-        .map(|(name, result)| {
-            let values = result.unwrap_or_else(|| Err("not run".into()));
-            values.map(|v| (name.clone(), v)).map_err(|e| format!("{name}: {e}"))
+        .map(|name| {
+            let runs = results
+                .by_ref()
+                .take(variants.len())
+                .map(|r| r.unwrap_or_else(|| Err("not run".into())))
+                .collect::<Result<Vec<Metrics>, String>>()
+                .map_err(|e| format!("{name}: {e}"))?;
+            Ok((name.clone(), runs))
         })
         .collect()
 }
 
-/// Runs one scenario file and computes its metrics.
-fn run_one(path: &PathBuf) -> Result<Metrics, String> {
+/// Runs one scenario file with its time step scaled by `1 + perturbation` and computes its
+/// metrics.
+fn run_one(path: &Path, perturbation: f64) -> Result<Metrics, String> {
     let start = Instant::now();
-    let loaded = LoadedScenario::load(path).map_err(|e| e.to_string())?;
+    let mut loaded = LoadedScenario::load(path).map_err(|e| e.to_string())?;
+    loaded.scenario.time_step_s *= 1.0 + perturbation;
     let mut samples = Samples::default();
     let outcome = hagfish_sim::run(&loaded, RunOptions::default(), &mut samples, &mut |_| {})
         .map_err(|e| e.to_string())?;
     let end = outcome.state.clone();
     let summary = outcome.finished().map_err(|e| e.to_string())?;
     eprintln!(
-        "ran {} ({} steps) in {:.1} s",
+        "ran {} (δh/h = {perturbation:e}, {} steps) in {:.1} s",
         path.display(),
         summary.steps,
         start.elapsed().as_secs_f64()
@@ -158,14 +195,11 @@ fn compare(
             names.push(name);
         }
     }
-    let find = |list: &[(String, Value)], name: &str| {
-        list.iter().find(|(n, _)| n == name).map(|(_, v)| v.clone())
-    };
     names
         .into_iter()
         .map(|name| {
             let (g, n) = (find(&golden.metrics, name), find(now, name));
-            let rule = tolerance(name);
+            let rule = tolerance(name, g.as_ref().unwrap_or(&Value::Missing), golden.spread(name));
             let ok = match (&g, &n) {
                 (Some(g), Some(n)) => rule.accepts(g, n, same_platform),
                 _ => Some(false),
