@@ -26,14 +26,16 @@ pub struct WallContact {
 pub struct WallOptions {
     /// Bodies are reported when their gap is below this (cm, default 0.05).
     pub margin: f64,
-    /// Bodies with a smaller index are never reported (default 3): the head and its
-    /// neighbours touch the wall by construction (redmax-notes §11.14).
+    /// Bodies with a smaller index are never reported (default 0). The head and its
+    /// neighbours touch the wall by construction (redmax-notes §11.14): a caller that knows the
+    /// body's rest shape sets this from [`Wall::first_clear_body`], so the exclusion follows
+    /// the geometry (radii, segment length) rather than a fixed count.
     pub first_body: usize,
 }
 
 impl Default for WallOptions {
     fn default() -> Self {
-        WallOptions { margin: 0.05, first_body: 3 }
+        WallOptions { margin: 0.05, first_body: 0 }
     }
 }
 
@@ -79,6 +81,17 @@ impl Wall {
         self.normal.dot(centre - self.point) - radius
     }
 
+    /// The first body, counted from the head, whose sphere at `centres` (a rest shape) clears
+    /// the wall by at least the margin: `min k` with d_k ≥ margin, or the body count if none
+    /// does. The bodies before it touch the wall by construction and are not tested.
+    pub fn first_clear_body(&self, centres: &[DVec3], radii: &[f64]) -> usize {
+        centres
+            .iter()
+            .zip(radii)
+            .position(|(&c, &r)| self.gap(c, r) >= self.options.margin)
+            .unwrap_or(centres.len())
+    }
+
     /// Fills `out` with the bodies k ≥ `first_body` of `centreline` whose gap is below
     /// the margin, in increasing body order (a pure function of its inputs).
     pub fn contacts(&self, centreline: &Centreline, out: &mut Vec<WallContact>) {
@@ -107,6 +120,21 @@ mod tests {
     }
 
     #[test]
+    fn first_clear_body_is_the_first_sphere_beyond_the_margin() {
+        let w = wall(); // margin 0.05
+        let radii = [0.9; 6];
+        // Centres every 0.424 cm along +X from 0.212: gaps −0.688, −0.264, 0.16, 0.584, …
+        let centres: Vec<DVec3> =
+            (0..6).map(|k| DVec3::new(0.212 + 0.424 * k as f64, 0.0, 0.0)).collect();
+        assert_eq!(w.first_clear_body(&centres, &radii), 2);
+        // Shorter segments: more bodies start inside the margin.
+        let short: Vec<DVec3> =
+            (0..6).map(|k| DVec3::new(0.1 + 0.2 * k as f64, 0.0, 0.0)).collect();
+        assert_eq!(w.first_clear_body(&short, &radii), 5);
+        assert_eq!(w.first_clear_body(&short[..4], &radii[..4]), 4);
+    }
+
+    #[test]
     fn gap_is_positive_outside_zero_touching_negative_inside() {
         let w = wall();
         assert!((w.gap(DVec3::new(2.0, 5.0, 0.0), 0.5) - 1.5).abs() < 1e-15);
@@ -128,7 +156,8 @@ mod tests {
         let bodies: Vec<_> = out.iter().map(|c| c.body).collect();
         assert_eq!(bodies, vec![0, 1, 2, 4, 5]);
         assert!(out.iter().all(|c| c.normal == DVec3::X));
-        wall().contacts(&line, &mut out);
+        let from_third = WallOptions { first_body: 3, ..WallOptions::default() };
+        Wall::new(DVec3::ZERO, DVec3::X, from_third).expect("valid").contacts(&line, &mut out);
         let bodies: Vec<_> = out.iter().map(|c| (c.body, c.gap < 0.0)).collect();
         assert_eq!(bodies, vec![(4, true), (5, false)]);
     }

@@ -53,7 +53,7 @@ fn stages(c: &mut Criterion) {
         b.iter(|| pipeline::dynamics(model, options, &state, &mut data))
     });
     let lengths: Vec<f64> = model.bodies().iter().map(|body| body.length).collect();
-    let mut detector = ContactDetector::new(options.contact).expect("detector");
+    let mut detector = ContactDetector::new(options.detector_options(model)).expect("detector");
     let mut contacts = Vec::new();
     group.bench_function("broad_phase", |b| {
         b.iter(|| detector.find_candidates(&data.centreline, &lengths).expect("broad phase"))

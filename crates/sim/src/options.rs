@@ -3,6 +3,7 @@
 use glam::DVec3;
 use hagfish_geometry::{DetectorOptions, WallOptions};
 use hagfish_solver::SolverOptions;
+use hagfish_tree::Model;
 
 use crate::backend::DynamicsBackend;
 use crate::error::SimError;
@@ -22,10 +23,18 @@ pub struct StepOptions {
     pub limit_margin: f64,
     /// Whether self contact is detected and enforced.
     pub self_contact: bool,
-    /// Self-contact detection options (chain-index gap, duplicate merging, speculative margin:
-    /// default 0.1 cm, so approach speeds up to 10 cm/s at h = 0.01 s are caught a step early;
-    /// 0.2 cm gave the same penetration in `form.ron` and a 10 % slower knotted step).
+    /// Self-contact detection options (speculative margin: default 0.1 cm, so approach speeds
+    /// up to 10 cm/s at h = 0.01 s are caught a step early; 0.2 cm gave the same penetration in
+    /// `form.ron` and a 10 % slower knotted step). Its chain-index gap and cluster radius are
+    /// replaced by the body-relative rule of [`StepOptions::contact_exclusion_diameters`] when
+    /// the step data is built for a model.
     pub contact: DetectorOptions,
+    /// Self contacts between points of the body closer than this many (largest) diameters of
+    /// arc length are ignored: a straight tube touches itself up to one diameter away, so
+    /// neighbouring parts always "overlap". Default 2, which is the 8 bodies of the 100-body
+    /// ES103 (2 · 1.78 cm / 0.424 cm = 8.4); contacts closer than 3/16 of that gap in both spline
+    /// parameters are merged as one. In bodies: `index_gap = max(2, round(k·D_max/ℓ_min))`.
+    pub contact_exclusion_diameters: f64,
     /// The wall: a point on it (cm) and its normal toward the body; `None` for no wall.
     pub wall: Option<(DVec3, DVec3)>,
     /// Wall contact options (first body tested; margin 0.2 cm by default).
@@ -55,6 +64,7 @@ impl Default for StepOptions {
             limit_margin: 2f64.to_radians(),
             self_contact: true,
             contact: DetectorOptions { margin: 0.1, ..DetectorOptions::default() },
+            contact_exclusion_diameters: 2.0,
             wall: Some((DVec3::ZERO, DVec3::X)),
             wall_options: WallOptions { margin: 0.2, ..WallOptions::default() },
             solver: SolverOptions::default(),
@@ -66,6 +76,17 @@ impl Default for StepOptions {
 }
 
 impl StepOptions {
+    /// The self-contact detector options for `model`: [`StepOptions::contact`] with the
+    /// chain-index gap and cluster radius of the body-relative rule of
+    /// [`StepOptions::contact_exclusion_diameters`].
+    pub fn detector_options(&self, model: &Model) -> DetectorOptions {
+        let widest = model.bodies().iter().map(|b| 2.0 * b.radius).fold(0.0, f64::max);
+        let shortest = model.bodies().iter().map(|b| b.length).fold(f64::INFINITY, f64::min);
+        let gap = (self.contact_exclusion_diameters * widest / shortest).round();
+        let index_gap = if gap.is_finite() { (gap as usize).max(2) } else { 2 };
+        DetectorOptions { index_gap, cluster_radius: 0.1875 * index_gap as f64, ..self.contact }
+    }
+
     /// Checks every scalar option.
     pub fn validate(&self) -> Result<(), SimError> {
         let check = |name, value: f64, ok: bool, expected| {
@@ -85,6 +106,12 @@ impl StepOptions {
         )?;
         check("push_out", self.push_out, self.push_out > 0.0 && self.push_out <= 1.0, fraction)?;
         check("limit_margin", self.limit_margin, self.limit_margin >= 0.0, "finite and ≥ 0 (rad)")?;
+        check(
+            "contact_exclusion_diameters",
+            self.contact_exclusion_diameters,
+            self.contact_exclusion_diameters > 0.0,
+            "finite and > 0",
+        )?;
         match self.contact_prediction {
             Some(tolerance) => {
                 check("contact_prediction", tolerance, tolerance >= 0.0, "finite and ≥ 0 (cm)")

@@ -3,11 +3,11 @@
 use glam::DVec3;
 use hagfish_control::Actuation;
 use hagfish_geometry::{
-    Centreline, ContactDetector, PAIRS_PER_BODY, SelfContact, Wall, WallContact,
+    Centreline, ContactDetector, PAIRS_PER_BODY, SelfContact, Wall, WallContact, WallOptions,
 };
 use hagfish_solver::{RowGroup, Rows, SolverWorkspace};
 use hagfish_sparse::TreeFactor;
-use hagfish_tree::{Data, Model};
+use hagfish_tree::{Data, Model, State, position_kinematics};
 
 use crate::backend::DynamicsBackend;
 use crate::contact_prediction::ContactPredictor;
@@ -52,20 +52,39 @@ pub struct StepData {
     pub(crate) predictor: ContactPredictor,
 }
 
+/// The wall of `options`, testing only the bodies from the first one whose sphere clears the
+/// wall by its margin in the rest shape (`centres`) on, and never fewer than
+/// `options.wall_options.first_body`: the bodies that touch the wall by construction depend on
+/// the radii and the segment length, not on a fixed count.
+fn wall_for(
+    point: DVec3,
+    normal: DVec3,
+    options: &StepOptions,
+    centres: &[DVec3],
+    radii: &[f64],
+) -> Result<Wall, hagfish_geometry::GeometryError> {
+    let given = Wall::new(point, normal, options.wall_options)?;
+    let first_body = given.first_clear_body(centres, radii).max(options.wall_options.first_body);
+    Wall::new(point, normal, WallOptions { first_body, ..options.wall_options })
+}
+
 impl StepData {
     /// Allocates everything for `model` and `options`.
     pub fn new(model: &Model, options: &StepOptions) -> Result<Self, SimError> {
         let geometry = |source| SimError::Geometry { step: 0, time: 0.0, source };
         let radii: Vec<f64> = model.bodies().iter().map(|b| b.radius).collect();
         let lengths: Vec<f64> = model.bodies().iter().map(|b| b.length).collect();
-        let tree = Data::new(model);
+        let mut tree = Data::new(model);
+        // The rest shape (q = 0): what the wall's exclusion of the head's bodies is measured on.
+        position_kinematics(model, &State::rest(model).q, &mut tree);
         let centres: Vec<DVec3> = (0..model.body_count()).map(|i| tree.body_centre(i)).collect();
         let centreline = Centreline::new(&centres, &radii).map_err(geometry)?;
-        let mut detector = ContactDetector::new(options.contact).map_err(geometry)?;
+        let mut detector =
+            ContactDetector::new(options.detector_options(model)).map_err(geometry)?;
         detector.reserve(model.body_count());
         let wall = options
             .wall
-            .map(|(point, normal)| Wall::new(point, normal, options.wall_options))
+            .map(|(point, normal)| wall_for(point, normal, options, &centres, &radii))
             .transpose()
             .map_err(geometry)?;
         let mut solver = SolverWorkspace::new(options.solver);

@@ -85,7 +85,7 @@ fn every_tenth_step(mut check: impl FnMut(usize, &DetectorOptions, &StepData)) {
     for step in 0..2000 {
         world.step(&mut controller).expect("step");
         if step % 10 == 0 {
-            check(step, &world.options().contact, world.data());
+            check(step, &world.options().detector_options(world.model()), world.data());
         }
     }
 }
