@@ -4,7 +4,7 @@ use glam::DVec3;
 
 use crate::closure::NormalisedCurve;
 use crate::extent::{knotted_extent, midpoint_arc_length};
-use crate::vote::{PROJECTION_ATTEMPTS, Workspace, polygon_polynomial, vote};
+use crate::vote::{PROJECTION_ATTEMPTS, Workspace, no_polynomial, polygon_polynomial, vote};
 use crate::{AlexanderPolynomial, KnotError, KnotOptions, KnotReport, KnotType};
 
 /// Minimum number of points of an open curve (3 edges; a knot needs more, but fewer points
@@ -51,7 +51,7 @@ impl KnotAnalyser {
         KnotError::check_points(points, MIN_OPEN_POINTS)?;
         let curve = NormalisedCurve::new(points)?;
         let winner = vote(&curve, options.directions, &mut self.workspace)
-            .ok_or(KnotError::NoGenericProjection { directions: options.directions })?;
+            .ok_or_else(|| no_polynomial(&self.workspace, options.directions))?;
         let knot = KnotType::from_polynomial(&winner.polynomial);
         let extent = (options.extent && knot != KnotType::Unknot).then(|| {
             knotted_extent(
@@ -84,6 +84,7 @@ impl KnotAnalyser {
 pub fn closed_polygon_polynomial(vertices: &[DVec3]) -> Result<AlexanderPolynomial, KnotError> {
     KnotError::check_points(vertices, 3)?;
     let curve = NormalisedCurve::new(vertices)?;
-    polygon_polynomial(curve.as_closed_polygon(), DVec3::Z, &mut Workspace::default())
-        .ok_or(KnotError::NoGenericProjection { directions: PROJECTION_ATTEMPTS })
+    let mut workspace = Workspace::default();
+    polygon_polynomial(curve.as_closed_polygon(), DVec3::Z, &mut workspace)
+        .ok_or_else(|| no_polynomial(&workspace, PROJECTION_ATTEMPTS))
 }

@@ -39,6 +39,17 @@ pub enum KnotError {
         /// Number of closure (or projection) directions tried.
         directions: usize,
     },
+    /// Every projection tried had more crossings than the analysis takes
+    /// ([`crate::MAX_CROSSINGS`]): the curve is far more tangled than a body knot, and its
+    /// determinant would need O(m²) memory.
+    #[error(
+        "the curve is too tangled to analyse: a projection shows more than {max} crossings \
+         (the Alexander determinant needs O(m²) memory and O(m³) time in m crossings)"
+    )]
+    TooManyCrossings {
+        /// The limit, [`crate::MAX_CROSSINGS`].
+        max: usize,
+    },
     /// An option is outside its valid range.
     #[error("option `{name}` must be {requirement}, got {value}")]
     InvalidOption {

@@ -63,4 +63,5 @@ pub use error::KnotError;
 pub use knot_type::KnotType;
 pub use options::KnotOptions;
 pub use polynomial::AlexanderPolynomial;
+pub use projection::MAX_CROSSINGS;
 pub use report::KnotReport;

@@ -18,6 +18,13 @@ use crate::alexander::Crossing;
 /// the curve to diameter 1; the far closure is at distance 100).
 pub(crate) const GENERICITY_TOLERANCE: f64 = 1e-9;
 
+/// The most crossings a diagram may have: the Alexander polynomial is a determinant of order
+/// m − 1 over m crossings, O(m²) memory and O(m³) time per closure, so 500 crossings cost
+/// ≈ 4 MB and a fraction of a second each. A hagfish knot shows tens; a curve that shows more
+/// in a projection (a random walk of 100 000 points shows ≈ 10⁵) is refused
+/// ([`crate::KnotError::TooManyCrossings`]) rather than exhausting the memory.
+pub const MAX_CROSSINGS: usize = 500;
+
 /// One edge of the projected polygon with its bounding box.
 #[derive(Debug)]
 struct Edge {
@@ -51,13 +58,22 @@ pub(crate) struct Projector {
     sweep: Vec<SweepBox>,
     /// Crossing positions along the curve, sorted for the genericity test.
     positions: Vec<f64>,
+    /// Whether a projection since the last [`Projector::reset_limit`] had more than
+    /// [`MAX_CROSSINGS`] crossings (and was given up).
+    pub(crate) over_limit: bool,
 }
 
 impl Projector {
+    /// Forgets that a projection had too many crossings.
+    pub(crate) fn reset_limit(&mut self) {
+        self.over_limit = false;
+    }
+
     /// Writes into `found` the crossings of the closed polygon `vertices` (the last vertex
     /// joins the first) seen along the unit vector `view`, and returns whether this
-    /// projection is generic (`found` means nothing if not). Crossing positions are `edge
-    /// index + parameter along the edge`.
+    /// projection is generic (`found` means nothing if not). A projection with more than
+    /// [`MAX_CROSSINGS`] crossings is given up (not generic) and marks `over_limit`.
+    /// Crossing positions are `edge index + parameter along the edge`.
     pub(crate) fn crossings(
         &mut self,
         vertices: &[DVec3],
@@ -111,6 +127,10 @@ impl Projector {
                     continue;
                 }
                 match crossing(&edges[i], i, &edges[j], j) {
+                    Some(Some(_)) if found.len() == MAX_CROSSINGS => {
+                        self.over_limit = true;
+                        return false;
+                    }
                     Some(Some(crossing)) => found.push(crossing),
                     Some(None) => {}
                     None => return false,

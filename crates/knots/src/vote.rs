@@ -3,11 +3,12 @@
 use glam::DVec3;
 
 use crate::AlexanderPolynomial;
+use crate::KnotError;
 use crate::alexander::Crossing;
 use crate::closure::NormalisedCurve;
 use crate::directions::{fibonacci_sphere, projection_direction};
 use crate::memo::PolynomialMemo;
-use crate::projection::Projector;
+use crate::projection::{MAX_CROSSINGS, Projector};
 
 /// Projection directions tried per closure before giving up on it (each fails only if the
 /// polygon nearly passes through itself as seen along it).
@@ -22,6 +23,16 @@ pub(crate) struct Vote {
     pub(crate) agreement: f64,
     /// Number of directions that produced a polynomial.
     pub(crate) evaluated: usize,
+}
+
+/// The error for a curve that gave no polynomial in `directions` directions: too tangled if a
+/// projection went over [`crate::MAX_CROSSINGS`], otherwise not generic in any.
+pub(crate) fn no_polynomial(workspace: &Workspace, directions: usize) -> KnotError {
+    if workspace.projector.over_limit {
+        KnotError::TooManyCrossings { max: MAX_CROSSINGS }
+    } else {
+        KnotError::NoGenericProjection { directions }
+    }
 }
 
 /// What votes keep from one closure to the next: the buffers of the projection and the
@@ -87,6 +98,7 @@ fn count(
 ) -> Tally {
     let mut polygon = std::mem::take(&mut workspace.polygon);
     let mut tally = Tally::default();
+    workspace.projector.reset_limit();
     for (k, direction) in fibonacci_sphere(directions).enumerate() {
         curve.close(direction, &mut polygon);
         if let Some(polynomial) = polygon_polynomial(&polygon, direction, workspace) {

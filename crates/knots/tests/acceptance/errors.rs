@@ -57,3 +57,20 @@ fn reports_are_deterministic() {
     let options = KnotOptions::default();
     assert_eq!(analyse_knot(&points, &options), analyse_knot(&points, &options));
 }
+
+#[test]
+fn a_curve_with_more_crossings_than_the_limit_is_refused() {
+    // A tight spiral wound back and forth: every projection shows ≈ turns² / 2 crossings.
+    let turns = 60;
+    let points: Vec<DVec3> = (0..turns * 40)
+        .map(|i| {
+            let t = i as f64 / 40.0 * std::f64::consts::TAU;
+            let radius = 1.0 + 0.5 * (0.37 * t).sin();
+            DVec3::new(radius * t.cos(), radius * t.sin(), (1.3 * t).sin())
+        })
+        .collect();
+    assert_eq!(
+        analyse_knot(&points, &KnotOptions::default()),
+        Err(KnotError::TooManyCrossings { max: hagfish_knots::MAX_CROSSINGS })
+    );
+}
