@@ -213,9 +213,27 @@ impl ModelBuilder {
                 length: spec.length,
             });
         }
+        // A body's runs are its own DOFs followed by its parent's runs (parents come first),
+        // the first of those merged into its own when contiguous: O(runs) per body, so a chain
+        // of 100 000 bodies builds in milliseconds rather than walking every path.
         for body in 0..model.joints.len() {
-            let runs = merged_dof_runs(model.path_to_root(body));
-            model.path_runs.extend(runs);
+            let own = model.joints[body].dofs();
+            let parent_runs = match model.joints[body].parent {
+                Some(p) => model.path_run_starts[p]..model.path_run_starts[p + 1],
+                None => 0..0,
+            };
+            let mut inherited = parent_runs;
+            match inherited.clone().next().map(|k| model.path_runs[k].clone()) {
+                Some(first) if own.start == first.end => {
+                    inherited.next();
+                    model.path_runs.push(first.start..own.end);
+                }
+                _ => model.path_runs.push(own),
+            }
+            for k in inherited {
+                let run = model.path_runs[k].clone();
+                model.path_runs.push(run);
+            }
             model.path_run_starts.push(model.path_runs.len());
         }
         Ok(model)
@@ -307,20 +325,6 @@ impl Model {
     pub fn path_dof_runs(&self, body: usize) -> &[Range<usize>] {
         &self.path_runs[self.path_run_starts[body]..self.path_run_starts[body + 1]]
     }
-}
-
-/// The DOF ranges of the joints of `path` (deepest first), each merged into the previous
-/// range when it ends where that one starts.
-fn merged_dof_runs<'a>(path: impl Iterator<Item = &'a Joint>) -> Vec<Range<usize>> {
-    let mut runs: Vec<Range<usize>> = Vec::new();
-    for joint in path {
-        let dofs = joint.dofs();
-        match runs.last_mut() {
-            Some(run) if run.start == dofs.end => run.start = dofs.start,
-            _ => runs.push(dofs),
-        }
-    }
-    runs
 }
 
 /// Iterator over the joints on the path from a body to its root; see [`Model::path_to_root`].
