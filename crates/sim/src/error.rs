@@ -48,6 +48,24 @@ pub enum SimError {
         /// Why not.
         reason: String,
     },
+    /// The step buffers of the body would not fit in the memory available
+    /// (`memory.rs` explains the estimate).
+    #[error(
+        "a body of {bodies} bodies ({dofs} DOFs) needs about {} MB for its step buffers, and \
+         {} MB are available: use fewer bodies (the buffers grow as the square of the DOFs)",
+        needed / 1_000_000,
+        available / 1_000_000
+    )]
+    InsufficientMemory {
+        /// Bodies of the model.
+        bodies: usize,
+        /// DOFs of the model.
+        dofs: usize,
+        /// The estimate (bytes).
+        needed: u64,
+        /// Available memory (bytes).
+        available: u64,
+    },
     /// Invalid options (non-positive time step, negative margin, …).
     #[error("invalid option {name} = {value}: {expected}")]
     InvalidOption {

@@ -12,6 +12,7 @@ use hagfish_tree::{Data, Model, State, position_kinematics};
 use crate::backend::DynamicsBackend;
 use crate::contact_prediction::ContactPredictor;
 use crate::error::SimError;
+use crate::memory::check_memory;
 use crate::options::StepOptions;
 use crate::report::StepReport;
 
@@ -69,8 +70,10 @@ fn wall_for(
 }
 
 impl StepData {
-    /// Allocates everything for `model` and `options`.
+    /// Allocates everything for `model` and `options`, after checking that it fits in the
+    /// available memory ([`check_memory`]).
     pub fn new(model: &Model, options: &StepOptions) -> Result<Self, SimError> {
+        check_memory(model)?;
         let geometry = |source| SimError::Geometry { step: 0, time: 0.0, source };
         let radii: Vec<f64> = model.bodies().iter().map(|b| b.radius).collect();
         let lengths: Vec<f64> = model.bodies().iter().map(|b| b.length).collect();
