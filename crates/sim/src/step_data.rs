@@ -16,10 +16,23 @@ use crate::memory::check_memory;
 use crate::options::StepOptions;
 use crate::report::StepReport;
 
-/// Rows (and solver buffers) reserved per DOF: 2n rows cover the head, every limit and more
-/// than twice the self contacts of the tightest knots measured (≈ 45), so knotted steps do not
-/// allocate; a step with more rows still works and grows the buffers.
+/// Rows (and solver buffers) reserved per DOF on the dense backend: 2n rows cover the head,
+/// every limit and more than twice the self contacts of the tightest knots measured (≈ 45), so
+/// knotted steps do not allocate; a step with more rows still works and grows the buffers.
 const ROWS_PER_DOF: usize = 2;
+
+/// Rows reserved on the sparse backend, whose memory must stay linear in the bodies: the rows
+/// and the contact-space matrices (n × m and m × m) are sized by the rows present, growing
+/// (doubling) during the first steps that need more.
+const SPARSE_ROW_RESERVE: usize = 128;
+
+/// The rows to reserve for `model` on `backend`.
+pub(crate) fn row_reserve(model: &Model, backend: DynamicsBackend) -> usize {
+    match backend {
+        DynamicsBackend::DenseReduced => ROWS_PER_DOF * model.dof_count(),
+        DynamicsBackend::SparseMaximal => SPARSE_ROW_RESERVE.min(ROWS_PER_DOF * model.dof_count()),
+    }
+}
 
 /// The per-step data of a [`crate::World`]: tree quantities, contact geometry, rows, solver
 /// workspace and the last report. Each field names the stage that fills it.
@@ -73,7 +86,7 @@ impl StepData {
     /// Allocates everything for `model` and `options`, after checking that it fits in the
     /// available memory ([`check_memory`]).
     pub fn new(model: &Model, options: &StepOptions) -> Result<Self, SimError> {
-        check_memory(model)?;
+        check_memory(model, options.backend)?;
         let geometry = |source| SimError::Geometry { step: 0, time: 0.0, source };
         let radii: Vec<f64> = model.bodies().iter().map(|b| b.radius).collect();
         let lengths: Vec<f64> = model.bodies().iter().map(|b| b.length).collect();
@@ -91,7 +104,8 @@ impl StepData {
             .transpose()
             .map_err(geometry)?;
         let mut solver = SolverWorkspace::new(options.solver);
-        solver.reserve(model.dof_count(), ROWS_PER_DOF * model.dof_count());
+        let reserve = row_reserve(model, options.backend);
+        solver.reserve(model.dof_count(), reserve);
         let predictor = ContactPredictor::new(model, &centreline);
         Ok(Self {
             tree,
@@ -99,7 +113,7 @@ impl StepData {
             self_contacts: Vec::with_capacity(PAIRS_PER_BODY * model.body_count()),
             wall_contacts: Vec::new(),
             actuation: Actuation::default(),
-            rows: Rows::with_capacity(model.dof_count(), ROWS_PER_DOF * model.dof_count()),
+            rows: Rows::with_capacity(model.dof_count(), reserve),
             solver,
             report: StepReport::default(),
             tree_factor: match options.backend {

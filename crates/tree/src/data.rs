@@ -41,7 +41,9 @@ pub struct Data {
     /// [`Data::clear_applied`], filled by [`Data::apply_point_damping`]).
     pub applied_damping: Vec<RigidInertia>,
     /// Reduced mass matrix `M = Jᵀ M_m J`, n×n (mass_matrix::mass_matrix; not needed by the
-    /// step, which builds `M̃` directly).
+    /// step, which builds `M̃` directly). Like [`Data::effective_mass`] and [`Data::factor`],
+    /// allocated by the first stage that fills it (0×0 before): a caller that never forms the
+    /// dense matrices (the sparse backend, position-only kinematics) holds no n×n buffer.
     pub mass_matrix: Mat<f64>,
     /// Generalized force `f_r = −C(q, q̇) + Sᵀ w_applied + τ_ext − K(q − q_rest)`: everything
     /// but damping and constraints, per DOF (dynamics::generalized_force).
@@ -61,6 +63,14 @@ pub struct Data {
     pub(crate) wrenches: Vec<Spatial>,
     pub(crate) accelerations: Vec<Spatial>,
     pub(crate) stack: MemBuffer,
+}
+
+/// Makes `matrix` n×n (zeros) unless it already is: the one allocation of a dense buffer, at
+/// the first stage that fills it.
+pub(crate) fn ensure_square(matrix: &mut Mat<f64>, n: usize) {
+    if matrix.nrows() != n || matrix.ncols() != n {
+        *matrix = Mat::zeros(n, n);
+    }
 }
 
 impl Data {
@@ -88,12 +98,12 @@ impl Data {
             applied_wrenches: vec![Spatial::ZERO; nb],
             applied_torques: vec![0.0; n],
             applied_damping: vec![RigidInertia::ZERO; nb],
-            mass_matrix: Mat::zeros(n, n),
+            mass_matrix: Mat::zeros(0, 0),
             generalized_force: vec![0.0; n],
             momentum: vec![0.0; n],
-            effective_mass: Mat::zeros(n, n),
+            effective_mass: Mat::zeros(0, 0),
             effective_momentum: vec![0.0; n],
-            factor: Mat::zeros(n, n),
+            factor: Mat::zeros(0, 0),
             qdot_next: Mat::zeros(n, 1),
             composite: vec![RigidInertia::ZERO; nb],
             augmented: vec![RigidInertia::ZERO; nb],

@@ -9,7 +9,7 @@
 use faer::linalg::cholesky::llt;
 use faer::{Par, Spec};
 
-use crate::data::Data;
+use crate::data::{Data, ensure_square};
 use crate::dynamics::{generalized_force, generalized_momentum};
 use crate::error::TreeError;
 use crate::kinematics::forward_kinematics;
@@ -30,6 +30,8 @@ pub fn assemble_effective_momentum(data: &mut Data, h: f64) {
 /// Factors `M̃ = L Lᵀ` into `data.factor` (lower triangle). Fails if `M̃` is not numerically
 /// positive definite.
 pub fn factor_effective_mass(data: &mut Data, time: f64) -> Result<(), TreeError> {
+    let n = data.effective_mass.nrows();
+    ensure_square(&mut data.factor, n);
     data.factor.copy_from(&data.effective_mass);
     let stack = faer::dyn_stack::MemStack::new(&mut data.stack);
     llt::factor::cholesky_in_place(

@@ -15,12 +15,13 @@
 
 use faer::Mat;
 
-use crate::data::Data;
+use crate::data::{Data, ensure_square};
 use crate::model::Model;
 use crate::spatial::{RigidInertia, Spatial, SpatialComponents};
 
 /// Fills `data.mass_matrix` with `M(q)` (g·cm²/rad² for rotational DOFs).
 pub fn mass_matrix(model: &Model, data: &mut Data) {
+    ensure_square(&mut data.mass_matrix, model.dof_count());
     composite_rigid_body(
         model,
         &data.axes,
@@ -35,6 +36,7 @@ pub fn mass_matrix(model: &Model, data: &mut Data) {
 /// `C_m` are the point dampers applied this step (treated implicitly, so a stiff drag or a
 /// stiff tail controller on a light body cannot make the step unstable).
 pub fn effective_mass(model: &Model, data: &mut Data, h: f64) {
+    ensure_square(&mut data.effective_mass, model.dof_count());
     for ((augmented, inertia), damping) in
         data.augmented.iter_mut().zip(&data.inertias).zip(&data.applied_damping)
     {
