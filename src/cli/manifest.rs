@@ -58,6 +58,10 @@ pub struct Manifest {
     pub version: String,
     /// The scenario file as given on the command line (the resolved copy is `scenario.ron`).
     pub scenario: PathBuf,
+    /// The `--set PATH=VALUE` overrides (and `--body FILE` as `body="FILE"`) applied to the
+    /// scenario, in order; `scenario.ron` holds their result.
+    #[serde(default)]
+    pub overrides: Vec<String>,
     /// The scenario's name.
     pub scenario_name: String,
     /// FNV-1a hash of `scenario.ron` (16 hex digits).
@@ -87,12 +91,13 @@ pub struct Manifest {
 }
 
 impl Manifest {
-    /// The manifest of a run starting now.
-    pub fn start(scenario: &Path, name: &str, hash: String) -> Self {
+    /// The manifest of a run of `scenario` with `overrides` starting now.
+    pub fn start(scenario: &Path, overrides: Vec<String>, name: &str, hash: String) -> Self {
         Self {
             program: env!("CARGO_PKG_NAME").into(),
             version: env!("CARGO_PKG_VERSION").into(),
             scenario: scenario.to_path_buf(),
+            overrides,
             scenario_name: name.into(),
             scenario_hash: hash,
             started_utc: iso8601(SystemTime::now()),

@@ -11,8 +11,8 @@ use std::time::Instant;
 
 use clap::Args;
 use hagfish_sim::{
-    CHECKPOINT_FILE, Checkpoint, LoadedScenario, Recorder, RunEnd, RunOptions, RunOutcome,
-    state_hash,
+    CHECKPOINT_FILE, Checkpoint, LoadedScenario, Override, Recorder, RunEnd, RunOptions,
+    RunOutcome, state_hash,
 };
 
 use super::CliError;
@@ -38,6 +38,15 @@ pub struct RunArgs {
     /// SCENARIO and starts one if DIR has none yet (for job scripts that are simply rerun).
     #[arg(long, value_name = "DIR", num_args = 0..=1)]
     resume: Option<Option<PathBuf>>,
+    /// Override a scenario value for this run: `--set PATH=VALUE`, repeatable, with the dotted
+    /// paths of `hagfish params` (e.g. `--set time_step_s=0.02`,
+    /// `--set Thigmotaxis.parameters.tail_pull_dyn=0`, `--set phases[2].Thigmotaxis.until.
+    /// seconds=10`). Recorded in the run's scenario.ron and manifest.json.
+    #[arg(long = "set", value_name = "PATH=VALUE")]
+    set: Vec<String>,
+    /// Use this biometrics (or rod) file instead of the scenario's `body`.
+    #[arg(long, value_name = "FILE")]
+    body: Option<PathBuf>,
     /// No progress on stderr; only the final summary on stdout.
     #[arg(long)]
     quiet: bool,
@@ -87,18 +96,41 @@ type Opened = (LoadedScenario, PathBuf, Option<Checkpoint>, Manifest);
 
 /// The scenario, run directory, checkpoint (when resuming) and manifest the arguments name.
 fn open(args: &RunArgs) -> Result<Opened, CliError> {
+    let overrides = overrides(args)?;
     match (&args.resume, &args.scenario, &args.out) {
-        (Some(Some(directory)), None, None) => open_stopped(directory, None),
+        (Some(Some(directory)), None, None) if overrides.is_empty() => {
+            open_stopped(directory, None)
+        }
+        (Some(Some(_)), None, None) => Err(CliError::Usage(
+            "--set and --body change a scenario: give them with SCENARIO --out DIR, not with \
+             --resume DIR (which continues the run as it was started)",
+        )),
         (Some(None), Some(scenario), Some(directory)) if directory.join(MANIFEST_FILE).exists() => {
-            open_stopped(directory, Some(&LoadedScenario::load(scenario)?.hash()))
+            let hash = LoadedScenario::load_with(scenario, &overrides)?.hash();
+            open_stopped(directory, Some(&hash))
         }
         (Some(None) | None, Some(scenario), Some(directory)) => {
-            let loaded = LoadedScenario::load(scenario)?;
-            let manifest = Manifest::start(scenario, &loaded.scenario.name, loaded.hash());
+            let loaded = LoadedScenario::load_with(scenario, &overrides)?;
+            let given = overrides.iter().map(Override::text).collect();
+            let manifest = Manifest::start(scenario, given, &loaded.scenario.name, loaded.hash());
             Ok((loaded, directory.clone(), None, manifest))
         }
         _ => Err(CliError::Usage("give SCENARIO --out DIR [--resume], or --resume DIR alone")),
     }
+}
+
+/// The overrides of `--set` in order, then `--body` as an override of `body` (made absolute,
+/// so that it does not depend on the scenario's directory).
+fn overrides(args: &RunArgs) -> Result<Vec<Override>, CliError> {
+    let mut overrides =
+        args.set.iter().map(|text| Override::parse(text)).collect::<Result<Vec<_>, _>>()?;
+    if let Some(body) = &args.body {
+        let absolute = std::path::absolute(body)
+            .map_err(|e| CliError::RunDirectory { path: body.clone(), reason: e.to_string() })?;
+        overrides
+            .push(Override { path: "body".into(), value: format!("\"{}\"", absolute.display()) });
+    }
+    Ok(overrides)
 }
 
 /// Opens the output files (cut to the checkpoint when resuming; new, with `scenario.ron`,

@@ -48,6 +48,23 @@ pub enum SimError {
         /// Why not.
         reason: String,
     },
+    /// A `--set PATH=VALUE` override that cannot be applied (`overrides.rs`).
+    #[error("--set {given}: {reason}")]
+    Override {
+        /// The override as given.
+        given: String,
+        /// Why it cannot be applied.
+        reason: String,
+    },
+    /// The scenario with its overrides applied fails a check (the location is in the
+    /// overridden scenario, as its run directory's `scenario.ron` records it).
+    #[error("with --set {overrides}: {source}")]
+    Overridden {
+        /// The overrides, as given.
+        overrides: String,
+        /// The failed check.
+        source: Box<SimError>,
+    },
     /// The step buffers of the body would not fit in the memory available
     /// (`memory.rs` explains the estimate).
     #[error(

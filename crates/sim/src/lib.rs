@@ -22,6 +22,7 @@ mod memory;
 mod npy;
 mod options;
 mod output_file;
+mod overrides;
 mod parameters;
 pub mod pipeline;
 mod recorder;
@@ -45,6 +46,7 @@ pub use hash::{fnv1a64, state_hash};
 pub use memory::{available_memory, check_memory, step_memory_estimate};
 pub use npy::{NpyArray, read_npy};
 pub use options::StepOptions;
+pub use overrides::{Override, apply_overrides};
 pub use parameters::{PARAMETERS, Parameter};
 pub use recorder::{
     CENTRELINE_HEADER, CONTACTS_HEADER, FORCES_HEADER, Frame, FrameSink, IntervalMaxima,

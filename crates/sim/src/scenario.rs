@@ -23,6 +23,7 @@ use serde::{Deserialize, Serialize};
 use crate::backend::DynamicsBackend;
 use crate::error::SimError;
 use crate::options::StepOptions;
+use crate::overrides::{Override, apply_overrides};
 use crate::scenario_check::check_scenario;
 use crate::world::World;
 
@@ -56,6 +57,13 @@ fn default_record_every() -> f64 {
     0.1
 }
 
+/// `scenario` as pretty RON text with struct names, the format of a run's `scenario.ron`.
+fn pretty_ron(scenario: &Scenario) -> String {
+    let config = ron::ser::PrettyConfig::default().struct_names(true);
+    // Serializing plain data (strings, numbers, enums, sequences) into a string cannot fail.
+    ron::ser::to_string_pretty(scenario, config).unwrap_or_default()
+}
+
 /// A scenario with its biometrics loaded and checked.
 #[derive(Clone, Debug)]
 pub struct LoadedScenario {
@@ -72,6 +80,28 @@ impl LoadedScenario {
     /// and loads the biometrics it names.
     pub fn load(path: impl AsRef<Path>) -> Result<Self, SimError> {
         Self::checked(DataFile::<Scenario>::read(path.as_ref())?)
+    }
+
+    /// Reads the scenario at `path` as [`load`](Self::load) does, with `overrides` applied
+    /// (`overrides.rs`) before its values are checked. A check that fails on the overridden
+    /// scenario is reported with the overrides and a location in the overridden text (as
+    /// [`resolved_text`](Self::resolved_text) writes it, body path aside).
+    pub fn load_with(path: impl AsRef<Path>, overrides: &[Override]) -> Result<Self, SimError> {
+        let path = path.as_ref();
+        if overrides.is_empty() {
+            return Self::load(path);
+        }
+        let file = DataFile::<Scenario>::read(path)?;
+        let scenario = apply_overrides(&file.value, overrides)?;
+        let text = pretty_ron(&scenario);
+        let label = PathBuf::from(format!("{} [with overrides]", path.display()));
+        let mut loaded =
+            Self::parse(text.as_bytes(), &label).map_err(|source| SimError::Overridden {
+                overrides: overrides.iter().map(Override::text).collect::<Vec<_>>().join(" "),
+                source: Box::new(source),
+            })?;
+        loaded.path = path.to_path_buf();
+        Ok(loaded)
     }
 
     /// Parses scenario `bytes` as if read from `path` (which names the source in messages and
@@ -99,9 +129,7 @@ impl LoadedScenario {
     /// The scenario as RON text with every default filled in and the body file as an absolute
     /// path: the `scenario.ron` of a run directory, loadable from anywhere.
     pub fn resolved_text(&self) -> String {
-        let config = ron::ser::PrettyConfig::default().struct_names(true);
-        // Serializing plain data (strings, numbers, enums, sequences) into a string cannot fail.
-        ron::ser::to_string_pretty(&self.scenario, config).unwrap_or_default()
+        pretty_ron(&self.scenario)
     }
 
     /// FNV-1a hash of [`resolved_text`](Self::resolved_text), as 16 hex digits.

@@ -1,0 +1,240 @@
+//! Overrides of scenario values for studies: `hagfish run SCENARIO --set PATH=VALUE` (and the
+//! same from a library caller), applied to the scenario as read and before any check, so every
+//! check applies to the overridden values.
+//!
+//! A PATH names a field with the dotted names that `hagfish params` lists:
+//! - a top-level field: `time_step_s`, `duration_s`, `record_every_s`, `backend`, `body`,
+//!   `drag`, `drag.quadratic_g_per_cm3`;
+//! - a field of every phase of one kind, as `params` lists it: `Thigmotaxis.parameters.
+//!   tail_pull_dyn`, `Thigmotaxis.until.seconds`, `Form.gains.kp_dyn_per_cm`;
+//! - a field of one phase, by its index from 0: `phases[2].Thigmotaxis.parameters.head.v_a`.
+//!
+//! A VALUE is a number, `true`/`false`, `None`, `Some(VALUE)`, a quoted string, a bare
+//! identifier (an enum variant such as `SparseMaximal`) or a tuple `(1.0, 2.0, 3.0)`.
+//!
+//! Overrides work on the scenario's serde data model: the scenario is turned into a tree of
+//! values, each override replaces one or more of its leaves (a path that names nothing is an
+//! error listing the fields there), and the tree is turned back into a `Scenario`, so a value
+//! of the wrong type is refused with the field's expected type.
+
+use serde_json::{Map, Value};
+
+use crate::error::SimError;
+use crate::scenario::Scenario;
+
+/// The kinds of phase a kind-wide path may start with (`params` lists their fields so).
+const PHASE_KINDS: [&str; 3] = ["Form", "Hold", "Thigmotaxis"];
+
+/// One `PATH=VALUE` override, as given.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Override {
+    /// The dotted path.
+    pub path: String,
+    /// The value's text.
+    pub value: String,
+}
+
+impl Override {
+    /// Parses `PATH=VALUE` (the first `=` separates them; spaces around either are trimmed).
+    ///
+    /// # Errors
+    /// [`SimError::Override`] if there is no `=` or the path or the value is empty.
+    pub fn parse(text: &str) -> Result<Self, SimError> {
+        let invalid =
+            |reason: &str| SimError::Override { given: text.to_owned(), reason: reason.to_owned() };
+        let (path, value) = text.split_once('=').ok_or_else(|| invalid("expected PATH=VALUE"))?;
+        let (path, value) = (path.trim(), value.trim());
+        if path.is_empty() || value.is_empty() {
+            return Err(invalid("expected PATH=VALUE with a path and a value"));
+        }
+        Ok(Self { path: path.to_owned(), value: value.to_owned() })
+    }
+
+    /// `PATH=VALUE`, as given on the command line.
+    pub fn text(&self) -> String {
+        format!("{}={}", self.path, self.value)
+    }
+
+    fn error(&self, reason: impl Into<String>) -> SimError {
+        SimError::Override { given: self.text(), reason: reason.into() }
+    }
+}
+
+/// `scenario` with `overrides` applied in order.
+///
+/// # Errors
+/// [`SimError::Override`] naming the override: a path that names no field, a value that does
+/// not parse, or one of the wrong type for its field.
+pub fn apply_overrides(scenario: &Scenario, overrides: &[Override]) -> Result<Scenario, SimError> {
+    let mut tree = serde_json::to_value(scenario).map_err(|e| SimError::Override {
+        given: String::new(),
+        reason: format!("the scenario has no data model: {e}"),
+    })?;
+    for given in overrides {
+        let value = parse_value(&given.value).ok_or_else(|| {
+            given.error(
+                "the value is not a number, true/false, None, Some(…), a quoted string, an \
+                 identifier or a tuple",
+            )
+        })?;
+        let segments: Vec<&str> = given.path.split('.').collect();
+        let targets = match segments.first() {
+            Some(kind) if PHASE_KINDS.contains(kind) => phases_of_kind(&mut tree, kind),
+            _ => vec![&mut tree],
+        };
+        if targets.is_empty() {
+            return Err(given.error(format!("the scenario has no {} phase", segments[0])));
+        }
+        let leaf = match segments.first() {
+            Some(kind) if PHASE_KINDS.contains(kind) => &segments[1..],
+            _ => &segments[..],
+        };
+        for target in targets {
+            set(target, leaf, value.clone()).map_err(|reason| given.error(reason))?;
+        }
+        serde_json::from_value::<Scenario>(tree.clone())
+            .map_err(|e| given.error(format!("wrong value for {}: {e}", given.path)))?;
+    }
+    serde_json::from_value(tree).map_err(|e| SimError::Override {
+        given: overrides.iter().map(Override::text).collect::<Vec<_>>().join(" "),
+        reason: e.to_string(),
+    })
+}
+
+/// The bodies of every phase `{kind: …}` of `tree`'s `phases`.
+fn phases_of_kind<'a>(tree: &'a mut Value, kind: &str) -> Vec<&'a mut Value> {
+    match tree.get_mut("phases") {
+        Some(Value::Array(phases)) => phases.iter_mut().filter_map(|p| p.get_mut(kind)).collect(),
+        _ => Vec::new(),
+    }
+}
+
+/// Sets the leaf at `path` (field names, each optionally with `[index]`) under `node`.
+fn set(node: &mut Value, path: &[&str], value: Value) -> Result<(), String> {
+    let Some((first, rest)) = path.split_first() else {
+        *node = value;
+        return Ok(());
+    };
+    let (name, index) = split_index(first)?;
+    let Value::Object(fields) = node else {
+        return Err(format!("`{name}`: the value above it has no fields (it is {node})"));
+    };
+    let known = unknown_field(name, fields);
+    let child = fields.get_mut(name).ok_or(known)?;
+    let child = match index {
+        None => child,
+        Some(i) => match child {
+            Value::Array(items) => {
+                let count = items.len();
+                items
+                    .get_mut(i)
+                    .ok_or_else(|| format!("`{name}` has {count} elements, no [{i}]"))?
+            }
+            _ => return Err(format!("`{name}` is not a list: no [{i}]")),
+        },
+    };
+    if child.is_null() && !rest.is_empty() {
+        return Err(format!("`{name}` is None: set it to Some(…) before its fields"));
+    }
+    // A phase or step variant wraps its fields: `phases[1].Thigmotaxis.until` names them.
+    set(child, rest, value)
+}
+
+/// `name[i]` → (`name`, Some(i)); `name` → (`name`, None).
+fn split_index(segment: &str) -> Result<(&str, Option<usize>), String> {
+    match segment.split_once('[') {
+        None => Ok((segment, None)),
+        Some((name, rest)) => {
+            let index = rest
+                .strip_suffix(']')
+                .and_then(|i| i.parse().ok())
+                .ok_or_else(|| format!("`{segment}`: expected NAME[INDEX]"))?;
+            Ok((name, Some(index)))
+        }
+    }
+}
+
+/// The message for a path segment `name` that is not among `fields`.
+fn unknown_field(name: &str, fields: &Map<String, Value>) -> String {
+    let known: Vec<&str> = fields.keys().map(String::as_str).collect();
+    format!("no field `{name}` here; the fields are {}", known.join(", "))
+}
+
+/// The value of an override's text (see the module documentation), or `None`.
+fn parse_value(text: &str) -> Option<Value> {
+    let text = text.trim();
+    if let Some(inner) = text.strip_prefix("Some(").and_then(|t| t.strip_suffix(')')) {
+        return parse_value(inner);
+    }
+    if let Some(inner) = text.strip_prefix('(').and_then(|t| t.strip_suffix(')')) {
+        return inner.split(',').map(parse_value).collect::<Option<Vec<_>>>().map(Value::Array);
+    }
+    if let Some(inner) = text.strip_prefix('"').and_then(|t| t.strip_suffix('"')) {
+        return Some(Value::String(inner.to_owned()));
+    }
+    match text {
+        "None" => return Some(Value::Null),
+        "true" => return Some(Value::Bool(true)),
+        "false" => return Some(Value::Bool(false)),
+        _ => {}
+    }
+    if let Ok(integer) = text.parse::<i64>() {
+        return Some(Value::from(integer));
+    }
+    if let Ok(number) = text.parse::<f64>() {
+        return serde_json::Number::from_f64(number).map(Value::Number);
+    }
+    let identifier = text.chars().next().is_some_and(char::is_alphabetic)
+        && text.chars().all(|c| c.is_alphanumeric() || c == '_');
+    identifier.then(|| Value::String(text.to_owned()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scenario() -> Scenario {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/scenarios/thesis.ron");
+        crate::LoadedScenario::load(path).expect("thesis.ron").scenario
+    }
+
+    fn set_one(text: &str) -> Result<Scenario, SimError> {
+        apply_overrides(&scenario(), &[Override::parse(text)?])
+    }
+
+    #[test]
+    fn a_top_level_value_changes_and_nothing_else() {
+        let before = scenario();
+        let after = set_one("time_step_s=0.02").expect("applies");
+        assert_eq!(after.time_step_s, 0.02);
+        assert_eq!(Scenario { time_step_s: before.time_step_s, ..after }, before);
+    }
+
+    #[test]
+    fn kind_wide_and_indexed_phase_paths() {
+        let all = set_one("Thigmotaxis.parameters.tail_pull_dyn=0").expect("applies");
+        let one = set_one("phases[2].Thigmotaxis.parameters.tail_pull_dyn=5.5").expect("applies");
+        let pulls = |s: &Scenario| -> Vec<String> {
+            s.phases.iter().map(|p| format!("{p:?}")).filter(|p| p.contains("tail_pull")).collect()
+        };
+        assert!(pulls(&all).iter().all(|p| p.contains("tail_pull_dyn: 0.0")), "{:?}", pulls(&all));
+        let one = pulls(&one);
+        assert!(one[0].contains("tail_pull_dyn: 20.0") && one[1].contains("tail_pull_dyn: 5.5"));
+        let drag = set_one("drag.quadratic_g_per_cm3=1.0").expect("applies");
+        assert_eq!(drag.drag.map(|d| d.quadratic_g_per_cm3), Some(1.0));
+        let sparse = set_one("backend=SparseMaximal").expect("applies");
+        assert_eq!(sparse.backend, crate::DynamicsBackend::SparseMaximal);
+        assert_eq!(set_one("drag=None").expect("applies").drag, None);
+    }
+
+    #[test]
+    fn bad_paths_values_and_types_name_the_override() {
+        let message = |text: &str| set_one(text).expect_err(text).to_string();
+        assert!(message("time_stepp=1").contains("--set time_stepp=1: no field `time_stepp`"));
+        assert!(message("time_step_s=abc").contains("wrong value for time_step_s"));
+        assert!(message("time_step_s").contains("expected PATH=VALUE"));
+        assert!(message("Form.gains.kp=1").contains("no field `kp`"));
+        assert!(message("phases[9].Form=1").contains("no [9]"));
+        assert!(message("duration_s=1..2").contains("the value is not"));
+    }
+}
