@@ -73,7 +73,29 @@ fn negative_time_step() {
         "error_negative_time_step",
         |t| t.replace("time_step_s: 0.01", "time_step_s: -0.01"),
         "6:18",
-        "time_step_s = -0.01 is out of range: expected finite and > 0",
+        "time_step_s = -0.01 is out of range: expected finite and ≥ 1e-6",
+    );
+}
+
+#[test]
+fn time_step_below_the_floor() {
+    assert_user_error(
+        "error_tiny_time_step",
+        |t| t.replace("time_step_s: 0.01", "time_step_s: 1e-300"),
+        "6:18",
+        "time_step_s = 1e-300 is out of range: expected finite and ≥ 1e-6",
+    );
+}
+
+#[test]
+fn too_many_steps_are_refused_before_the_run_starts() {
+    let (code, stderr, _) =
+        run_edited("error_too_many_steps", |t| t.replace("duration_s: 1.5", "duration_s: 1e9"));
+    assert_eq!(code, Some(2), "{stderr}");
+    assert_eq!(
+        stderr.trim(),
+        "error: the scenario needs 1e11 steps (duration_s / time_step_s), more than the cap of \
+         100000000: shorten it, raise the time step, or allow more with --max-steps"
     );
 }
 

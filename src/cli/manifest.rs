@@ -6,6 +6,7 @@
 use std::path::{Path, PathBuf};
 use std::time::SystemTime;
 
+use hagfish_sim::LoadedScenario;
 use serde::{Deserialize, Serialize};
 
 use super::CliError;
@@ -66,6 +67,9 @@ pub struct Manifest {
     pub scenario_name: String,
     /// FNV-1a hash of `scenario.ron` (16 hex digits).
     pub scenario_hash: String,
+    /// FNV-1a hash of the body file's bytes (16 hex digits): a resume refuses an edited body.
+    #[serde(default)]
+    pub body_hash: String,
     /// When the run first started.
     pub started_utc: String,
     /// When it last stopped (`null` while running).
@@ -84,6 +88,12 @@ pub struct Manifest {
     pub final_state_hash: Option<String>,
     /// The error that made the run diverge.
     pub error: Option<String>,
+    /// Steps rejected whole by the acceptance bounds and taken as substeps.
+    #[serde(default)]
+    pub substepped_steps: u64,
+    /// The most substeps one step needed (1: none was divided).
+    #[serde(default)]
+    pub max_substeps: u32,
     /// Frame counts at which the run was resumed, in order.
     pub resumed_at_frames: Vec<usize>,
     /// Every other file of the run directory with its size, by name.
@@ -92,14 +102,15 @@ pub struct Manifest {
 
 impl Manifest {
     /// The manifest of a run of `scenario` with `overrides` starting now.
-    pub fn start(scenario: &Path, overrides: Vec<String>, name: &str, hash: String) -> Self {
+    pub fn start(scenario: &Path, overrides: Vec<String>, loaded: &LoadedScenario) -> Self {
         Self {
             program: env!("CARGO_PKG_NAME").into(),
             version: env!("CARGO_PKG_VERSION").into(),
             scenario: scenario.to_path_buf(),
             overrides,
-            scenario_name: name.into(),
-            scenario_hash: hash,
+            scenario_name: loaded.scenario.name.clone(),
+            scenario_hash: loaded.hash(),
+            body_hash: loaded.body_hash.clone(),
             started_utc: iso8601(SystemTime::now()),
             ended_utc: None,
             status: Status::Running,
@@ -109,6 +120,8 @@ impl Manifest {
             time_s: 0.0,
             final_state_hash: None,
             error: None,
+            substepped_steps: 0,
+            max_substeps: 1,
             resumed_at_frames: Vec::new(),
             files: Vec::new(),
         }
@@ -133,9 +146,7 @@ impl Manifest {
         };
         let text =
             serde_json::to_string_pretty(self).map_err(|e| fail(std::io::Error::other(e)))?;
-        let temporary = path.with_extension("json.partial");
-        std::fs::write(&temporary, text + "\n").map_err(fail)?;
-        std::fs::rename(&temporary, &path).map_err(fail)
+        hagfish_sim::replace_file(&path, (text + "\n").as_bytes()).map_err(CliError::from)
     }
 
     /// Marks the end of one part of the run.
@@ -146,7 +157,8 @@ impl Manifest {
     }
 }
 
-/// The regular files of `directory` except the manifest and temporary files, by name.
+/// The regular files of `directory` except the manifest, temporary and hidden files (the
+/// lock), by name.
 fn list_files(directory: &Path) -> Result<Vec<FileEntry>, CliError> {
     let fail = |e: std::io::Error| CliError::RunDirectory {
         path: directory.to_path_buf(),
@@ -157,7 +169,8 @@ fn list_files(directory: &Path) -> Result<Vec<FileEntry>, CliError> {
         let entry = entry.map_err(fail)?;
         let name = entry.file_name().to_string_lossy().into_owned();
         let metadata = entry.metadata().map_err(fail)?;
-        if metadata.is_file() && name != MANIFEST_FILE && !name.ends_with(".partial") {
+        let listed = name != MANIFEST_FILE && !name.ends_with(".partial") && !name.starts_with('.');
+        if metadata.is_file() && listed {
             files.push(FileEntry { name, bytes: metadata.len() });
         }
     }

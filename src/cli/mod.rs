@@ -10,6 +10,7 @@ mod progress;
 mod render;
 mod report;
 mod run;
+mod run_dir;
 mod utc;
 
 use std::io::{BufWriter, Write};

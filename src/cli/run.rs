@@ -18,6 +18,7 @@ use hagfish_sim::{
 use super::CliError;
 use super::manifest::{MANIFEST_FILE, Manifest, Status};
 use super::progress::Reporter;
+use super::run_dir::{LockedDirectory, SetAside};
 
 /// The resolved scenario in a run directory.
 const SCENARIO_FILE: &str = "scenario.ron";
@@ -44,6 +45,10 @@ pub struct RunArgs {
     /// seconds=10`). Recorded in the run's scenario.ron and manifest.json.
     #[arg(long = "set", value_name = "PATH=VALUE")]
     set: Vec<String>,
+    /// Replace the run already in DIR (its files only; the old run is kept if the new one
+    /// cannot start). Without it, a DIR that holds a run is refused.
+    #[arg(long, conflicts_with = "resume")]
+    overwrite: bool,
     /// Use this biometrics (or rod) file instead of the scenario's `body`.
     #[arg(long, value_name = "FILE")]
     body: Option<PathBuf>,
@@ -54,24 +59,46 @@ pub struct RunArgs {
     /// `interrupted`); for tests and for cluster time limits.
     #[arg(long, value_name = "K")]
     stop_after_frames: Option<usize>,
+    /// Allow a run of up to N steps (duration / time step); without it a scenario needing more
+    /// than 10⁸ steps is refused before it starts (it would run for hours and fill the disk).
+    #[arg(long, value_name = "N")]
+    max_steps: Option<u64>,
 }
 
 /// Runs or resumes, then prints the summary. A diverged run is an error (exit code 3) after
 /// its outputs, checkpoint and manifest are written; so is a run stopped by SIGINT or SIGTERM
-/// (exit code 130), which stops after the next frame, resumable.
+/// (exit code 130): while stepping it stops after the step being taken, resumable from its
+/// last frame; while the pictures and report are written it exits at once (the run itself is
+/// complete and recorded; `hagfish render` and `hagfish report` write them again).
 pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let started = Instant::now();
+    let _lock = match (&args.resume, &args.out) {
+        (Some(Some(directory)), None) => LockedDirectory::lock(directory, false)?,
+        (_, Some(directory)) => LockedDirectory::lock(directory, true)?,
+        _ => return Err(CliError::Usage(USAGE)),
+    };
     let (loaded, directory, checkpoint, mut manifest) = open(args)?;
     let mut recorder = prepare(&loaded, &directory, checkpoint.as_ref(), &mut manifest)?;
 
     let signalled = Arc::new(AtomicBool::new(false));
-    let flag = Arc::clone(&signalled);
-    ctrlc::set_handler(move || flag.store(true, Ordering::Relaxed))?;
+    let reporting = Arc::new(AtomicBool::new(false));
+    let (flag, in_report) = (Arc::clone(&signalled), Arc::clone(&reporting));
+    ctrlc::set_handler(move || {
+        if in_report.load(Ordering::Relaxed) {
+            eprintln!(
+                "interrupted while writing the pictures and report (the run is recorded; \
+                 `hagfish render DIR` and `hagfish report DIR` write them again)"
+            );
+            std::process::exit(130);
+        }
+        flag.store(true, Ordering::Relaxed);
+    })?;
     let mut reporter = Reporter::new(args.quiet, loaded.scenario.duration_s);
     let options = RunOptions {
         resume: checkpoint.as_ref(),
         stop_after_frame: args.stop_after_frames,
         stop: Some(&signalled),
+        max_steps: args.max_steps,
     };
     let outcome = hagfish_sim::run(&loaded, options, &mut recorder, &mut |p| reporter.update(p))?;
     reporter.finish();
@@ -79,6 +106,10 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let diverged = finish(&outcome, &directory, &mut manifest, wall)?;
     let steps_run = outcome.summary.steps - checkpoint.as_ref().map_or(0, |c| c.steps);
     summarise(&loaded, &directory, &outcome, manifest.status, wall, steps_run, out)?;
+    reporting.store(true, Ordering::Relaxed);
+    if signalled.load(Ordering::Relaxed) {
+        return Err(CliError::Interrupted { directory, frames: outcome.summary.frames });
+    }
     let written = hagfish_report::write_all(&directory)?;
     writeln!(out, "pictures, report and exports in {:.2} s", written.total_seconds())?;
     manifest.write(&directory)?; // again, to list the pictures and the report too
@@ -109,15 +140,30 @@ fn open(args: &RunArgs) -> Result<Opened, CliError> {
             let hash = LoadedScenario::load_with(scenario, &overrides)?.hash();
             open_stopped(directory, Some(&hash))
         }
+        (None, Some(_), Some(directory))
+            if directory.join(MANIFEST_FILE).exists() && !args.overwrite =>
+        {
+            let status = Manifest::read(directory).map_or("unreadable", |m| m.status.name());
+            Err(CliError::RunDirectory {
+                path: directory.clone(),
+                reason: format!(
+                    "holds a run (status {status}): continue it with --resume, or replace it \
+                     with --overwrite"
+                ),
+            })
+        }
         (Some(None) | None, Some(scenario), Some(directory)) => {
             let loaded = LoadedScenario::load_with(scenario, &overrides)?;
             let given = overrides.iter().map(Override::text).collect();
-            let manifest = Manifest::start(scenario, given, &loaded.scenario.name, loaded.hash());
+            let manifest = Manifest::start(scenario, given, &loaded);
             Ok((loaded, directory.clone(), None, manifest))
         }
-        _ => Err(CliError::Usage("give SCENARIO --out DIR [--resume], or --resume DIR alone")),
+        _ => Err(CliError::Usage(USAGE)),
     }
 }
+
+/// How `hagfish run` is called.
+const USAGE: &str = "give SCENARIO --out DIR [--resume | --overwrite], or --resume DIR alone";
 
 /// The overrides of `--set` in order, then `--body` as an override of `body` (made absolute,
 /// so that it does not depend on the scenario's directory).
@@ -145,14 +191,27 @@ fn prepare(
     let recorder = match checkpoint {
         Some(checkpoint) => Recorder::reopen(directory, dofs, checkpoint)?,
         None => {
-            let recorder = Recorder::create(directory, dofs)?;
-            std::fs::write(directory.join(SCENARIO_FILE), loaded.resolved_text()).map_err(|e| {
-                CliError::RunDirectory {
-                    path: directory.join(SCENARIO_FILE),
-                    reason: e.to_string(),
+            // An earlier run here (replaced with --overwrite) is kept until the new one has
+            // its files, and put back if they cannot be made.
+            let earlier = SetAside::new(directory)?;
+            let started = Recorder::create(directory, dofs).and_then(|recorder| {
+                let text = loaded.resolved_text();
+                hagfish_sim::replace_file(&directory.join(SCENARIO_FILE), text.as_bytes())?;
+                Ok(recorder)
+            });
+            match started
+                .map_err(CliError::from)
+                .and_then(|r| manifest.write(directory).map(|()| r))
+            {
+                Ok(recorder) => {
+                    earlier.discard()?;
+                    recorder
                 }
-            })?;
-            recorder
+                Err(error) => {
+                    earlier.restore()?;
+                    return Err(error);
+                }
+            }
         }
     };
     if let Some(checkpoint) = checkpoint {
@@ -188,6 +247,16 @@ fn open_stopped(directory: &Path, expected: Option<&str>) -> Result<Opened, CliE
     let loaded = LoadedScenario::load(directory.join(SCENARIO_FILE))?;
     let path = directory.join(CHECKPOINT_FILE);
     let checkpoint = Checkpoint::read(&path)?;
+    if checkpoint.body_hash != loaded.body_hash {
+        return Err(CliError::RunDirectory {
+            path: loaded.scenario.body.clone(),
+            reason: format!(
+                "the body file changed since the run's checkpoint (hash {} then, {} now): \
+                 resuming would continue another body; start a new run",
+                checkpoint.body_hash, loaded.body_hash
+            ),
+        });
+    }
     let hash = loaded.hash();
     let hashes = [Some(checkpoint.scenario_hash.as_str()), Some(&manifest.scenario_hash), expected];
     if let Some(other) = hashes.into_iter().flatten().find(|h| *h != hash) {
@@ -222,6 +291,8 @@ fn finish(
     manifest.steps = outcome.summary.steps;
     manifest.frames = outcome.summary.frames;
     manifest.time_s = outcome.state.t;
+    manifest.substepped_steps = outcome.summary.substepped_steps;
+    manifest.max_substeps = outcome.summary.max_substeps;
     manifest.final_state_hash = Some(state_hash(&outcome.state));
     manifest.error.clone_from(&error);
     manifest.write(directory)?;
@@ -277,6 +348,14 @@ fn summarise(
         .iter()
         .map(|(name, seconds)| format!("{name} {:.1}", 1e6 * seconds / steps))
         .collect();
+    if summary.substepped_steps > 0 {
+        writeln!(
+            out,
+            "{} steps were rejected whole (acceptance bounds) and taken as substeps, up to {} per \
+             step",
+            summary.substepped_steps, summary.max_substeps
+        )?;
+    }
     writeln!(
         out,
         "mean µs per step: {}  (total {:.1})",

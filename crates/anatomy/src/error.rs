@@ -128,7 +128,7 @@ pub enum AnatomyError {
         expected: &'static [&'static str],
     },
     /// A value outside its physical range (non-finite, non-positive mass, limit ∉ (0°, 180°), …).
-    #[error("{at}: {field} = {value} is out of range: expected {expected}")]
+    #[error("{at}: {field} = {} is out of range: expected {expected}", readable(*value))]
     OutOfRange {
         /// Position of the value.
         at: Origin,
@@ -185,4 +185,15 @@ pub enum AnatomyError {
     /// field checks, e.g. masses that underflow).
     #[error("the derived model is invalid: {0}")]
     Model(#[from] TreeError),
+}
+
+/// `value` as written in a file: plain for magnitudes in [1e-4, 1e15) (and 0), in scientific
+/// notation otherwise (1e-300, not three hundred zeros).
+fn readable(value: f64) -> String {
+    let magnitude = value.abs();
+    if magnitude == 0.0 || !magnitude.is_finite() || (1e-4..1e15).contains(&magnitude) {
+        value.to_string()
+    } else {
+        format!("{value:e}")
+    }
 }

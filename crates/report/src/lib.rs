@@ -42,6 +42,8 @@ pub use centreline::Centreline;
 pub use error::ReportError;
 pub use forces::{AXES, ThigmoForces};
 pub use metrics::Metrics;
-pub use outputs::{ANIMATION, GLB, PLOTS, REPORT, VTK, Written, render, report, write_all};
+pub use outputs::{
+    ANIMATION, GLB, PLOTS, REPORT, VTK, Written, own_files, render, report, write_all,
+};
 pub use radii::{DEFAULT_RADIUS_CM, Radii};
 pub use run_dir::RunDir;

@@ -45,6 +45,47 @@ impl Written {
     }
 }
 
+/// The files the report crate has written into run directory `dir` (those that exist): the
+/// animation, glTF and report, the plots in `plots/` and the frames and series in `vtk/` — and
+/// nothing else, so that replacing a run never touches a user's files.
+pub fn own_files(dir: &Path) -> Result<Vec<PathBuf>, ReportError> {
+    let mut files: Vec<PathBuf> = [ANIMATION, GLB, REPORT]
+        .iter()
+        .map(|name| dir.join(name))
+        .filter(|path| path.symlink_metadata().is_ok())
+        .collect();
+    files.extend(own_files_in(&dir.join(PLOTS), plots::is_own_file)?);
+    files.extend(own_files_in(&dir.join(VTK), vtk::is_own_file)?);
+    Ok(files)
+}
+
+/// The entries of `dir` (none if it does not exist) whose names `own` accepts, sorted.
+pub(crate) fn own_files_in(dir: &Path, own: fn(&str) -> bool) -> Result<Vec<PathBuf>, ReportError> {
+    let entries = match std::fs::read_dir(dir) {
+        Ok(entries) => entries,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
+        Err(e) => return Err(ReportError::write(dir)(e)),
+    };
+    let mut files = Vec::new();
+    for entry in entries {
+        let entry = entry.map_err(ReportError::write(dir))?;
+        if entry.file_name().to_str().is_some_and(own) {
+            files.push(entry.path());
+        }
+    }
+    files.sort();
+    Ok(files)
+}
+
+/// Writes `bytes` as `path` atomically, replacing a file or link of that name and never
+/// writing through a link ([`hagfish_sim::replace_file`]).
+pub(crate) fn write_file(path: &Path, bytes: &[u8]) -> Result<(), ReportError> {
+    hagfish_sim::replace_file(path, bytes).map_err(|e| match e {
+        hagfish_sim::SimError::Output { source, .. } => ReportError::write(path)(source),
+        other => ReportError::write(path)(std::io::Error::other(other.to_string())),
+    })
+}
+
 /// Which outputs to make.
 #[derive(Clone, Copy, Debug)]
 struct Parts {
@@ -62,7 +103,7 @@ fn make(dir: &Path, parts: Parts) -> Result<Written, ReportError> {
     let gif = written.time("animation", || animation::encode(&run, &gif_path))?;
     if parts.pictures {
         written.files.extend(plots::write(&drawn, &plot_dir)?);
-        std::fs::write(&gif_path, &gif).map_err(ReportError::write(&gif_path))?;
+        write_file(&gif_path, &gif)?;
         written.files.push(gif_path);
     }
     if parts.exports {
@@ -72,13 +113,13 @@ fn make(dir: &Path, parts: Parts) -> Result<Written, ReportError> {
         written.vtk_frames = frames;
         let path = dir.join(GLB);
         let bytes = written.time("glb", || glb::encode(&run.centreline, &run.radii.values));
-        std::fs::write(&path, bytes).map_err(ReportError::write(&path))?;
+        write_file(&path, &bytes)?;
         written.files.push(path);
     }
     if parts.report {
         let path = dir.join(REPORT);
         let page = written.time("report", || html::page(&run, &drawn, &gif));
-        std::fs::write(&path, page).map_err(ReportError::write(&path))?;
+        write_file(&path, page.as_bytes())?;
         written.files.push(path);
     }
     Ok(written)

@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 
 use crate::centreline::Centreline;
 use crate::error::ReportError;
+use crate::outputs::write_file;
 
 /// Name of the series index inside the VTK directory.
 pub const SERIES: &str = "centreline.vtk.series";
@@ -51,28 +52,31 @@ pub fn series_text(centreline: &Centreline) -> String {
     format!("{series:#}\n")
 }
 
-/// Writes every frame and the series index into `dir`, made afresh so that no frame of an
-/// earlier, longer run lingers; returns the series index's path and the number of frame
-/// files.
+/// Whether `name` is one of the files this module writes (a frame or the series index).
+pub fn is_own_file(name: &str) -> bool {
+    let frame = name.strip_prefix("frame_").and_then(|rest| rest.strip_suffix(".vtk"));
+    let digits = |d: &str| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit());
+    name == SERIES || frame.is_some_and(digits)
+}
+
+/// Writes every frame and the series index into `dir` (created if missing), after removing
+/// the frames of an earlier run (so that none of a longer run lingers); other files in `dir`
+/// are left alone. Returns the series index's path and the number of frame files.
 pub fn write(
     centreline: &Centreline,
     radii: &[f64],
     dir: &Path,
 ) -> Result<(PathBuf, usize), ReportError> {
-    match std::fs::remove_dir_all(dir) {
-        Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
-            return Err(ReportError::write(dir)(e));
-        }
-        _ => {}
-    }
     std::fs::create_dir_all(dir).map_err(ReportError::write(dir))?;
+    for path in crate::outputs::own_files_in(dir, is_own_file)? {
+        std::fs::remove_file(&path).map_err(ReportError::write(&path))?;
+    }
     for f in 0..centreline.frames() {
         let path = dir.join(frame_name(f));
-        std::fs::write(&path, frame_text(centreline, radii, f))
-            .map_err(ReportError::write(&path))?;
+        write_file(&path, frame_text(centreline, radii, f).as_bytes())?;
     }
     let path = dir.join(SERIES);
-    std::fs::write(&path, series_text(centreline)).map_err(ReportError::write(&path))?;
+    write_file(&path, series_text(centreline).as_bytes())?;
     Ok((path, centreline.frames()))
 }
 
@@ -91,6 +95,15 @@ mod tests {
         assert_eq!(&lines[8..10], &["LINES 1 4", "3 0 1 2"]);
         assert_eq!(&lines[10..12], &["POINT_DATA 3", "SCALARS radius_cm float 1"]);
         assert_eq!(&lines[13..], &["0.5", "0.75", "0.25"]);
+    }
+
+    #[test]
+    fn only_frames_and_the_series_are_own_files() {
+        assert!(is_own_file("frame_0000.vtk") && is_own_file("frame_12345.vtk"));
+        assert!(is_own_file(SERIES));
+        for other in ["frame_.vtk", "frame_01a.vtk", "mine.vtk", "frame_0001.vtk.bak", "notes"] {
+            assert!(!is_own_file(other), "{other}");
+        }
     }
 
     #[test]

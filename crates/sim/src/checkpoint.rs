@@ -18,13 +18,17 @@ use hagfish_tree::State;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use crate::error::SimError;
+use crate::hash::fnv1a64;
 use crate::recorder::{IntervalMaxima, RecordedFile};
 
 /// Name of the checkpoint file in a run directory.
 pub const CHECKPOINT_FILE: &str = "checkpoint.ron";
 
-/// Version of the checkpoint format.
-pub const CHECKPOINT_FORMAT: u32 = 1;
+/// Version of the checkpoint format (2: body hash, substep counts and the checksum line).
+pub const CHECKPOINT_FORMAT: u32 = 2;
+
+/// The first line of a checkpoint file: a RON comment with the FNV-1a hash of the rest.
+const CHECKSUM_PREFIX: &str = "// fnv1a64 ";
 
 /// f64 values stored exactly: the 16 hexadecimal digits of each value's bits, separated by
 /// spaces.
@@ -66,6 +70,9 @@ pub struct Checkpoint {
     pub format: u32,
     /// Hash of the resolved scenario ([`crate::LoadedScenario::hash`]), to refuse another's.
     pub scenario_hash: String,
+    /// Hash of the body file's bytes ([`crate::LoadedScenario::body_hash`]), to refuse a
+    /// resume after the body file was edited.
+    pub body_hash: String,
     /// Frames recorded (the next frame's index).
     pub frames: usize,
     /// Steps taken.
@@ -82,6 +89,10 @@ pub struct Checkpoint {
     pub controller: ControllerState,
     /// Worst penetrations and limit excess of the run so far.
     pub maxima: IntervalMaxima,
+    /// Steps taken as substeps so far ([`crate::RunSummary::substepped_steps`]).
+    pub substepped_steps: u64,
+    /// The most substeps of one step so far.
+    pub max_substeps: u32,
     /// Output files and their lengths at this frame (empty when not written by a recorder).
     pub files: Vec<RecordedFile>,
 }
@@ -96,9 +107,23 @@ impl Checkpoint {
         }
     }
 
-    /// Reads a checkpoint (errors at their `file:line:column`).
+    /// Reads a checkpoint: its first line must hold the checksum of the rest (any changed or
+    /// lost byte is refused), then the RON is parsed (errors at their `file:line:column`).
     pub fn read(path: &Path) -> Result<Self, SimError> {
-        let checkpoint = DataFile::<Checkpoint>::read(path)?.value;
+        let refuse = |reason: String| SimError::Checkpoint { path: path.to_path_buf(), reason };
+        let bytes = std::fs::read(path).map_err(|e| refuse(e.to_string()))?;
+        let (first, rest) = match bytes.iter().position(|&b| b == b'\n') {
+            Some(end) => (&bytes[..end], &bytes[end + 1..]),
+            None => (&bytes[..], &[][..]),
+        };
+        let expected = format!("{CHECKSUM_PREFIX}{:016x}", fnv1a64(rest));
+        if first != expected.as_bytes() {
+            return Err(refuse(format!(
+                "checksum mismatch: the first line should be `{expected}` for the content that \
+                 follows; the file was changed or damaged after it was written"
+            )));
+        }
+        let checkpoint = DataFile::<Checkpoint>::parse(&bytes, path)?.value;
         if checkpoint.format != CHECKPOINT_FORMAT || checkpoint.t.0.len() != 1 {
             return Err(SimError::Checkpoint {
                 path: path.to_path_buf(),
@@ -122,9 +147,8 @@ impl Checkpoint {
         let config = ron::ser::PrettyConfig::default().escape_strings(false);
         let text =
             ron::ser::to_string_pretty(self, config).map_err(|e| fail(std::io::Error::other(e)))?;
-        let temporary = path.with_extension("ron.partial");
-        std::fs::write(&temporary, text).map_err(fail)?;
-        std::fs::rename(&temporary, path).map_err(fail)
+        let file = format!("{CHECKSUM_PREFIX}{:016x}\n{text}", fnv1a64(text.as_bytes()));
+        crate::output_file::replace_file(path, file.as_bytes())
     }
 }
 
@@ -138,6 +162,7 @@ mod tests {
         let checkpoint = Checkpoint {
             format: CHECKPOINT_FORMAT,
             scenario_hash: "0123456789abcdef".into(),
+            body_hash: "fedcba9876543210".into(),
             frames: 7,
             steps: 70,
             t: ExactF64s(vec![0.7000000000000005]),
@@ -146,6 +171,8 @@ mod tests {
             multipliers: ExactF64s(Vec::new()),
             controller: ControllerState::default(),
             maxima: IntervalMaxima { self_penetration: 0.1 + 0.2, ..IntervalMaxima::default() },
+            substepped_steps: 3,
+            max_substeps: 4,
             files: vec![RecordedFile { name: "q.npy".into(), bytes: 128 }],
         };
         let dir = std::env::temp_dir().join(format!("hagfish-checkpoint-{}", std::process::id()));

@@ -83,6 +83,20 @@ pub enum SimError {
         /// Available memory (bytes).
         available: u64,
     },
+    /// The scenario needs more steps than the run may take ([`crate::RunOptions::max_steps`]).
+    #[error(
+        "the scenario needs {steps:e} steps (duration_s / time_step_s), more than the cap of \
+         {cap}: shorten it, raise the time step, or allow more with --max-steps"
+    )]
+    TooManySteps {
+        /// duration / time step.
+        steps: f64,
+        /// The cap.
+        cap: u64,
+    },
+    /// The controller could not return to a saved state (a retried step, a resume).
+    #[error("controller: {0}")]
+    Controller(#[from] hagfish_control::ControlError),
     /// Invalid options (non-positive time step, negative margin, …).
     #[error("invalid option {name} = {value}: {expected}")]
     InvalidOption {
@@ -122,6 +136,29 @@ pub enum SimError {
         time: f64,
         /// The underlying error.
         source: SolverError,
+    },
+    /// The step's result is not physically valid ([`crate::StepAcceptance`]); the state was
+    /// not advanced.
+    #[error("step {step} (t = {time} s): result rejected: {rejection}")]
+    StepRejected {
+        /// Step index.
+        step: u64,
+        /// Simulation time (s).
+        time: f64,
+        /// The bound exceeded.
+        rejection: crate::Rejection,
+    },
+    /// A step failed even when divided into substeps down to the smallest allowed.
+    #[error("{first} (and again with {divisions} substeps of {substep_s:e} s: {last})")]
+    StepFailedWithSubsteps {
+        /// The error of the whole step.
+        first: Box<SimError>,
+        /// The most substeps tried.
+        divisions: u32,
+        /// Their length (s).
+        substep_s: f64,
+        /// The error of the last try.
+        last: Box<SimError>,
     },
     /// The velocity solve did not produce a usable answer; the state was not advanced.
     #[error(

@@ -62,13 +62,34 @@ pub struct GroupForces {
 impl GroupForces {
     /// Adds the impulses `C_gᵀλ_g` of the step just solved.
     pub fn add_step(&mut self, data: &StepData, dofs: usize) {
+        self.add_impulses(data, dofs);
+        self.steps += 1;
+    }
+
+    /// Adds the impulses of the last (sub)step of `data` without counting a step: the
+    /// substeps of one step add their impulses, and the step is counted once
+    /// ([`GroupForces::count_as_one_step`]).
+    pub fn add_impulses(&mut self, data: &StepData, dofs: usize) {
         for (values, group) in self.values.iter_mut().zip(RECORDED_GROUPS) {
             values.resize(dofs, 0.0);
             for (value, impulse) in values.iter_mut().zip(data.solver.group_impulse(group)) {
                 *value += impulse;
             }
         }
-        self.steps += 1;
+    }
+
+    /// Counts the impulses added since the last [`GroupForces::clear`] as one step.
+    pub fn count_as_one_step(&mut self) {
+        self.steps = 1;
+    }
+
+    /// Adds the impulses and steps of `other` (a retried step's substeps).
+    pub fn absorb(&mut self, other: &GroupForces, dofs: usize) {
+        for (values, added) in self.values.iter_mut().zip(&other.values) {
+            values.resize(dofs, 0.0);
+            values.iter_mut().zip(added).for_each(|(value, a)| *value += a);
+        }
+        self.steps += other.steps;
     }
 
     /// Turns the summed impulses into mean forces over the interval's steps of `time_step`

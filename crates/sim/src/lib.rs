@@ -3,11 +3,13 @@
 //! The step pipeline of the hagfish simulator (`docs/architecture.md`): a [`World`] holds an
 //! immutable tree [`hagfish_tree::Model`] and [`StepOptions`], the minimal
 //! [`hagfish_tree::State`], and [`StepData`] for everything derived. One step runs named
-//! stages ([`pipeline`]): kinematics → applied forces → dynamics (M̃, f̃) → contact detection
-//! (centreline, self and wall contacts) → constraint rows (head, limits, wall, self contact;
-//! [`rows`]) → velocity solve (Cholesky / KKT / QP, `hagfish-solver`) → integration.
+//! stages ([`pipeline`]): kinematics → contact detection (centreline, self and wall contacts)
+//! → control → dynamics (M̃, f̃) → constraint rows (head, limits, wall, self contact;
+//! [`rows`]) → velocity solve (Cholesky / KKT / QP, `hagfish-solver`) → integration → the
+//! result's check (its kinematics and contacts, kept for the next step; [`StepAcceptance`]).
 //! CGS units throughout.
 
+mod acceptance;
 mod backend;
 mod benchmark_chain;
 mod benchmark_state;
@@ -35,6 +37,7 @@ mod scientific;
 mod step_data;
 mod world;
 
+pub use acceptance::{EndOfStep, Rejection, StepAcceptance};
 pub use backend::DynamicsBackend;
 pub use benchmark_chain::segment_chain;
 pub use benchmark_state::{KNOTTED_SCENARIO, KNOTTED_TIME_S, knotted_world};
@@ -46,6 +49,7 @@ pub use hash::{fnv1a64, state_hash};
 pub use memory::{available_memory, check_memory, step_memory_estimate};
 pub use npy::{NpyArray, read_npy};
 pub use options::StepOptions;
+pub use output_file::replace_file;
 pub use overrides::{Override, apply_overrides};
 pub use parameters::{PARAMETERS, Parameter};
 pub use recorder::{

@@ -5,6 +5,7 @@ use hagfish_geometry::{DetectorOptions, WallOptions};
 use hagfish_solver::SolverOptions;
 use hagfish_tree::Model;
 
+use crate::acceptance::StepAcceptance;
 use crate::backend::DynamicsBackend;
 use crate::error::SimError;
 
@@ -53,6 +54,8 @@ pub struct StepOptions {
     /// this tolerance (cm) below its target is raised and the step solved again. `None`: off
     /// (first-order rows only). Default 0.001 cm (≈ 0.2 % of the radius).
     pub contact_prediction: Option<f64>,
+    /// When a step's result is accepted ([`StepAcceptance`]).
+    pub acceptance: StepAcceptance,
 }
 
 impl Default for StepOptions {
@@ -71,6 +74,7 @@ impl Default for StepOptions {
             velocity_product_iterations: 1,
             backend: DynamicsBackend::default(),
             contact_prediction: Some(0.001),
+            acceptance: StepAcceptance::default(),
         }
     }
 }
@@ -112,6 +116,7 @@ impl StepOptions {
             self.contact_exclusion_diameters > 0.0,
             "finite and > 0",
         )?;
+        self.acceptance.validate()?;
         match self.contact_prediction {
             Some(tolerance) => {
                 check("contact_prediction", tolerance, tolerance >= 0.0, "finite and ≥ 0 (cm)")

@@ -23,15 +23,22 @@ pub(crate) struct OutputFile {
 }
 
 impl OutputFile {
-    /// Creates (or empties) the file at `path`.
+    /// Creates the file at `path`, replacing a file or symbolic link of that name (the link
+    /// itself, never what it points to).
     pub(crate) fn create(path: &Path) -> Result<Self, SimError> {
-        let file = File::create(path).map_err(|source| output(path, source))?;
+        remove_if_present(path)?;
+        let file = OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(path)
+            .map_err(|source| output(path, source))?;
         Ok(Self { path: path.to_path_buf(), file, written: 0, pending: Vec::new() })
     }
 
     /// Opens the existing file at `path`, cuts it to `length` bytes and appends from there.
     pub(crate) fn reopen(path: &Path, length: u64) -> Result<Self, SimError> {
         let fail = |source| output(path, source);
+        refuse_symlink(path)?;
         let mut file = OpenOptions::new().write(true).open(path).map_err(fail)?;
         let actual = file.metadata().map_err(fail)?.len();
         if actual < length {
@@ -90,6 +97,42 @@ impl OutputFile {
     /// The file's length in bytes, gathered bytes included.
     pub(crate) fn len(&self) -> u64 {
         self.written + self.pending.len() as u64
+    }
+}
+
+/// Writes `bytes` as the file at `path` atomically and without following symbolic links: into
+/// a new file beside it (`NAME.partial`, created exclusively), then renamed over `path`, which
+/// replaces a file or a link of that name but never writes through a link. A reader sees the
+/// old content or the new, never a part.
+pub fn replace_file(path: &Path, bytes: &[u8]) -> Result<(), SimError> {
+    let mut name = path.file_name().unwrap_or_default().to_os_string();
+    name.push(".partial");
+    let temporary = path.with_file_name(name);
+    remove_if_present(&temporary)?;
+    let fail = |source| output(path, source);
+    let mut file =
+        OpenOptions::new().write(true).create_new(true).open(&temporary).map_err(fail)?;
+    file.write_all(bytes).map_err(fail)?;
+    drop(file);
+    std::fs::rename(&temporary, path).map_err(fail)
+}
+
+/// Removes the file or symbolic link at `path` if there is one.
+fn remove_if_present(path: &Path) -> Result<(), SimError> {
+    match std::fs::remove_file(path) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => Err(output(path, e)),
+        _ => Ok(()),
+    }
+}
+
+/// Refuses a symbolic link at `path`: a run appends only to files of its own.
+fn refuse_symlink(path: &Path) -> Result<(), SimError> {
+    match std::fs::symlink_metadata(path) {
+        Ok(meta) if meta.file_type().is_symlink() => Err(output(
+            path,
+            std::io::Error::other("is a symbolic link; a run writes only files of its own"),
+        )),
+        _ => Ok(()),
     }
 }
 

@@ -60,6 +60,37 @@ pub const PARAMETERS: &[Parameter] = &[
         "velocity-step linear algebra: DenseReduced, or SparseMaximal (linear in the bodies)",
     ),
     p(
+        "acceptance",
+        "-",
+        "(...)",
+        "when a step's result is kept; a rejected step is retried with substeps",
+    ),
+    p(
+        "acceptance.max_self_penetration_relative",
+        "-",
+        "0.1",
+        "deepest self penetration at a step's end, fraction of the local radius",
+    ),
+    p(
+        "acceptance.max_wall_penetration_relative",
+        "-",
+        "0.1",
+        "deepest wall penetration at a step's end, fraction of the body's radius",
+    ),
+    p("acceptance.max_limit_excess_deg", "°", "2", "largest joint-limit excess at a step's end"),
+    p(
+        "acceptance.max_inexact_residual",
+        "-",
+        "1e-4",
+        "largest relative KKT residual accepted from an inexact velocity solve",
+    ),
+    p(
+        "acceptance.max_halvings",
+        "-",
+        "4",
+        "a rejected step is retried as 2, 4, … 2^k substeps; then the run stops (exit 3)",
+    ),
+    p(
         "phases[].Form",
         "-",
         "-",
@@ -245,6 +276,7 @@ mod tests {
             record_every_s: 0.1,
             drag: Some(WaterDrag::default()),
             backend: crate::DynamicsBackend::SparseMaximal,
+            acceptance: crate::StepAcceptance::default(),
             phases: vec![
                 Phase::Form(FormingScript {
                     gains: TailGains::default(),

@@ -3,8 +3,12 @@
 //! ```text
 //! kinematics → detect_contacts → control → dynamics → build_rows → solve_velocities
 //!   → [predict_contact_gaps | refresh_velocity_products | add_overshooting_limit_rows
-//!      → solve_velocities]* → integrate
+//!      → solve_velocities]* → integrate → check_result
 //! ```
+//!
+//! `check_result` runs the kinematics and contact detection of the new state, judges it
+//! ([`crate::StepAcceptance`]) and keeps what it detected for the next step, whose first two
+//! stages then take it over instead of running again: one detection per step.
 //!
 //! Each stage is a public function of the immutable model and options and the mutable step
 //! data, so tests and benchmarks can run any prefix.
@@ -12,8 +16,10 @@
 use std::time::Instant;
 
 use hagfish_control::{ControlContext, Controller};
+use hagfish_solver::SolveStatus;
 use hagfish_tree::{Model, State};
 
+use crate::acceptance::EndOfStep;
 use crate::backend::{self, Reuse};
 use crate::error::SimError;
 use crate::options::StepOptions;
@@ -155,14 +161,21 @@ pub fn step(
     data.report = StepReport { step: step_index, time, ..StepReport::default() };
     let mut timings = StageTimings::default();
     let clock = Instant::now();
-    kinematics(model, state, data);
     let mut lap = lap_timer(clock);
-    timings.kinematics = lap();
-    detect_contacts(model, options, data).map_err(|source| SimError::Geometry {
-        step: step_index,
-        time,
-        source,
-    })?;
+    if data.next.current {
+        // The previous step's check left this state's kinematics in `data.tree`.
+        data.swap_next();
+        data.report.detection = data.next.detection;
+        data.next.current = false;
+    } else {
+        kinematics(model, state, data);
+        timings.kinematics = lap();
+        detect_contacts(model, options, data).map_err(|source| SimError::Geometry {
+            step: step_index,
+            time,
+            source,
+        })?;
+    }
     measure_penetration(data);
     timings.detect_contacts = lap();
     control(model, options, state, data, controller);
@@ -189,8 +202,52 @@ pub fn step(
     hagfish_tree::integrate(state, data.solver.velocity(), options.time_step)
         .map_err(|source| SimError::Tree { step: step_index, time, source })?;
     timings.integrate = lap();
+    let end = check_result(model, options, state, data).map_err(|source| SimError::Geometry {
+        step: step_index,
+        time,
+        source,
+    })?;
+    timings.check = lap();
     data.report.timings = timings;
-    Ok(())
+    match options.acceptance.judge(&end) {
+        None => Ok(()),
+        Some(rejection) => Err(SimError::StepRejected { step: step_index, time, rejection }),
+    }
+}
+
+/// Last stage: the kinematics and contacts of the step's result `state` (kept in
+/// `data.next` for the next step, and the kinematics in `data.tree`), and what its
+/// acceptance is judged on. The contacts of the step's start stay in `data` for the report.
+pub fn check_result(
+    model: &Model,
+    options: &StepOptions,
+    state: &State,
+    data: &mut StepData,
+) -> Result<EndOfStep, hagfish_geometry::GeometryError> {
+    kinematics(model, state, data);
+    data.swap_next();
+    let start_detection = data.report.detection;
+    let detected = detect_contacts(model, options, data);
+    data.next.detection = std::mem::replace(&mut data.report.detection, start_detection);
+    let penetration = penetration(data);
+    data.swap_next();
+    detected?;
+    data.next.current = true;
+    let solve = &data.report.solve;
+    let inexact = solve.status == SolveStatus::SolvedInexact;
+    Ok(EndOfStep {
+        self_penetration_relative: penetration.self_relative,
+        wall_penetration_relative: penetration.wall_relative,
+        limit_excess: limit_excess(model, &state.q),
+        inexact_residual: inexact.then_some(solve.residuals.worst_relative),
+    })
+}
+
+/// The largest excess of a joint angle in `q` over its limits (rad, 0 when all are within;
+/// NaN for a non-finite angle).
+pub fn limit_excess(model: &Model, q: &[f64]) -> f64 {
+    let excess = model.dofs().iter().zip(q).map(|(d, q)| (d.lower - q).max(q - d.upper));
+    excess.fold(0.0, |worst, e| if e.is_nan() { f64::NAN } else { worst.max(e) })
 }
 
 /// Optional stage 6c: predicts every self-contact gap at the end of the step, `q + h q̇`, and
@@ -267,19 +324,41 @@ fn lap_timer(start: Instant) -> impl FnMut() -> f64 {
     }
 }
 
-fn measure_penetration(data: &mut StepData) {
-    let report = &mut data.report;
-    report.self_contacts = data.self_contacts.len();
-    report.wall_contacts = data.wall_contacts.len();
+/// The deepest penetrations of the contacts in `data` (start-of-step fields).
+#[derive(Debug, Clone, Copy, Default)]
+struct Penetration {
+    /// Self, cm.
+    self_cm: f64,
+    /// Self, relative to the local radius `(r_a + r_b)/2`.
+    self_relative: f64,
+    /// Wall, cm.
+    wall_cm: f64,
+    /// Wall, relative to the body's radius.
+    wall_relative: f64,
+}
+
+fn penetration(data: &StepData) -> Penetration {
+    let mut deepest = Penetration::default();
     for contact in &data.self_contacts {
         let depth = (-contact.gap).max(0.0);
         let radius =
             0.5 * (data.centreline.radius(contact.u_a) + data.centreline.radius(contact.u_b));
-        report.max_self_penetration = report.max_self_penetration.max(depth);
-        report.max_self_penetration_relative =
-            report.max_self_penetration_relative.max(depth / radius);
+        deepest.self_cm = deepest.self_cm.max(depth);
+        deepest.self_relative = deepest.self_relative.max(depth / radius);
     }
     for contact in &data.wall_contacts {
-        report.max_wall_penetration = report.max_wall_penetration.max(-contact.gap);
+        deepest.wall_cm = deepest.wall_cm.max(-contact.gap);
+        deepest.wall_relative = deepest.wall_relative.max(-contact.gap / data.radii[contact.body]);
     }
+    deepest
+}
+
+fn measure_penetration(data: &mut StepData) {
+    let deepest = penetration(data);
+    let report = &mut data.report;
+    report.self_contacts = data.self_contacts.len();
+    report.wall_contacts = data.wall_contacts.len();
+    report.max_self_penetration = deepest.self_cm;
+    report.max_self_penetration_relative = deepest.self_relative;
+    report.max_wall_penetration = deepest.wall_cm;
 }

@@ -158,6 +158,17 @@ const CSV_FILES: [(&str, &str); 4] = [
 const NPY_FILES: [&str; 3] = ["q.npy", "qdot.npy", "thigmo_force.npy"];
 
 impl Recorder {
+    /// The names of the files a recorder writes in its directory.
+    pub const FILE_NAMES: [&str; 7] = [
+        CSV_FILES[0].0,
+        CSV_FILES[1].0,
+        CSV_FILES[2].0,
+        CSV_FILES[3].0,
+        NPY_FILES[0],
+        NPY_FILES[1],
+        NPY_FILES[2],
+    ];
+
     /// Creates `directory` (and parents) and the output files (CSV with their headers, `.npy`
     /// with `dofs` columns and no rows).
     pub fn create(directory: &Path, dofs: usize) -> Result<Self, SimError> {

@@ -48,6 +48,8 @@ pub struct StageTimings {
     pub solve: f64,
     /// Position update.
     pub integrate: f64,
+    /// The result's kinematics and contacts (taken over by the next step) and its judgement.
+    pub check: f64,
 }
 
 impl StageTimings {
@@ -60,10 +62,11 @@ impl StageTimings {
         self.build_rows += other.build_rows;
         self.solve += other.solve;
         self.integrate += other.integrate;
+        self.check += other.check;
     }
 
     /// The named stages and their seconds, in pipeline order.
-    pub fn stages(&self) -> [(&'static str, f64); 7] {
+    pub fn stages(&self) -> [(&'static str, f64); 8] {
         [
             ("kinematics", self.kinematics),
             ("detect_contacts", self.detect_contacts),
@@ -72,6 +75,7 @@ impl StageTimings {
             ("build_rows", self.build_rows),
             ("solve", self.solve),
             ("integrate", self.integrate),
+            ("check", self.check),
         ]
     }
 
@@ -84,5 +88,6 @@ impl StageTimings {
             + self.build_rows
             + self.solve
             + self.integrate
+            + self.check
     }
 }

@@ -61,6 +61,11 @@ pub struct RunSummary {
     pub timings: StageTimings,
     /// The thigmotaxic force field of every frame recorded by this call.
     pub force_field: ForceFieldLog,
+    /// Steps whose whole-step result was rejected and that were taken as substeps (in the
+    /// whole run).
+    pub substepped_steps: u64,
+    /// The most substeps one step needed (1 when none was divided).
+    pub max_substeps: u32,
 }
 
 /// Where a run starts and when it stops early.
@@ -70,19 +75,30 @@ pub struct RunOptions<'a> {
     pub resume: Option<&'a Checkpoint>,
     /// Stop once the frame with this index has been recorded (before the scenario's end).
     pub stop_after_frame: Option<usize>,
-    /// Stop after the next recorded frame once this flag is set (by a signal handler).
+    /// Stop once this flag is set (by a signal handler): checked after every step, so a run
+    /// stops within one step; the checkpoint is that of the last recorded frame.
     pub stop: Option<&'a AtomicBool>,
+    /// The most steps the run may take (`None`: [`DEFAULT_MAX_STEPS`]); a scenario that needs
+    /// more is refused before it starts.
+    pub max_steps: Option<u64>,
 }
+
+/// The default cap on the steps of a run: 10⁸ steps are ≈ 5 h at 100 bodies (≈ 180 µs per
+/// step) and ≈ 30 GB of outputs at one frame per 10 steps; more needs an explicit cap.
+pub const DEFAULT_MAX_STEPS: u64 = 100_000_000;
 
 /// How a run ended.
 #[derive(Debug)]
 pub enum RunEnd {
     /// The scenario's whole duration was simulated.
     Completed,
-    /// Stopped after the frame given by [`RunOptions::stop_after_frame`] or after the flag
-    /// [`RunOptions::stop`] was set.
+    /// Stopped after the frame given by [`RunOptions::stop_after_frame`], or after a step once
+    /// the flag [`RunOptions::stop`] was set (then the steps since the last frame are not
+    /// recorded: a resume takes them again from the checkpoint).
     Interrupted,
-    /// A step failed (non-finite state, failed solve, …); the outputs hold every frame before.
+    /// A step failed or was rejected (non-finite state, failed solve, penetration or limit
+    /// excess beyond [`crate::StepAcceptance`], …) even as substeps down to h/2^k; the
+    /// outputs hold every frame before.
     Diverged {
         /// What failed.
         error: SimError,
@@ -134,11 +150,19 @@ pub fn run(
         })?;
         summary.frames = checkpoint.frames;
         summary.maxima = checkpoint.maxima;
+        summary.substepped_steps = checkpoint.substepped_steps;
+        summary.max_substeps = checkpoint.max_substeps;
     }
+    summary.max_substeps = summary.max_substeps.max(1);
     let scenario = &loaded.scenario;
-    let steps = (scenario.duration_s / scenario.time_step_s).round() as u64;
+    let steps = (scenario.duration_s / scenario.time_step_s).round();
+    let cap = options.max_steps.unwrap_or(DEFAULT_MAX_STEPS);
+    if steps.is_nan() || steps > cap as f64 {
+        return Err(SimError::TooManySteps { steps, cap });
+    }
+    let steps = steps as u64;
     let record_every = ((scenario.record_every_s / scenario.time_step_s).round() as u64).max(1);
-    let mut recording = Recording::new(&world, loaded.hash());
+    let mut recording = Recording::new(&world, loaded.hash(), loaded.body_hash.clone());
     // Frame 0 is the initial state; a resumed run recorded its last frame before it stopped.
     let mut record = options.resume.is_none();
     let end = loop {
@@ -160,19 +184,14 @@ pub fn run(
         if world.steps() >= steps {
             break RunEnd::Completed;
         }
-        match world.step(&mut controller) {
-            Ok(report) => {
-                recording.last_report = *report;
-                recording.forces.add_step(world.data(), world.model().dof_count());
-                recording.maxima.include(&recording.last_report, world.max_limit_excess());
-                summary.timings.accumulate(&recording.last_report.timings);
-            }
-            Err(error) => {
-                let at = Box::new(recording.checkpoint(&world, &controller, &summary));
-                break RunEnd::Diverged { error, at };
-            }
+        if let Err(error) = recording.advance(&mut world, &mut controller, &mut summary) {
+            let at = Box::new(recording.checkpoint(&world, &controller, &summary));
+            break RunEnd::Diverged { error, at };
         }
         record = world.steps() % record_every == 0;
+        if !record && options.stop.is_some_and(|flag| flag.load(Ordering::Relaxed)) {
+            break RunEnd::Interrupted;
+        }
     };
     summary.steps = world.steps();
     Ok(RunOutcome { summary, end, state: world.state().clone() })
@@ -182,6 +201,7 @@ pub fn run(
 /// since the previous frame.
 struct Recording {
     hash: String,
+    body_hash: String,
     knot_options: KnotOptions,
     knots: KnotAnalyser,
     centres: Vec<DVec3>,
@@ -189,12 +209,17 @@ struct Recording {
     forces: GroupForces,
     last_report: StepReport,
     maxima: IntervalMaxima,
+    /// The forces and maxima of the substeps of a step being retried, kept only if every
+    /// substep is accepted.
+    attempt_forces: GroupForces,
+    attempt_maxima: IntervalMaxima,
 }
 
 impl Recording {
-    fn new(world: &World, hash: String) -> Self {
+    fn new(world: &World, hash: String, body_hash: String) -> Self {
         Self {
             hash,
+            body_hash,
             knot_options: KnotOptions::default(),
             knots: KnotAnalyser::default(),
             centres: Vec::with_capacity(world.model().body_count()),
@@ -202,7 +227,88 @@ impl Recording {
             forces: GroupForces::default(),
             last_report: StepReport::default(),
             maxima: IntervalMaxima::default(),
+            attempt_forces: GroupForces::default(),
+            attempt_maxima: IntervalMaxima::default(),
         }
+    }
+
+    /// Takes one step of h: whole, or — if the whole step fails or its result is rejected —
+    /// as 2, 4, … 2^k substeps (k = `acceptance.max_halvings`), each accepted, from the same
+    /// start (state and controller). The step's forces and maxima are added once it is taken.
+    fn advance(
+        &mut self,
+        world: &mut World,
+        controller: &mut PhasedController,
+        summary: &mut RunSummary,
+    ) -> Result<(), SimError> {
+        let saved = controller.state();
+        let dofs = world.model().dof_count();
+        let whole = world.step(controller).copied();
+        let first = match whole {
+            Ok(report) => {
+                self.last_report = report;
+                self.forces.add_step(world.data(), dofs);
+                self.maxima.include(&report, world.max_limit_excess());
+                summary.timings.accumulate(&report.timings);
+                return Ok(());
+            }
+            Err(error) => error,
+        };
+        let h = world.options().time_step;
+        let start = world.state().clone();
+        let mut last = None;
+        for halvings in 1..=world.options().acceptance.max_halvings {
+            let divisions = 1u32 << halvings;
+            controller.restore(&saved)?;
+            self.attempt_forces.clear();
+            self.attempt_maxima = IntervalMaxima::default();
+            match self.substeps(world, controller, summary, divisions, h) {
+                Ok(()) => {
+                    world.count_step();
+                    self.attempt_forces.count_as_one_step();
+                    self.forces.absorb(&self.attempt_forces, dofs);
+                    self.maxima.merge(&self.attempt_maxima);
+                    summary.substepped_steps += 1;
+                    summary.max_substeps = summary.max_substeps.max(divisions);
+                    return Ok(());
+                }
+                Err(error) => {
+                    world.set_state(start.clone())?;
+                    last = Some((divisions, error));
+                }
+            }
+        }
+        controller.restore(&saved)?;
+        Err(match last {
+            None => first,
+            Some((divisions, last)) => SimError::StepFailedWithSubsteps {
+                first: Box::new(first),
+                divisions,
+                substep_s: h / f64::from(divisions),
+                last: Box::new(last),
+            },
+        })
+    }
+
+    /// `divisions` substeps of `h / divisions`, each accepted, adding their forces and maxima
+    /// to the attempt's.
+    fn substeps(
+        &mut self,
+        world: &mut World,
+        controller: &mut PhasedController,
+        summary: &mut RunSummary,
+        divisions: u32,
+        h: f64,
+    ) -> Result<(), SimError> {
+        let dofs = world.model().dof_count();
+        for _ in 0..divisions {
+            let report = *world.substep(controller, h / f64::from(divisions))?;
+            self.last_report = report;
+            self.attempt_forces.add_impulses(world.data(), dofs);
+            self.attempt_maxima.include(&report, world.max_limit_excess());
+            summary.timings.accumulate(&report.timings);
+        }
+        Ok(())
     }
 
     /// Records the current state as the next frame, then hands its checkpoint to the sink.
@@ -269,6 +375,7 @@ impl Recording {
         Checkpoint {
             format: CHECKPOINT_FORMAT,
             scenario_hash: self.hash.clone(),
+            body_hash: self.body_hash.clone(),
             frames: summary.frames,
             steps: world.steps(),
             t: ExactF64s(vec![state.t]),
@@ -277,6 +384,8 @@ impl Recording {
             multipliers: ExactF64s(world.data().solver.multipliers().to_vec()),
             controller: controller.state(),
             maxima,
+            substepped_steps: summary.substepped_steps,
+            max_substeps: summary.max_substeps,
             files: Vec::new(),
         }
     }

@@ -20,6 +20,7 @@ use hagfish_control::{Phase, PhasedController, WaterDrag};
 use hagfish_tree::State;
 use serde::{Deserialize, Serialize};
 
+use crate::acceptance::StepAcceptance;
 use crate::backend::DynamicsBackend;
 use crate::error::SimError;
 use crate::options::StepOptions;
@@ -35,7 +36,7 @@ pub struct Scenario {
     pub name: String,
     /// The biometrics file, relative to the scenario file (absolute once loaded).
     pub body: PathBuf,
-    /// Time step h (s), > 0.
+    /// Time step h (s), at least [`MIN_TIME_STEP_S`].
     pub time_step_s: f64,
     /// Simulated time (s), > 0.
     pub duration_s: f64,
@@ -51,7 +52,15 @@ pub struct Scenario {
     /// (linear in the number of bodies, for long bodies; same answer up to rounding).
     #[serde(default)]
     pub backend: DynamicsBackend,
+    /// When a step's result is accepted, and how far a rejected step is divided
+    /// ([`StepAcceptance`]; defaults suit any body).
+    #[serde(default)]
+    pub acceptance: StepAcceptance,
 }
+
+/// The smallest time step a scenario may ask for (s): below it a run cannot make progress in
+/// any reasonable time (30 s of simulation would be 3·10⁷ steps, ≈ 1.5 h at 100 bodies).
+pub const MIN_TIME_STEP_S: f64 = 1e-6;
 
 fn default_record_every() -> f64 {
     0.1
@@ -73,6 +82,9 @@ pub struct LoadedScenario {
     pub biometrics: Biometrics,
     /// The scenario file's path.
     pub path: PathBuf,
+    /// FNV-1a hash of the body file's bytes (16 hex digits), so that a resume can tell that
+    /// the body file changed although the scenario (which names it) did not.
+    pub body_hash: String,
 }
 
 impl LoadedScenario {
@@ -121,9 +133,14 @@ impl LoadedScenario {
             other => SimError::DataFile(other),
         })?;
         check_scenario(&file, biometrics.body_count)?;
+        let bytes = std::fs::read(&body).map_err(|source| SimError::BodyFile {
+            at: file.locate(&Field::whole("body")),
+            source: Box::new(AnatomyError::Io { path: body.clone(), source }),
+        })?;
+        let body_hash = format!("{:016x}", crate::hash::fnv1a64(&bytes));
         let body = std::fs::canonicalize(&body).unwrap_or(body);
         let resolved = Scenario { body, ..file.value };
-        Ok(Self { scenario: resolved, biometrics, path: file.path })
+        Ok(Self { scenario: resolved, biometrics, path: file.path, body_hash })
     }
 
     /// The scenario as RON text with every default filled in and the body file as an absolute
@@ -144,6 +161,7 @@ impl LoadedScenario {
         let options = StepOptions {
             time_step: self.scenario.time_step_s,
             backend: self.scenario.backend,
+            acceptance: self.scenario.acceptance,
             ..StepOptions::default()
         };
         let world = World::new(model, options, state)?;

@@ -12,11 +12,13 @@ use std::collections::HashMap;
 use hagfish_anatomy::{AnatomyError, DataFile, Field};
 use hagfish_control::{FormingScript, Phase, ScriptStep, ThigmoPhase, Waypoint};
 
-use crate::scenario::Scenario;
+use crate::scenario::{MIN_TIME_STEP_S, Scenario};
 
 /// What a value must be.
 #[derive(Clone, Copy)]
 enum Range {
+    AtLeast(f64),
+    AtMost(f64),
     Positive,
     NonNegative,
     Finite,
@@ -26,17 +28,21 @@ impl Range {
     fn holds(self, value: f64) -> bool {
         value.is_finite()
             && match self {
+                Range::AtLeast(floor) => value >= floor,
+                Range::AtMost(cap) => value <= cap,
                 Range::Positive => value > 0.0,
                 Range::NonNegative => value >= 0.0,
                 Range::Finite => true,
             }
     }
 
-    fn expected(self) -> &'static str {
+    fn expected(self) -> String {
         match self {
-            Range::Positive => "finite and > 0",
-            Range::NonNegative => "finite and ≥ 0",
-            Range::Finite => "finite",
+            Range::AtLeast(floor) => format!("finite and ≥ {floor:e}"),
+            Range::AtMost(cap) => format!("at most {cap}"),
+            Range::Positive => "finite and > 0".into(),
+            Range::NonNegative => "finite and ≥ 0".into(),
+            Range::Finite => "finite".into(),
         }
     }
 }
@@ -66,7 +72,7 @@ impl Checker<'_> {
             at: self.file.locate(&field),
             field,
             value,
-            expected: range.expected().into(),
+            expected: range.expected(),
         })
     }
 
@@ -151,13 +157,23 @@ pub(crate) fn check_scenario(file: &DataFile<Scenario>, bodies: usize) -> Result
     let mut checker = Checker { file, seen: HashMap::new() };
     // The top-level `body:` (the biometrics file) comes before any `FromBody(body: …)`.
     checker.next_field("body");
-    checker.check("time_step_s", s.time_step_s, Range::Positive)?;
+    checker.check("time_step_s", s.time_step_s, Range::AtLeast(MIN_TIME_STEP_S))?;
     checker.check("duration_s", s.duration_s, Range::Positive)?;
     checker.check("record_every_s", s.record_every_s, Range::Positive)?;
     if let Some(drag) = s.drag {
         checker.check("linear_dyn_s_per_cm3", drag.linear_dyn_s_per_cm3, Range::NonNegative)?;
         checker.check("quadratic_g_per_cm3", drag.quadratic_g_per_cm3, Range::NonNegative)?;
     }
+    let a = &s.acceptance;
+    for (key, value) in [
+        ("max_self_penetration_relative", a.max_self_penetration_relative),
+        ("max_wall_penetration_relative", a.max_wall_penetration_relative),
+        ("max_limit_excess_deg", a.max_limit_excess_deg),
+        ("max_inexact_residual", a.max_inexact_residual),
+    ] {
+        checker.check(key, value, Range::Positive)?;
+    }
+    checker.check("max_halvings", f64::from(a.max_halvings), Range::AtMost(20.0))?;
     for phase in &s.phases {
         match phase {
             Phase::Form(script) => checker.forming(script, bodies)?,

@@ -3,7 +3,8 @@
 use glam::DVec3;
 use hagfish_control::Actuation;
 use hagfish_geometry::{
-    Centreline, ContactDetector, PAIRS_PER_BODY, SelfContact, Wall, WallContact, WallOptions,
+    Centreline, ContactDetector, DetectionReport, PAIRS_PER_BODY, SelfContact, Wall, WallContact,
+    WallOptions,
 };
 use hagfish_solver::{RowGroup, Rows, SolverWorkspace};
 use hagfish_sparse::TreeFactor;
@@ -64,8 +65,23 @@ pub struct StepData {
     pub(crate) lengths: Vec<f64>,
     pub(crate) velocity_guess: Vec<f64>,
     pub(crate) predictor: ContactPredictor,
+    pub(crate) next: NextContacts,
 }
 
+/// The contacts of the state a step ended in, detected by its last stage
+/// ([`crate::pipeline::check_result`]) to judge the result, and taken over by the next step
+/// instead of detecting them again: detection runs once per step, as before the check existed.
+#[derive(Debug)]
+pub(crate) struct NextContacts {
+    centres: Vec<DVec3>,
+    centreline: Centreline,
+    self_contacts: Vec<SelfContact>,
+    wall_contacts: Vec<WallContact>,
+    /// The counts of that detection.
+    pub(crate) detection: DetectionReport,
+    /// True while these (and the tree kinematics) are those of the world's current state.
+    pub(crate) current: bool,
+}
 /// The wall of `options`, testing only the bodies from the first one whose sphere clears the
 /// wall by its margin in the rest shape (`centres`) on, and never fewer than
 /// `options.wall_options.first_body`: the bodies that touch the wall by construction depend on
@@ -107,10 +123,19 @@ impl StepData {
         let reserve = row_reserve(model, options.backend);
         solver.reserve(model.dof_count(), reserve);
         let predictor = ContactPredictor::new(model, &centreline);
+        let pairs = PAIRS_PER_BODY * model.body_count();
+        let next = NextContacts {
+            centres: centres.clone(),
+            centreline: centreline.clone(),
+            self_contacts: Vec::with_capacity(pairs),
+            wall_contacts: Vec::new(),
+            detection: DetectionReport::default(),
+            current: false,
+        };
         Ok(Self {
             tree,
             centreline,
-            self_contacts: Vec::with_capacity(PAIRS_PER_BODY * model.body_count()),
+            self_contacts: Vec::with_capacity(pairs),
             wall_contacts: Vec::new(),
             actuation: Actuation::default(),
             rows: Rows::with_capacity(model.dof_count(), reserve),
@@ -127,7 +152,17 @@ impl StepData {
             lengths,
             velocity_guess: vec![0.0; model.dof_count()],
             predictor,
+            next,
         })
+    }
+
+    /// Exchanges the contact geometry (centres, centreline, self and wall contacts) with the
+    /// one kept for the next step: O(1), no copies.
+    pub(crate) fn swap_next(&mut self) {
+        std::mem::swap(&mut self.centres, &mut self.next.centres);
+        std::mem::swap(&mut self.centreline, &mut self.next.centreline);
+        std::mem::swap(&mut self.self_contacts, &mut self.next.self_contacts);
+        std::mem::swap(&mut self.wall_contacts, &mut self.next.wall_contacts);
     }
 
     /// The generalized force of a row group over the last step, `C_gᵀλ_g / h` (dyn·cm per

@@ -18,6 +18,8 @@ pub struct World {
     state: State,
     data: StepData,
     steps: u64,
+    /// The state at the start of the step being taken, to return to if it fails.
+    start: State,
 }
 
 impl World {
@@ -31,7 +33,8 @@ impl World {
         })?;
         let mut data = StepData::new(&model, &options)?;
         pipeline::kinematics(&model, &state, &mut data);
-        Ok(Self { model, options, state, data, steps: 0 })
+        let start = state.clone();
+        Ok(Self { model, options, state, data, steps: 0, start })
     }
 
     /// The immutable model.
@@ -68,6 +71,7 @@ impl World {
             source,
         })?;
         self.state = state;
+        self.data.next.current = false;
         pipeline::kinematics(&self.model, &self.state, &mut self.data);
         Ok(())
     }
@@ -97,15 +101,49 @@ impl World {
     /// The largest excess of a joint angle over its limits in the current state (rad, 0 when
     /// all are within).
     pub fn max_limit_excess(&self) -> f64 {
-        let dofs = self.model.dofs().iter().zip(&self.state.q);
-        dofs.map(|(d, q)| (d.lower - q).max(q - d.upper)).fold(0.0, f64::max)
+        pipeline::limit_excess(&self.model, &self.state.q)
     }
 
-    /// Advances one step of `options.time_step` with `controller` deciding the actuation.
+    /// Advances one step of `options.time_step` with `controller` deciding the actuation. A
+    /// step that fails or whose result is rejected ([`crate::StepAcceptance`]) leaves the
+    /// state as it was (the controller is the caller's to restore).
     pub fn step(&mut self, controller: &mut dyn Controller) -> Result<&StepReport, SimError> {
-        let (model, options) = (&self.model, &self.options);
-        pipeline::step(model, options, &mut self.state, self.steps, &mut self.data, controller)?;
+        self.substep(controller, self.options.time_step)?;
         self.steps += 1;
         Ok(&self.data.report)
+    }
+
+    /// Advances the state by `time_step` (a part of `options.time_step`: the runner divides a
+    /// rejected step into substeps) without counting a step; on failure the state is left as
+    /// it was, as by [`World::step`].
+    pub fn substep(
+        &mut self,
+        controller: &mut dyn Controller,
+        time_step: f64,
+    ) -> Result<&StepReport, SimError> {
+        // Field by field: the derived `State::clone_from` would allocate new vectors.
+        self.start.t = self.state.t;
+        self.start.q.clone_from(&self.state.q);
+        self.start.qdot.clone_from(&self.state.qdot);
+        let result = if time_step == self.options.time_step {
+            let (model, options) = (&self.model, &self.options);
+            pipeline::step(model, options, &mut self.state, self.steps, &mut self.data, controller)
+        } else {
+            let options = StepOptions { time_step, ..self.options.clone() };
+            let model = &self.model;
+            pipeline::step(model, &options, &mut self.state, self.steps, &mut self.data, controller)
+        };
+        if let Err(error) = result {
+            std::mem::swap(&mut self.state, &mut self.start);
+            self.data.next.current = false;
+            pipeline::kinematics(&self.model, &self.state, &mut self.data);
+            return Err(error);
+        }
+        Ok(&self.data.report)
+    }
+
+    /// Counts a step made of substeps ([`World::substep`]) as taken.
+    pub fn count_step(&mut self) {
+        self.steps += 1;
     }
 }

@@ -71,6 +71,12 @@ pub fn draw(run: &RunDir, plots: &Path) -> Result<Vec<Plot>, ReportError> {
     Ok(drawn)
 }
 
+/// Whether `name` is a plot file this module writes (`<stem>.png` or `<stem>.svg`).
+pub fn is_own_file(name: &str) -> bool {
+    let stem = name.strip_suffix(".png").or_else(|| name.strip_suffix(".svg"));
+    stem.is_some_and(|s| s.starts_with("kymograph_") || s == "knot_span" || s == "contacts")
+}
+
 /// Writes each plot as `<stem>.png` and `<stem>.svg` into `plots` (created if missing) and
 /// returns the files written.
 pub fn write(drawn: &[Plot], plots: &Path) -> Result<Vec<std::path::PathBuf>, ReportError> {
@@ -79,7 +85,7 @@ pub fn write(drawn: &[Plot], plots: &Path) -> Result<Vec<std::path::PathBuf>, Re
     for plot in drawn {
         for (extension, bytes) in [("png", plot.png.as_slice()), ("svg", plot.svg.as_bytes())] {
             let path = plots.join(format!("{}.{extension}", plot.stem));
-            std::fs::write(&path, bytes).map_err(ReportError::write(&path))?;
+            crate::outputs::write_file(&path, bytes)?;
             files.push(path);
         }
     }

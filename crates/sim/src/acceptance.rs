@@ -1,0 +1,215 @@
+//! Step acceptance: a step's result is kept only if it is physically valid — self and wall
+//! penetration and joint-limit excess within bounds, an inexact velocity solve with a small
+//! residual (`docs/physics.md`). The bounds are scenario options; a rejected step is retried
+//! by the runner with substeps (`run.rs`).
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::SimError;
+
+/// When the end of a step is physically valid (`docs/physics.md`, step acceptance): a step
+/// whose result exceeds a bound is rejected, and the runner retries it with substeps.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct StepAcceptance {
+    /// Deepest self penetration allowed at the end of a step, as a fraction of the local
+    /// radius `(r_a + r_b)/2`. Default 0.1 (the shipped scenarios stay below 0.01).
+    pub max_self_penetration_relative: f64,
+    /// Deepest wall penetration allowed, as a fraction of the penetrating body's radius.
+    /// Default 0.1.
+    pub max_wall_penetration_relative: f64,
+    /// Largest excess of a joint over its limits allowed (degrees). Default 2.
+    pub max_limit_excess_deg: f64,
+    /// Largest relative KKT residual accepted from a `SolvedInexact` velocity solve (the
+    /// solver's `worst_relative`; `Solved` means below its acceptance, 1e-9). Default 1e-4.
+    pub max_inexact_residual: f64,
+    /// How many times a rejected step is halved before the run stops as diverged: h/2, h/4,
+    /// …, h/2^k (default 4: down to h/16).
+    pub max_halvings: u32,
+}
+
+impl Default for StepAcceptance {
+    fn default() -> Self {
+        Self {
+            max_self_penetration_relative: 0.1,
+            max_wall_penetration_relative: 0.1,
+            max_limit_excess_deg: 2.0,
+            max_inexact_residual: 1e-4,
+            max_halvings: 4,
+        }
+    }
+}
+
+impl StepAcceptance {
+    /// Checks every bound (finite and > 0; at most 20 halvings).
+    pub fn validate(&self) -> Result<(), SimError> {
+        let bounds = [
+            ("max_self_penetration_relative", self.max_self_penetration_relative),
+            ("max_wall_penetration_relative", self.max_wall_penetration_relative),
+            ("max_limit_excess_deg", self.max_limit_excess_deg),
+            ("max_inexact_residual", self.max_inexact_residual),
+        ];
+        for (name, value) in bounds {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(SimError::InvalidOption { name, value, expected: "finite and > 0" });
+            }
+        }
+        if self.max_halvings > MAX_HALVINGS {
+            let value = f64::from(self.max_halvings);
+            return Err(SimError::InvalidOption {
+                name: "max_halvings", value, expected: "≤ 20"
+            });
+        }
+        Ok(())
+    }
+}
+
+/// The most halvings of a rejected step (h/2²⁰ ≈ 1e-6 h).
+const MAX_HALVINGS: u32 = 20;
+
+/// Why a step's result was rejected: the measured value and the bound it exceeds.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Rejection {
+    /// Self penetration at the end of the step, relative to the local radius.
+    SelfPenetration {
+        /// Measured (fraction of the local radius).
+        relative: f64,
+        /// [`StepAcceptance::max_self_penetration_relative`].
+        bound: f64,
+    },
+    /// Wall penetration at the end of the step, relative to the body's radius.
+    WallPenetration {
+        /// Measured (fraction of the radius).
+        relative: f64,
+        /// [`StepAcceptance::max_wall_penetration_relative`].
+        bound: f64,
+    },
+    /// A joint beyond its limit at the end of the step.
+    LimitExcess {
+        /// Measured (degrees).
+        degrees: f64,
+        /// [`StepAcceptance::max_limit_excess_deg`].
+        bound: f64,
+    },
+    /// A `SolvedInexact` velocity solve whose residual is too large.
+    InexactSolve {
+        /// The solve's worst relative KKT residual.
+        residual: f64,
+        /// [`StepAcceptance::max_inexact_residual`].
+        bound: f64,
+    },
+}
+
+impl std::fmt::Display for Rejection {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            Rejection::SelfPenetration { relative, bound } => write!(
+                f,
+                "self penetration {:.1} % of the local radius (bound {:.1} %)",
+                100.0 * relative,
+                100.0 * bound
+            ),
+            Rejection::WallPenetration { relative, bound } => write!(
+                f,
+                "wall penetration {:.1} % of the radius (bound {:.1} %)",
+                100.0 * relative,
+                100.0 * bound
+            ),
+            Rejection::LimitExcess { degrees, bound } => {
+                write!(f, "a joint {degrees:.3}° beyond its limit (bound {bound}°)")
+            }
+            Rejection::InexactSolve { residual, bound } => {
+                write!(f, "inexact velocity solve, residual {residual:.2e} (bound {bound:.0e})")
+            }
+        }
+    }
+}
+
+/// What the end of a step measures for its acceptance.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct EndOfStep {
+    /// Deepest self penetration relative to the local radius.
+    pub self_penetration_relative: f64,
+    /// Deepest wall penetration relative to the body's radius.
+    pub wall_penetration_relative: f64,
+    /// Largest excess of a joint over its limits (rad).
+    pub limit_excess: f64,
+    /// The worst relative KKT residual of the velocity solve, if it was `SolvedInexact`.
+    pub inexact_residual: Option<f64>,
+}
+
+impl StepAcceptance {
+    /// The first bound `end` exceeds, or `None` when the step is accepted.
+    pub fn judge(&self, end: &EndOfStep) -> Option<Rejection> {
+        let degrees = end.limit_excess.to_degrees();
+        if end.self_penetration_relative > self.max_self_penetration_relative {
+            Some(Rejection::SelfPenetration {
+                relative: end.self_penetration_relative,
+                bound: self.max_self_penetration_relative,
+            })
+        } else if end.wall_penetration_relative > self.max_wall_penetration_relative {
+            Some(Rejection::WallPenetration {
+                relative: end.wall_penetration_relative,
+                bound: self.max_wall_penetration_relative,
+            })
+        } else if degrees > self.max_limit_excess_deg || !degrees.is_finite() {
+            Some(Rejection::LimitExcess { degrees, bound: self.max_limit_excess_deg })
+        } else {
+            end.inexact_residual.filter(|r| r.is_nan() || *r > self.max_inexact_residual).map(
+                |residual| Rejection::InexactSolve { residual, bound: self.max_inexact_residual },
+            )
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_bound_rejects_just_above_it_and_accepts_at_it() {
+        let bounds = StepAcceptance::default();
+        let at = EndOfStep {
+            self_penetration_relative: bounds.max_self_penetration_relative,
+            wall_penetration_relative: bounds.max_wall_penetration_relative,
+            limit_excess: bounds.max_limit_excess_deg.to_radians() * (1.0 - 1e-12),
+            inexact_residual: Some(bounds.max_inexact_residual),
+        };
+        assert_eq!(bounds.judge(&at), None);
+        let above = |change: fn(&mut EndOfStep)| {
+            let mut end = at;
+            change(&mut end);
+            bounds.judge(&end)
+        };
+        assert!(matches!(
+            above(|e| e.self_penetration_relative *= 1.01),
+            Some(Rejection::SelfPenetration { .. })
+        ));
+        assert!(matches!(
+            above(|e| e.wall_penetration_relative *= 1.01),
+            Some(Rejection::WallPenetration { .. })
+        ));
+        assert!(matches!(above(|e| e.limit_excess *= 1.01), Some(Rejection::LimitExcess { .. })));
+        assert!(matches!(
+            above(|e| e.limit_excess = f64::NAN),
+            Some(Rejection::LimitExcess { .. })
+        ));
+        assert!(matches!(
+            above(|e| e.inexact_residual = Some(f64::NAN)),
+            Some(Rejection::InexactSolve { .. })
+        ));
+        assert_eq!(above(|e| e.inexact_residual = None), None);
+    }
+
+    #[test]
+    fn invalid_bounds_are_refused_by_name() {
+        let bad = StepAcceptance { max_limit_excess_deg: -1.0, ..StepAcceptance::default() };
+        assert!(matches!(
+            bad.validate(),
+            Err(SimError::InvalidOption { name: "max_limit_excess_deg", .. })
+        ));
+        let many = StepAcceptance { max_halvings: 21, ..StepAcceptance::default() };
+        assert!(many.validate().is_err());
+        assert!(StepAcceptance::default().validate().is_ok());
+    }
+}

@@ -1,0 +1,101 @@
+//! A damaged checkpoint is refused, never resumed from and never a panic: random bit flips,
+//! truncations, deletions and insertions of a written `checkpoint.ron` all fail
+//! [`Checkpoint::read`] with an error naming the file (the checksum line catches every
+//! change, the parser what is left).
+
+use hagfish_control::ControllerState;
+use hagfish_sim::{
+    CHECKPOINT_FILE, CHECKPOINT_FORMAT, Checkpoint, ExactF64s, IntervalMaxima, RecordedFile,
+    SimError,
+};
+use proptest::prelude::*;
+
+/// A checkpoint of realistic size (150 DOFs) with awkward values.
+fn checkpoint() -> Checkpoint {
+    let values: Vec<f64> = (0..150).map(|k| (k as f64 * 0.37).sin() / 3.0).collect();
+    Checkpoint {
+        format: CHECKPOINT_FORMAT,
+        scenario_hash: "0123456789abcdef".into(),
+        body_hash: "fedcba9876543210".into(),
+        frames: 42,
+        steps: 420,
+        t: ExactF64s(vec![4.2]),
+        q: ExactF64s(values.clone()),
+        qdot: ExactF64s(values.iter().map(|v| -2.0 * v).collect()),
+        multipliers: ExactF64s(values[..20].to_vec()),
+        controller: ControllerState::default(),
+        maxima: IntervalMaxima { self_penetration: 0.01, ..IntervalMaxima::default() },
+        substepped_steps: 1,
+        max_substeps: 2,
+        files: vec![RecordedFile { name: "q.npy".into(), bytes: 128 + 8 * 150 * 42 }],
+    }
+}
+
+/// The bytes of the written checkpoint, once per test binary.
+fn written() -> &'static [u8] {
+    static BYTES: std::sync::OnceLock<Vec<u8>> = std::sync::OnceLock::new();
+    BYTES.get_or_init(|| {
+        let dir = std::env::temp_dir().join(format!("hagfish-corruption-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("a temporary directory");
+        let path = dir.join(CHECKPOINT_FILE);
+        checkpoint().write(&path).expect("written");
+        assert_eq!(Checkpoint::read(&path).expect("read back"), checkpoint());
+        std::fs::read(&path).expect("readable")
+    })
+}
+
+#[derive(Clone, Debug)]
+enum Damage {
+    Flip { at: usize, bit: u8 },
+    Truncate { keep: usize },
+    Delete { at: usize, length: usize },
+    Insert { at: usize, bytes: Vec<u8> },
+}
+
+fn damage() -> impl Strategy<Value = Damage> {
+    prop_oneof![
+        (any::<usize>(), 0u8..8).prop_map(|(at, bit)| Damage::Flip { at, bit }),
+        any::<usize>().prop_map(|keep| Damage::Truncate { keep }),
+        (any::<usize>(), 1usize..32).prop_map(|(at, length)| Damage::Delete { at, length }),
+        (any::<usize>(), prop::collection::vec(any::<u8>(), 1..8))
+            .prop_map(|(at, bytes)| Damage::Insert { at, bytes }),
+    ]
+}
+
+fn apply(bytes: &mut Vec<u8>, damage: &Damage) {
+    let len = bytes.len();
+    match damage {
+        Damage::Flip { at, bit } => bytes[at % len] ^= 1 << bit,
+        Damage::Truncate { keep } => bytes.truncate(keep % len),
+        Damage::Delete { at, length } => {
+            let start = at % len;
+            bytes.drain(start..(start + length).min(len));
+        }
+        Damage::Insert { at, bytes: new } => {
+            let start = at % (len + 1);
+            bytes.splice(start..start, new.iter().copied());
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 512, ..ProptestConfig::default() })]
+
+    #[test]
+    fn a_damaged_checkpoint_is_refused(damages in prop::collection::vec(damage(), 1..3)) {
+        let mut bytes = written().to_vec();
+        for d in &damages {
+            apply(&mut bytes, d);
+        }
+        prop_assume!(bytes != written());
+        let dir = std::env::temp_dir().join(format!("hagfish-damaged-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("a temporary directory");
+        let path = dir.join(CHECKPOINT_FILE);
+        std::fs::write(&path, &bytes).expect("write");
+        match Checkpoint::read(&path) {
+            Err(SimError::Checkpoint { path: named, .. }) => prop_assert_eq!(named, path),
+            Err(SimError::DataFile(e)) => prop_assert!(e.to_string().contains(CHECKPOINT_FILE)),
+            other => prop_assert!(false, "accepted or odd: {other:?}"),
+        }
+    }
+}
