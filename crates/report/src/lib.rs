@@ -4,7 +4,7 @@
 //! (`docs/outputs.md`), all rendered headless in pure Rust:
 //!
 //! - `plots/`: force kymographs of the thigmotaxic force field per axis (joint × time),
-//!   knot position and contact span against time, contact counts against time; PNG and SVG
+//!   the knotted core and the contact span against time, contact counts against time; PNG and SVG
 //!   (plotters, with an embedded subset of DejaVu Sans).
 //! - `animation.gif`: the body as shaded tubes, top and side view (`raster` is a small
 //!   software rasteriser with a depth buffer).

@@ -25,6 +25,10 @@ pub struct Metrics {
     pub wall_contacts: Vec<f64>,
     /// `knot_position_cm`.
     pub knot_position: Vec<Option<f64>>,
+    /// `knot_core_start_cm` (all `None` in a run directory written before the column).
+    pub knot_core_start: Vec<Option<f64>>,
+    /// `knot_core_end_cm` (likewise).
+    pub knot_core_end: Vec<Option<f64>>,
     /// `contacts_start_cm`.
     pub contacts_start: Vec<Option<f64>>,
     /// `contacts_end_cm`.
@@ -61,6 +65,13 @@ impl Metrics {
             let c = file.column(name)?;
             records.iter().map(|r| r.optional(c)).collect()
         };
+        // Columns added later: empty for run directories written before them.
+        let later = |name| -> Result<Vec<Option<f64>>, ReportError> {
+            match file.column(name) {
+                Ok(c) => records.iter().map(|r| r.optional(c)).collect(),
+                Err(_) => Ok(vec![None; records.len()]),
+            }
+        };
         Ok(Self {
             time: number("time_s")?,
             phase: text("phase")?,
@@ -70,6 +81,8 @@ impl Metrics {
             self_contacts: number("self_contacts")?,
             wall_contacts: number("wall_contacts")?,
             knot_position: optional("knot_position_cm")?,
+            knot_core_start: later("knot_core_start_cm")?,
+            knot_core_end: later("knot_core_end_cm")?,
             contacts_start: optional("contacts_start_cm")?,
             contacts_end: optional("contacts_end_cm")?,
             first_contact: optional("first_contact_cm")?,

@@ -21,6 +21,7 @@ use crate::checkpoint::{CHECKPOINT_FILE, Checkpoint};
 use crate::error::SimError;
 use crate::force_columns::ForceColumns;
 use crate::forces::{DofLabel, GroupForces, RECORDED_GROUPS};
+use crate::knot_core::KnotCore;
 use crate::npy::NpyWriter;
 use crate::output_file::OutputFile;
 use crate::report::StepReport;
@@ -38,6 +39,8 @@ pub const CENTRELINE_HEADER: &str = "frame,time_s,body,x_cm,y_cm,z_cm";
 /// the previous frame; knot columns describe the frame's centreline.
 pub const METRICS_HEADER: &str = "frame,time_s,phase,self_contacts,wall_contacts,\
 knot,knot_agreement,knot_first_body,knot_last_body,knot_position_cm,\
+knot_core_start_cm,knot_core_end_cm,knot_core_length_cm,\
+knot_core_start_L,knot_core_mid_L,knot_core_length_L,knot_core_length_D,\
 max_self_penetration_cm,max_self_penetration_rel,max_wall_penetration_cm,max_limit_excess_deg,\
 contacts_start_cm,contacts_end_cm,first_contact_cm,last_contact_cm,\
 contact_span_cm,contact_midpoint_cm,solver_path,solver_status,solver_iterations,slack_rows,slack_max_cm_s";
@@ -110,6 +113,10 @@ pub struct Frame<'a> {
     pub maxima: &'a IntervalMaxima,
     /// Knot analysis of the centreline, if it succeeded.
     pub knot: Option<&'a KnotReport>,
+    /// Body radii (cm), head to tail, for the knotted core's local diameter.
+    pub radii: &'a [f64],
+    /// The body length L (cm), for the knotted core's fractions.
+    pub body_length_cm: f64,
     /// The stretch of body the self contacts span (of the step that ended at the frame).
     pub span: Option<KnotSpan>,
     /// Self contacts of the step that ended at the frame (none for frame 0).
@@ -258,6 +265,21 @@ impl Recorder {
             ),
             None => Default::default(),
         };
+        let core = frame
+            .knot
+            .and_then(|k| KnotCore::of(k, frame.centres, frame.radii, frame.body_length_cm))
+            .map_or(",,,,,,".to_string(), |c| {
+                format!(
+                    "{:.3},{:.3},{:.3},{:.4},{:.4},{:.4},{:.3}",
+                    c.start_cm,
+                    c.end_cm,
+                    c.length_cm(),
+                    c.of_body_length(c.start_cm),
+                    c.of_body_length(c.midpoint_cm()),
+                    c.of_body_length(c.length_cm()),
+                    c.length_in_diameters()
+                )
+            });
         let (s, m) = (frame.step, frame.maxima);
         let span = frame.span.map_or(",,,,,".to_string(), |k| {
             format!(
@@ -271,7 +293,7 @@ impl Recorder {
             )
         });
         self.metrics.line(format_args!(
-            "{prefix},{},{},{},{knot},{agreement},{first},{last},{position},{:.6},{:.6},{:.6},{:.4},{span},{:?},{:?},{},{},{:.3e}",
+            "{prefix},{},{},{},{knot},{agreement},{first},{last},{position},{core},{:.6},{:.6},{:.6},{:.4},{span},{:?},{:?},{},{},{:.3e}",
             frame.phase,
             s.self_contacts,
             s.wall_contacts,

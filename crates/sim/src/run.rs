@@ -202,6 +202,8 @@ pub fn run(
 struct Recording {
     hash: String,
     body_hash: String,
+    radii: Vec<f64>,
+    body_length_cm: f64,
     knot_options: KnotOptions,
     knots: KnotAnalyser,
     centres: Vec<DVec3>,
@@ -220,6 +222,8 @@ impl Recording {
         Self {
             hash,
             body_hash,
+            radii: world.model().bodies().iter().map(|b| b.radius).collect(),
+            body_length_cm: world.model().bodies().iter().map(|b| b.length).sum(),
             knot_options: KnotOptions::default(),
             knots: KnotAnalyser::default(),
             centres: Vec::with_capacity(world.model().body_count()),
@@ -338,6 +342,8 @@ impl Recording {
             step: &self.last_report,
             maxima: &self.maxima,
             knot: knot.as_ref(),
+            radii: &self.radii,
+            body_length_cm: self.body_length_cm,
             span,
             contacts: &data.self_contacts,
             centreline: &data.centreline,

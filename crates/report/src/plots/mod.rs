@@ -43,11 +43,13 @@ pub fn draw(run: &RunDir, plots: &Path) -> Result<Vec<Plot>, ReportError> {
         values: values.to_vec(),
     };
     let knot = TimeSeries {
-        title: "Knot position and contact span".into(),
+        title: "Knotted core and contact span".into(),
         y_label: "arc length from the head (cm)".into(),
         times: m.time.clone(),
         lines: vec![
-            line("knot position", [0, 0, 0], &m.knot_position),
+            line("knot core midpoint", [0, 0, 0], &m.knot_position),
+            line("knot core start", [99, 99, 99], &m.knot_core_start),
+            line("knot core end", [189, 189, 189], &m.knot_core_end),
             line("first contact", [214, 39, 40], &m.first_contact),
             line("last contact", [31, 119, 180], &m.last_contact),
             line("contacts start", [255, 152, 150], &m.contacts_start),
