@@ -1,6 +1,6 @@
 //! The error of any subcommand; `main` prints it as one line and exits with its
-//! [`exit_code`](CliError::exit_code): 3 for a diverged run, 130 for a run stopped by a
-//! signal, 2 for everything else.
+//! [`exit_code`](CliError::exit_code): 3 for a diverged run, 4 for a knot a tie phase could
+//! not tie, 130 for a run stopped by a signal, 2 for everything else.
 
 use std::path::PathBuf;
 
@@ -22,6 +22,14 @@ pub enum CliError {
         directory.display()
     )]
     Diverged {
+        /// The run directory.
+        directory: PathBuf,
+        /// What failed.
+        reason: String,
+    },
+    /// A tie phase did not tie its knot; everything recorded is kept.
+    #[error("{reason}\n(the outputs of the attempts are in {})", directory.display())]
+    TieFailed {
         /// The run directory.
         directory: PathBuf,
         /// What failed.
@@ -73,11 +81,12 @@ pub enum CliError {
 }
 
 impl CliError {
-    /// The process exit code: 3 when the run diverged, 130 (as for Ctrl-C) when a signal
-    /// stopped it, 2 for any other error.
+    /// The process exit code: 3 when the run diverged, 4 when a tie phase failed, 130 (as for
+    /// Ctrl-C) when a signal stopped it, 2 for any other error.
     pub fn exit_code(&self) -> u8 {
         match self {
             CliError::Diverged { .. } => 3,
+            CliError::TieFailed { .. } => 4,
             CliError::Interrupted { .. } => 130,
             _ => 2,
         }

@@ -17,7 +17,7 @@ pub const MANIFEST_FILE: &str = "manifest.json";
 
 /// How a run stands.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
+#[serde(rename_all = "snake_case")]
 pub enum Status {
     /// Started and not stopped (or killed).
     Running,
@@ -27,6 +27,8 @@ pub enum Status {
     Diverged,
     /// Stopped on request (`--stop-after-frames`, SIGINT, SIGTERM); resumable.
     Interrupted,
+    /// A tie phase did not tie its knot in its attempts; the outputs hold every frame.
+    TieFailed,
 }
 
 impl Status {
@@ -37,6 +39,7 @@ impl Status {
             Status::Completed => "completed",
             Status::Diverged => "diverged",
             Status::Interrupted => "interrupted",
+            Status::TieFailed => "tie_failed",
         }
     }
 }

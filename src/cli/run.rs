@@ -12,7 +12,7 @@ use std::time::Instant;
 use clap::Args;
 use hagfish_sim::{
     CHECKPOINT_FILE, Checkpoint, LoadedScenario, Override, Recorder, RunEnd, RunOptions,
-    RunOutcome, state_hash,
+    RunOutcome, SimError, state_hash,
 };
 
 use super::CliError;
@@ -114,6 +114,7 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     writeln!(out, "pictures, report and exports in {:.2} s", written.total_seconds())?;
     manifest.write(&directory)?; // again, to list the pictures and the report too
     match (diverged, &outcome.end) {
+        (Some(reason), RunEnd::TieFailed(_)) => Err(CliError::TieFailed { directory, reason }),
         (Some(reason), _) => Err(CliError::Diverged { directory, reason }),
         (None, RunEnd::Interrupted) if signalled.load(Ordering::Relaxed) => {
             Err(CliError::Interrupted { directory, frames: outcome.summary.frames })
@@ -272,7 +273,7 @@ fn open_stopped(directory: &Path, expected: Option<&str>) -> Result<Opened, CliE
 }
 
 /// Writes the end of the run into the manifest (and `diverged.ron` for a diverged run);
-/// returns the error of a diverged run.
+/// returns the error of a diverged run or a failed tie phase.
 fn finish(
     outcome: &RunOutcome,
     directory: &Path,
@@ -285,6 +286,9 @@ fn finish(
         RunEnd::Diverged { error, at } => {
             at.write(&directory.join(DIVERGED_FILE))?;
             (Status::Diverged, Some(error.to_string()))
+        }
+        RunEnd::TieFailed(failure) => {
+            (Status::TieFailed, Some(SimError::TieFailed(*failure).to_string()))
         }
     };
     manifest.stop(status, wall);

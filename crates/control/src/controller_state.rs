@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::ControlError;
 use crate::forming::{FormingController, ScriptProgress};
 use crate::phases::{Phase, PhaseProgress, PhasedController};
+use crate::tie::TieProgress;
 
 /// The state of a [`PhasedController`]: which phase, since when, and where the forming script
 /// (of the latest `Form` phase so far) is.
@@ -15,8 +16,11 @@ use crate::phases::{Phase, PhaseProgress, PhasedController};
 pub struct ControllerState {
     /// Phase index and its start time.
     pub phases: PhaseProgress,
-    /// Progress of the forming script, if a `Form` phase has started.
+    /// Progress of the forming script, if a `Form` (or `Tie`) phase has started.
     pub forming: Option<ScriptProgress>,
+    /// Progress of the current `Tie` phase (default otherwise).
+    #[serde(default)]
+    pub tie: TieProgress,
 }
 
 impl PhasedController {
@@ -25,6 +29,7 @@ impl PhasedController {
         ControllerState {
             phases: self.progress,
             forming: self.forming.as_ref().map(|f| *f.progress()),
+            tie: self.tie,
         }
     }
 
@@ -42,18 +47,16 @@ impl PhasedController {
         let script = self.phases[..(state.phases.phase + 1).min(self.phases.len())]
             .iter()
             .rev()
-            .find_map(|p| match p {
-                Phase::Form(script) => Some(script),
-                _ => None,
-            });
+            .find_map(Phase::script);
         self.forming = match (script, state.forming) {
             (Some(script), Some(progress)) if progress.step <= script.steps.len() => {
-                Some(FormingController { script: script.clone(), progress })
+                Some(FormingController { script, progress })
             }
             (None, None) => None,
             _ => return Err(mismatch),
         };
         self.progress = state.phases;
+        self.tie = state.tie;
         Ok(())
     }
 }
@@ -87,6 +90,7 @@ mod tests {
                 to: [1.0, 2.0, 3.0],
                 duration: 1.0,
             }),
+            tie: TieProgress::default(),
         };
         let mut restored = controller(phases.clone());
         assert_eq!(restored.restore(&saved), Ok(()));

@@ -31,6 +31,21 @@ pub enum Waypoint {
     /// An offset (cm) from the centroid of the largest loop of the centreline seen from
     /// above (+Z); from the centroid of the posterior half of the body if there is no loop.
     FromLoopCentroid([f64; 3]),
+    /// A world point in body lengths: (x, y, z)·L, with L the sum of the segment lengths
+    /// (the head is at the origin and the body at rest lies along +X).
+    BodyLengths([f64; 3]),
+    /// An offset in local radii from the centre of the body at arc-length fraction `at` of L
+    /// from the head: `c(k) + r_k·offset`, k = the body containing arc length `at·L`.
+    FromArc {
+        /// Fraction of the body length from the head, in [0, 1].
+        at: f64,
+        /// Offset (x, y, z) in units of that body's radius.
+        offset_radii: [f64; 3],
+    },
+    /// [`Waypoint::FromLoopCentroid`] with the offset in mean body radii.
+    FromLoopCentroidRadii([f64; 3]),
+    /// [`Waypoint::FromTarget`] with the offset in mean body radii.
+    FromTargetRadii([f64; 3]),
 }
 
 /// One step of a script.
@@ -157,16 +172,52 @@ fn resolve(waypoint: &Waypoint, context: &ControlContext<'_>, current: DVec3) ->
             context.centre(body.min(body_count - 1)) + DVec3::from_array(offset)
         }
         Waypoint::FromTarget(offset) => current + DVec3::from_array(offset),
-        Waypoint::FromLoopCentroid(offset) => {
-            let centres: Vec<DVec3> = (0..body_count).map(|i| context.centre(i)).collect();
-            let centroid = largest_projected_loop(&centres, DVec3::Z).map_or_else(
-                || {
-                    centres[body_count / 2..].iter().sum::<DVec3>()
-                        / (body_count - body_count / 2) as f64
-                },
-                |l| l.centroid,
-            );
-            centroid + DVec3::from_array(offset)
+        Waypoint::FromLoopCentroid(offset) => loop_centroid(context) + DVec3::from_array(offset),
+        Waypoint::BodyLengths(point) => body_length(context) * DVec3::from_array(point),
+        Waypoint::FromArc { at, offset_radii } => {
+            let body = body_at_fraction(context, at);
+            let radius = context.model.bodies()[body].radius;
+            context.centre(body) + radius * DVec3::from_array(offset_radii)
+        }
+        Waypoint::FromLoopCentroidRadii(offset) => {
+            loop_centroid(context) + mean_radius(context) * DVec3::from_array(offset)
+        }
+        Waypoint::FromTargetRadii(offset) => {
+            current + mean_radius(context) * DVec3::from_array(offset)
         }
     }
+}
+
+/// The centroid of the largest loop seen from above, or of the posterior half of the body.
+fn loop_centroid(context: &ControlContext<'_>) -> DVec3 {
+    let body_count = context.model.body_count();
+    let centres: Vec<DVec3> = (0..body_count).map(|i| context.centre(i)).collect();
+    largest_projected_loop(&centres, DVec3::Z).map_or_else(
+        || centres[body_count / 2..].iter().sum::<DVec3>() / (body_count - body_count / 2) as f64,
+        |l| l.centroid,
+    )
+}
+
+/// The body length L: the sum of the segment lengths (cm).
+pub(crate) fn body_length(context: &ControlContext<'_>) -> f64 {
+    context.model.bodies().iter().map(|b| b.length).sum()
+}
+
+/// The mean body radius (cm).
+fn mean_radius(context: &ControlContext<'_>) -> f64 {
+    let bodies = context.model.bodies();
+    bodies.iter().map(|b| b.radius).sum::<f64>() / bodies.len() as f64
+}
+
+/// The body containing arc length `at·L` from the head (the last body for `at` ≥ 1).
+fn body_at_fraction(context: &ControlContext<'_>, at: f64) -> usize {
+    let target = at * body_length(context);
+    let mut walked = 0.0;
+    for (k, body) in context.model.bodies().iter().enumerate() {
+        walked += body.length;
+        if walked > target {
+            return k;
+        }
+    }
+    context.model.body_count() - 1
 }

@@ -6,6 +6,7 @@
 //!
 //! - [`WaterDrag`]: implicit linear + quadratic drag on every body.
 //! - [`FormingController`]: the scripted knot-forming tail pull (thesis §3.3.1, §5.1).
+//! - [`TiePhase`]: a knot tied by control from the body's current state.
 //! - [`PhasedController`]: drag plus a scenario's phases in order.
 //!
 //! CGS units throughout.
@@ -20,6 +21,7 @@ mod loops;
 mod phases;
 mod tail_pd;
 mod thigmotaxis;
+mod tie;
 
 pub use controller::{Actuation, ControlContext, Controller, Passive, PointDamper, PointForce};
 pub use controller_state::ControllerState;
@@ -28,6 +30,7 @@ pub use error::ControlError;
 pub use forming::{FormingController, FormingScript, ScriptProgress, ScriptStep, Waypoint};
 pub use knot_span::KnotSpan;
 pub use loops::{ProjectedLoop, largest_projected_loop};
-pub use phases::{Phase, PhaseProgress, PhasedController, ThigmoPhase, Until};
+pub use phases::{Phase, PhaseProgress, PhasedController, ThigmoPhase, TieFailure, Until};
 pub use tail_pd::TailGains;
 pub use thigmotaxis::{SlidingTargets, Strand, ThigmoParameters, ThigmoRequest};
+pub use tie::{Handedness, MIN_AGREEMENT, TieKnot, TiePhase, TieProgress};

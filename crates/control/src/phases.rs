@@ -8,6 +8,7 @@ use crate::drag::WaterDrag;
 use crate::forming::{FormingController, FormingScript};
 use crate::knot_span::KnotSpan;
 use crate::thigmotaxis::ThigmoParameters;
+use crate::tie::{TieKnot, TiePhase, TieProgress};
 
 /// One phase of a scenario.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -19,6 +20,20 @@ pub enum Phase {
     Hold(f64),
     /// Thigmotaxic inverse dynamics on the first and last self contact until a condition.
     Thigmotaxis(ThigmoPhase),
+    /// Ties a knot by control from the body's current state ([`TiePhase`]); ends once the
+    /// knot analysis shows it, or fails after its attempts.
+    Tie(TiePhase),
+}
+
+impl Phase {
+    /// The forming script this phase drives the tail with, if any (a tie phase's plan).
+    pub fn script(&self) -> Option<FormingScript> {
+        match self {
+            Phase::Form(script) => Some(script.clone()),
+            Phase::Tie(tie) => Some(tie.script()),
+            Phase::Hold(_) | Phase::Thigmotaxis(_) => None,
+        }
+    }
 }
 
 /// A thigmotaxis phase: its name, parameters and when it ends.
@@ -120,16 +135,61 @@ pub struct PhasedController {
     pub(crate) phases: Vec<Phase>,
     pub(crate) progress: PhaseProgress,
     pub(crate) forming: Option<FormingController>,
+    pub(crate) tie: TieProgress,
+}
+
+/// A tie phase that failed: which knot, after how many attempts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TieFailure {
+    /// The knot asked for.
+    pub knot: TieKnot,
+    /// Attempts made.
+    pub attempts: u32,
 }
 
 impl PhasedController {
     /// A controller at the start of the first phase.
     pub fn new(drag: Option<WaterDrag>, phases: Vec<Phase>) -> Self {
-        let forming = match phases.first() {
-            Some(Phase::Form(script)) => Some(FormingController::new(script.clone())),
-            _ => None,
+        let forming = phases.first().and_then(Phase::script).map(FormingController::new);
+        let tie = match phases.first() {
+            Some(Phase::Tie(_)) => TieProgress { attempt: 1, ..TieProgress::default() },
+            _ => TieProgress::default(),
         };
-        Self { drag, phases, progress: PhaseProgress::default(), forming }
+        Self { drag, phases, progress: PhaseProgress::default(), forming, tie }
+    }
+
+    /// Takes the knot analysis of a recorded frame at time `t` (its Rolfsen name,
+    /// agreement and the core's handedness; `None` if it failed). A tie phase ends on it
+    /// (the knot shown for `hold_s`), or starts its plan again, or fails (`settle_s` after
+    /// its plan without the knot).
+    pub fn observe_knot(&mut self, t: f64, knot: Option<(&str, f64, Option<bool>)>) {
+        let Some(Phase::Tie(phase)) = self.phases.get(self.progress.phase) else {
+            return;
+        };
+        let shown = knot.is_some_and(|(name, agreement, right_handed)| {
+            phase.knot.is_shown_by(name, agreement, right_handed)
+        });
+        self.tie.shown_since = if shown { Some(self.tie.shown_since.unwrap_or(t)) } else { None };
+        let late = self.tie.plan_done_at.is_some_and(|done| t - done >= phase.settle_s);
+        if shown || !late || self.tie.failed {
+            return;
+        }
+        if self.tie.attempt >= phase.attempts {
+            self.tie.failed = true;
+        } else {
+            self.tie = TieProgress { attempt: self.tie.attempt + 1, ..TieProgress::default() };
+            self.forming = Some(FormingController::new(phase.script()));
+        }
+    }
+
+    /// The failed tie phase, if the current phase is one.
+    pub fn tie_failure(&self) -> Option<TieFailure> {
+        match self.phases.get(self.progress.phase) {
+            Some(Phase::Tie(phase)) if self.tie.failed => {
+                Some(TieFailure { knot: phase.knot, attempts: self.tie.attempt })
+            }
+            _ => None,
+        }
     }
 
     /// Where the controller is.
@@ -144,6 +204,7 @@ impl PhasedController {
             Some(Phase::Form(_)) => "form",
             Some(Phase::Hold(_)) => "hold",
             Some(Phase::Thigmotaxis(phase)) => &phase.name,
+            Some(Phase::Tie(_)) => "tie",
             None => "done",
         }
     }
@@ -160,6 +221,7 @@ impl PhasedController {
                 let span = KnotSpan::of(context.self_contacts, context.centreline);
                 phase.until.over(t, elapsed, span.as_ref(), &mut self.progress.condition_since)
             }
+            Some(Phase::Tie(phase)) => self.tie.shown_since.is_some_and(|s| t - s >= phase.hold_s),
             None => false,
         }
     }
@@ -167,9 +229,13 @@ impl PhasedController {
     fn advance(&mut self, t: f64) {
         self.progress =
             PhaseProgress { phase: self.progress.phase + 1, started_at: t, condition_since: None };
-        if let Some(Phase::Form(script)) = self.phases.get(self.progress.phase) {
-            self.forming = Some(FormingController::new(script.clone()));
+        if let Some(script) = self.phases.get(self.progress.phase).and_then(Phase::script) {
+            self.forming = Some(FormingController::new(script));
         }
+        self.tie = match self.phases.get(self.progress.phase) {
+            Some(Phase::Tie(_)) => TieProgress { attempt: 1, ..TieProgress::default() },
+            _ => TieProgress::default(),
+        };
     }
 }
 
@@ -185,6 +251,14 @@ impl Controller for PhasedController {
             Some(Phase::Form(_) | Phase::Hold(_)) => {
                 if let Some(forming) = &mut self.forming {
                     forming.control(context, out);
+                }
+            }
+            Some(Phase::Tie(_)) => {
+                if let Some(forming) = &mut self.forming {
+                    forming.control(context, out);
+                    if forming.finished() && self.tie.plan_done_at.is_none() {
+                        self.tie.plan_done_at = Some(context.state.t);
+                    }
                 }
             }
             Some(Phase::Thigmotaxis(phase)) => phase.parameters.actuate(context, out),

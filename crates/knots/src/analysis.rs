@@ -4,7 +4,9 @@ use glam::DVec3;
 
 use crate::closure::NormalisedCurve;
 use crate::extent::{knotted_extent, midpoint_arc_length};
-use crate::vote::{PROJECTION_ATTEMPTS, Workspace, no_polynomial, polygon_polynomial, vote};
+use crate::vote::{
+    PROJECTION_ATTEMPTS, Workspace, mean_writhe, no_polynomial, polygon_polynomial, vote,
+};
 use crate::{AlexanderPolynomial, KnotError, KnotOptions, KnotReport, KnotType};
 
 /// Minimum number of points of an open curve (3 edges; a knot needs more, but fewer points
@@ -61,6 +63,10 @@ impl KnotAnalyser {
                 &mut self.workspace,
             )
         });
+        let writhe = extent.and_then(|(first, last)| {
+            let core = NormalisedCurve::new(&points[first..=last]).ok()?;
+            mean_writhe(&core, options.directions, &mut self.workspace)
+        });
         Ok(KnotReport {
             knot,
             determinant: winner.polynomial.determinant(),
@@ -69,6 +75,7 @@ impl KnotAnalyser {
             directions_evaluated: winner.evaluated,
             extent,
             position: extent.map(|(first, last)| midpoint_arc_length(points, first, last)),
+            writhe,
         })
     }
 }

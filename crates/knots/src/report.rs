@@ -26,4 +26,17 @@ pub struct KnotReport {
     /// Arc length from vertex 0 to the midpoint of [`KnotReport::extent`] (same units as the
     /// input, e.g. cm), or `None` with it.
     pub position: Option<f64>,
+    /// Mean writhe of the closures of [`KnotReport::extent`] (the knotted core), or `None`
+    /// with it: its sign tells a chiral knot's handedness (positive: right-handed trefoil),
+    /// which the polynomial does not.
+    pub writhe: Option<f64>,
+}
+
+impl KnotReport {
+    /// The handedness of a chiral knot from the sign of [`KnotReport::writhe`]: `Some(true)`
+    /// for right-handed (positive writhe), `Some(false)` for left-handed, `None` without a
+    /// core or with a writhe within ±0.5 of zero (achiral knots such as 4_1 sit there).
+    pub fn right_handed(&self) -> Option<bool> {
+        self.writhe.filter(|w| w.abs() > 0.5).map(|w| w > 0.0)
+    }
 }

@@ -94,6 +94,9 @@ pub enum SimError {
         /// The cap.
         cap: u64,
     },
+    /// A tie phase did not tie its knot ([`hagfish_control::TiePhase`]).
+    #[error("the tie phase did not tie {} after {} attempts", .0.knot.name(), .0.attempts)]
+    TieFailed(hagfish_control::TieFailure),
     /// The controller could not return to a saved state (a retried step, a resume).
     #[error("controller: {0}")]
     Controller(#[from] hagfish_control::ControlError),

@@ -10,7 +10,8 @@
 //! - a field of one phase, by its index from 0: `phases[2].Thigmotaxis.parameters.head.v_a`.
 //!
 //! A VALUE is a number, `true`/`false`, `None`, `Some(VALUE)`, a quoted string, a bare
-//! identifier (an enum variant such as `SparseMaximal`) or a tuple `(1.0, 2.0, 3.0)`.
+//! identifier (an enum variant such as `SparseMaximal`), a variant with a value
+//! (`Trefoil(Left)`) or a tuple `(1.0, 2.0, 3.0)`.
 //!
 //! Overrides work on the scenario's serde data model: the scenario is turned into a tree of
 //! values, each override replaces one or more of its leaves (a path that names nothing is an
@@ -23,7 +24,7 @@ use crate::error::SimError;
 use crate::scenario::Scenario;
 
 /// The kinds of phase a kind-wide path may start with (`params` lists their fields so).
-const PHASE_KINDS: [&str; 3] = ["Form", "Hold", "Thigmotaxis"];
+const PHASE_KINDS: [&str; 4] = ["Form", "Hold", "Thigmotaxis", "Tie"];
 
 /// One `PATH=VALUE` override, as given.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -74,7 +75,7 @@ pub fn apply_overrides(scenario: &Scenario, overrides: &[Override]) -> Result<Sc
         let value = parse_value(&given.value).ok_or_else(|| {
             given.error(
                 "the value is not a number, true/false, None, Some(…), a quoted string, an \
-                 identifier or a tuple",
+                 identifier, Variant(…) or a tuple",
             )
         })?;
         let segments: Vec<&str> = given.path.split('.').collect();
@@ -169,6 +170,10 @@ fn parse_value(text: &str) -> Option<Value> {
     if let Some(inner) = text.strip_prefix('(').and_then(|t| t.strip_suffix(')')) {
         return inner.split(',').map(parse_value).collect::<Option<Vec<_>>>().map(Value::Array);
     }
+    if let Some((variant, inner)) = text.strip_suffix(')').and_then(|t| t.split_once('(')) {
+        let value = parse_value(inner)?;
+        return is_identifier(variant).then(|| serde_json::json!({ variant: value }));
+    }
     if let Some(inner) = text.strip_prefix('"').and_then(|t| t.strip_suffix('"')) {
         return Some(Value::String(inner.to_owned()));
     }
@@ -184,9 +189,13 @@ fn parse_value(text: &str) -> Option<Value> {
     if let Ok(number) = text.parse::<f64>() {
         return serde_json::Number::from_f64(number).map(Value::Number);
     }
-    let identifier = text.chars().next().is_some_and(char::is_alphabetic)
-        && text.chars().all(|c| c.is_alphanumeric() || c == '_');
-    identifier.then(|| Value::String(text.to_owned()))
+    is_identifier(text).then(|| Value::String(text.to_owned()))
+}
+
+/// A letter, then letters, digits and underscores.
+fn is_identifier(text: &str) -> bool {
+    text.chars().next().is_some_and(char::is_alphabetic)
+        && text.chars().all(|c| c.is_alphanumeric() || c == '_')
 }
 
 #[cfg(test)]

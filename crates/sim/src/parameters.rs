@@ -151,6 +151,41 @@ pub const PARAMETERS: &[Parameter] = &[
         "-",
         "waypoint: an offset from the centroid of the largest loop seen from above",
     ),
+    p("Move.to.BodyLengths", "L", "-", "waypoint: a world point (x, y, z) in body lengths"),
+    p("Move.to.FromArc", "-", "-", "waypoint: an offset from the body at a fraction of L"),
+    p(
+        "Move.to.FromArc.at",
+        "L",
+        "required",
+        "fraction of the body length from the head, in [0, 1]",
+    ),
+    p("Move.to.FromArc.offset_radii", "r", "required", "offset (x, y, z) in that body's radii"),
+    p(
+        "Move.to.FromLoopCentroidRadii",
+        "r",
+        "-",
+        "waypoint: FromLoopCentroid with the offset in mean body radii",
+    ),
+    p("Move.to.FromTargetRadii", "r", "-", "waypoint: FromTarget with the offset in mean radii"),
+    p(
+        "phases[].Tie",
+        "-",
+        "-",
+        "phase: tie a knot by control from the body's state; ends once the analysis shows it",
+    ),
+    p("Tie.knot", "-", "required", "the knot to tie"),
+    p(
+        "Tie.knot.Trefoil",
+        "-",
+        "-",
+        "knot: the overhand knot 3_1, Right or Left (sign of its writhe)",
+    ),
+    p("Tie.at", "L", "required", "crossover at this fraction of the body length from the head"),
+    p("Tie.gains", "-", "(200, 20, 2000)", "gains and cap of the PD tail pull (as Form.gains)"),
+    p("Tie.speed_cm_s", "cm/s", "5", "speed of the tail's target"),
+    p("Tie.attempts", "-", "2", "plans tried before the phase fails (exit 4, status tie_failed)"),
+    p("Tie.hold_s", "s", "0.5", "how long the knot must be shown before the phase ends"),
+    p("Tie.settle_s", "s", "2", "how long after a plan the knot may take to show"),
     p(
         "phases[].Hold",
         "s",
@@ -252,8 +287,8 @@ mod tests {
     use std::collections::BTreeSet;
 
     use hagfish_control::{
-        FormingScript, Phase, ScriptStep, SlidingTargets, TailGains, ThigmoParameters, ThigmoPhase,
-        Until, WaterDrag, Waypoint,
+        FormingScript, Handedness, Phase, ScriptStep, SlidingTargets, TailGains, ThigmoParameters,
+        ThigmoPhase, TieKnot, TiePhase, Until, WaterDrag, Waypoint,
     };
 
     use super::*;
@@ -285,10 +320,23 @@ mod tests {
                         step(Waypoint::FromBody { body: 3, offset: [0.0; 3] }),
                         step(Waypoint::FromTarget([0.0; 3])),
                         step(Waypoint::FromLoopCentroid([0.0; 3])),
+                        step(Waypoint::BodyLengths([0.5, 0.2, 0.0])),
+                        step(Waypoint::FromArc { at: 0.3, offset_radii: [0.0, 3.0, 3.0] }),
+                        step(Waypoint::FromLoopCentroidRadii([0.0; 3])),
+                        step(Waypoint::FromTargetRadii([0.0; 3])),
                         ScriptStep::Hold(1.0),
                     ],
                 }),
                 Phase::Hold(1.0),
+                Phase::Tie(TiePhase {
+                    knot: TieKnot::Trefoil(Handedness::Left),
+                    at: 0.31,
+                    gains: TailGains::default(),
+                    speed_cm_s: 5.0,
+                    attempts: 2,
+                    hold_s: 0.5,
+                    settle_s: 2.0,
+                }),
                 Phase::Thigmotaxis(ThigmoPhase {
                     name: "slide".into(),
                     parameters: ThigmoParameters {

@@ -40,7 +40,7 @@ pub const CENTRELINE_HEADER: &str = "frame,time_s,body,x_cm,y_cm,z_cm";
 pub const METRICS_HEADER: &str = "frame,time_s,phase,self_contacts,wall_contacts,\
 knot,knot_agreement,knot_first_body,knot_last_body,knot_position_cm,\
 knot_core_start_cm,knot_core_end_cm,knot_core_length_cm,\
-knot_core_start_L,knot_core_mid_L,knot_core_length_L,knot_core_length_D,\
+knot_core_start_L,knot_core_mid_L,knot_core_length_L,knot_core_length_D,knot_writhe,\
 max_self_penetration_cm,max_self_penetration_rel,max_wall_penetration_cm,max_limit_excess_deg,\
 contacts_start_cm,contacts_end_cm,first_contact_cm,last_contact_cm,\
 contact_span_cm,contact_midpoint_cm,solver_path,solver_status,solver_iterations,slack_rows,slack_max_cm_s";
@@ -280,6 +280,7 @@ impl Recorder {
                     c.length_in_diameters()
                 )
             });
+        let writhe = frame.knot.and_then(|k| k.writhe).map_or(String::new(), |w| format!("{w:.3}"));
         let (s, m) = (frame.step, frame.maxima);
         let span = frame.span.map_or(",,,,,".to_string(), |k| {
             format!(
@@ -293,7 +294,7 @@ impl Recorder {
             )
         });
         self.metrics.line(format_args!(
-            "{prefix},{},{},{},{knot},{agreement},{first},{last},{position},{core},{:.6},{:.6},{:.6},{:.4},{span},{:?},{:?},{},{},{:.3e}",
+            "{prefix},{},{},{},{knot},{agreement},{first},{last},{position},{core},{writhe},{:.6},{:.6},{:.6},{:.4},{span},{:?},{:?},{},{},{:.3e}",
             frame.phase,
             s.self_contacts,
             s.wall_contacts,

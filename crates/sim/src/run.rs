@@ -96,6 +96,8 @@ pub enum RunEnd {
     /// the flag [`RunOptions::stop`] was set (then the steps since the last frame are not
     /// recorded: a resume takes them again from the checkpoint).
     Interrupted,
+    /// A tie phase did not tie its knot in its attempts; the outputs hold every frame.
+    TieFailed(hagfish_control::TieFailure),
     /// A step failed or was rejected (non-finite state, failed solve, penetration or limit
     /// excess beyond [`crate::StepAcceptance`], …) even as substeps down to h/2^k; the
     /// outputs hold every frame before.
@@ -123,6 +125,7 @@ impl RunOutcome {
     pub fn finished(self) -> Result<RunSummary, SimError> {
         match self.end {
             RunEnd::Diverged { error, .. } => Err(error),
+            RunEnd::TieFailed(failure) => Err(SimError::TieFailed(failure)),
             RunEnd::Completed | RunEnd::Interrupted => Ok(self.summary),
         }
     }
@@ -169,7 +172,7 @@ pub fn run(
         if record {
             recording.frame(
                 &mut world,
-                &controller,
+                &mut controller,
                 &mut summary,
                 sink,
                 progress,
@@ -179,6 +182,9 @@ pub fn run(
                 || options.stop.is_some_and(|flag| flag.load(Ordering::Relaxed));
             if stop && world.steps() < steps {
                 break RunEnd::Interrupted;
+            }
+            if let Some(failure) = controller.tie_failure() {
+                break RunEnd::TieFailed(failure);
             }
         }
         if world.steps() >= steps {
@@ -319,7 +325,7 @@ impl Recording {
     fn frame(
         &mut self,
         world: &mut World,
-        controller: &PhasedController,
+        controller: &mut PhasedController,
         summary: &mut RunSummary,
         sink: &mut dyn FrameSink,
         progress: &mut dyn FnMut(&Progress<'_>),
@@ -327,6 +333,10 @@ impl Recording {
     ) -> Result<(), SimError> {
         world.body_centres(&mut self.centres);
         let knot = self.knots.analyse(&self.centres, &self.knot_options).ok();
+        let name = knot.as_ref().map(|k| k.knot.to_string());
+        let observed = knot.as_ref().zip(name.as_deref());
+        let observed = observed.map(|(k, name)| (name, k.agreement, k.right_handed()));
+        controller.observe_knot(world.state().t, observed);
         let dofs = world.model().dof_count();
         self.forces.finish_interval(dofs, world.options().time_step);
         let data = world.data();

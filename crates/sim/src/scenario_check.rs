@@ -10,7 +10,9 @@
 use std::collections::HashMap;
 
 use hagfish_anatomy::{AnatomyError, DataFile, Field};
-use hagfish_control::{FormingScript, Phase, ScriptStep, ThigmoPhase, Waypoint};
+use hagfish_control::{
+    FormingScript, Phase, ScriptStep, TailGains, ThigmoPhase, TiePhase, Waypoint,
+};
 
 use crate::scenario::{MIN_TIME_STEP_S, Scenario};
 
@@ -19,6 +21,7 @@ use crate::scenario::{MIN_TIME_STEP_S, Scenario};
 enum Range {
     AtLeast(f64),
     AtMost(f64),
+    Fraction,
     Positive,
     NonNegative,
     Finite,
@@ -30,6 +33,7 @@ impl Range {
             && match self {
                 Range::AtLeast(floor) => value >= floor,
                 Range::AtMost(cap) => value <= cap,
+                Range::Fraction => (0.0..=1.0).contains(&value),
                 Range::Positive => value > 0.0,
                 Range::NonNegative => value >= 0.0,
                 Range::Finite => true,
@@ -40,6 +44,7 @@ impl Range {
         match self {
             Range::AtLeast(floor) => format!("finite and ≥ {floor:e}"),
             Range::AtMost(cap) => format!("at most {cap}"),
+            Range::Fraction => "a fraction of the body length in [0, 1]".into(),
             Range::Positive => "finite and > 0".into(),
             Range::NonNegative => "finite and ≥ 0".into(),
             Range::Finite => "finite".into(),
@@ -90,10 +95,14 @@ impl Checker<'_> {
         }
     }
 
+    fn gains(&mut self, gains: &TailGains) -> Result<(), AnatomyError> {
+        self.check("kp_dyn_per_cm", gains.kp_dyn_per_cm, Range::NonNegative)?;
+        self.check("kd_dyn_s_per_cm", gains.kd_dyn_s_per_cm, Range::NonNegative)?;
+        self.check("max_force_dyn", gains.max_force_dyn, Range::Positive)
+    }
+
     fn forming(&mut self, script: &FormingScript, bodies: usize) -> Result<(), AnatomyError> {
-        self.check("kp_dyn_per_cm", script.gains.kp_dyn_per_cm, Range::NonNegative)?;
-        self.check("kd_dyn_s_per_cm", script.gains.kd_dyn_s_per_cm, Range::NonNegative)?;
-        self.check("max_force_dyn", script.gains.max_force_dyn, Range::Positive)?;
+        self.gains(&script.gains)?;
         for step in &script.steps {
             match *step {
                 ScriptStep::Move { to, speed } => {
@@ -111,6 +120,13 @@ impl Checker<'_> {
             Waypoint::Point(p) => self.check_vector("Point", p),
             Waypoint::FromTarget(p) => self.check_vector("FromTarget", p),
             Waypoint::FromLoopCentroid(p) => self.check_vector("FromLoopCentroid", p),
+            Waypoint::BodyLengths(p) => self.check_vector("BodyLengths", p),
+            Waypoint::FromLoopCentroidRadii(p) => self.check_vector("FromLoopCentroidRadii", p),
+            Waypoint::FromTargetRadii(p) => self.check_vector("FromTargetRadii", p),
+            Waypoint::FromArc { at, offset_radii } => {
+                self.check("at", at, Range::Fraction)?;
+                self.check_vector("offset_radii", offset_radii)
+            }
             Waypoint::FromBody { body, offset } => {
                 let field = self.next_field("body");
                 if body >= bodies {
@@ -124,6 +140,15 @@ impl Checker<'_> {
                 self.check_vector("offset", offset)
             }
         }
+    }
+
+    fn tie(&mut self, phase: &TiePhase) -> Result<(), AnatomyError> {
+        self.check("at", phase.at, Range::Fraction)?;
+        self.gains(&phase.gains)?;
+        self.check("speed_cm_s", phase.speed_cm_s, Range::Positive)?;
+        self.check("attempts", f64::from(phase.attempts), Range::Positive)?;
+        self.check("hold_s", phase.hold_s, Range::NonNegative)?;
+        self.check("settle_s", phase.settle_s, Range::NonNegative)
     }
 
     fn thigmotaxis(&mut self, phase: &ThigmoPhase) -> Result<(), AnatomyError> {
@@ -179,6 +204,7 @@ pub(crate) fn check_scenario(file: &DataFile<Scenario>, bodies: usize) -> Result
             Phase::Form(script) => checker.forming(script, bodies)?,
             Phase::Hold(seconds) => checker.check("Hold", *seconds, Range::NonNegative)?,
             Phase::Thigmotaxis(phase) => checker.thigmotaxis(phase)?,
+            Phase::Tie(phase) => checker.tie(phase)?,
         }
     }
     Ok(())

@@ -1,5 +1,6 @@
 //! Acceptance tests of `hagfish-knots` (issue: knot analysis of an open centreline).
 
+mod chirality;
 mod closed_forms;
 mod curves;
 mod errors;

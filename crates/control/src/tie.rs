@@ -1,0 +1,244 @@
+//! Tying a knot by control, from the body's current state (the thesis' future work: "tie the
+//! initial knot by using control signals"; Haney's rules, thesis §3.3.1 and §5.1).
+//!
+//! A [`TiePhase`] plans crossover → wrap → insertion in body-relative terms — the crossover
+//! at a fraction `at` of the body length L, the sweep in fractions of L, every offset in
+//! local radii — and executes it with the PD tail pull of the forming script, each waypoint
+//! resolved from the body's shape when the move toward it starts. The knot is then checked
+//! by the knot analysis of the recorded frames (type, agreement and handedness, from the
+//! knotted core's writhe): tied and held for `hold_s`, the phase ends; not tied `settle_s`
+//! after the plan, the plan is tried again from the current shape, up to `attempts` times,
+//! and then the phase fails (the run ends with its own status, never a hang).
+//!
+//! The plan leaves the knot loose (the tail is not pulled tight): tightening is thigmotaxis'
+//! job. Only the trefoil is planned: figure-eight and Miller Institute plans
+//! tried so far ended as trefoils or unknots (`docs/physics.md`).
+
+use serde::{Deserialize, Serialize};
+
+use crate::forming::{FormingScript, ScriptStep, Waypoint};
+use crate::tail_pd::TailGains;
+
+/// Which way a chiral knot turns.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Handedness {
+    /// Positive crossings, positive writhe.
+    Right,
+    /// The mirror image.
+    Left,
+}
+
+/// A knot the tie controller plans.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum TieKnot {
+    /// The overhand knot, 3₁, of the given handedness.
+    Trefoil(Handedness),
+}
+
+impl TieKnot {
+    /// Its Rolfsen name.
+    pub fn name(self) -> &'static str {
+        match self {
+            TieKnot::Trefoil(_) => "3_1",
+        }
+    }
+
+    /// Whether a knot analysis of the body (its Rolfsen name, agreement over closure
+    /// directions and the core's handedness if known) shows this knot: the type with
+    /// agreement ≥ [`MIN_AGREEMENT`], and for a chiral knot the right handedness.
+    pub fn is_shown_by(self, name: &str, agreement: f64, right_handed: Option<bool>) -> bool {
+        let chirality = match self {
+            TieKnot::Trefoil(Handedness::Right) => right_handed == Some(true),
+            TieKnot::Trefoil(Handedness::Left) => right_handed == Some(false),
+        };
+        name == self.name() && agreement >= MIN_AGREEMENT && chirality
+    }
+}
+
+/// The agreement over closure directions a tied knot must reach.
+pub const MIN_AGREEMENT: f64 = 0.9;
+
+/// A tie phase: which knot, where, and how patiently.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TiePhase {
+    /// The knot to tie.
+    pub knot: TieKnot,
+    /// Where the crossover is made: a fraction of the body length from the head (the knot
+    /// forms tail-ward of it), in (0, 1).
+    pub at: f64,
+    /// Gains of the tail pull.
+    #[serde(default)]
+    pub gains: TailGains,
+    /// Speed of the tail's target (cm/s; default 5).
+    #[serde(default = "default_speed")]
+    pub speed_cm_s: f64,
+    /// Plans tried before the phase fails (default 2).
+    #[serde(default = "default_attempts")]
+    pub attempts: u32,
+    /// How long the knot must be shown without interruption before the phase ends (s,
+    /// default 0.5).
+    #[serde(default = "default_hold")]
+    pub hold_s: f64,
+    /// How long after the plan's last step the knot may take to show before the attempt
+    /// counts as failed (s, default 2).
+    #[serde(default = "default_settle")]
+    pub settle_s: f64,
+}
+
+fn default_speed() -> f64 {
+    5.0
+}
+
+fn default_attempts() -> u32 {
+    2
+}
+
+fn default_hold() -> f64 {
+    0.5
+}
+
+fn default_settle() -> f64 {
+    2.0
+}
+
+impl TiePhase {
+    /// The plan of one attempt as a forming script. For the trefoil (crossover at `a = at`,
+    /// remaining length R = 1 − a, in body lengths): sweep the tail wide, to
+    /// (a + 0.63R, 0.6R, 0)·L then back to (a + 0.17R, 0.45R, 0)·L so the body lies as a "C";
+    /// cross over the body at `at` (3.5 r to one side and 3 r up, over to 4.7 r on the other
+    /// side, down to 3 r below); go under the loop's centroid (3 r below), up through it
+    /// (3.5 r above) and 6 r further, and hold 1 s (a tail end left just through the loop
+    /// slips back out: measured on ES103, the knot showed for one frame). Crossing over
+    /// first gives the right-handed trefoil (writhe ≈ +2.3 on ES103); the left-handed one is
+    /// the mirror image in z (under first).
+    pub fn script(&self) -> FormingScript {
+        let TieKnot::Trefoil(handedness) = self.knot;
+        let z = match handedness {
+            Handedness::Right => 1.0,
+            Handedness::Left => -1.0,
+        };
+        let (a, rest) = (self.at, 1.0 - self.at);
+        let step = |to| ScriptStep::Move { to, speed: self.speed_cm_s };
+        let arc = |y: f64, up: f64| Waypoint::FromArc { at: a, offset_radii: [0.0, y, z * up] };
+        FormingScript {
+            gains: self.gains,
+            steps: vec![
+                step(Waypoint::BodyLengths([a + 0.63 * rest, 0.6 * rest, 0.0])),
+                step(Waypoint::BodyLengths([a + 0.17 * rest, 0.45 * rest, 0.0])),
+                ScriptStep::Hold(1.0),
+                step(arc(3.5, 3.0)),
+                step(arc(-4.7, 3.0)),
+                step(arc(-4.7, -3.0)),
+                step(Waypoint::FromLoopCentroidRadii([0.0, 0.0, -3.0 * z])),
+                step(Waypoint::FromLoopCentroidRadii([0.0, 0.0, 3.5 * z])),
+                step(Waypoint::FromTargetRadii([0.0, 0.0, 6.0 * z])),
+                ScriptStep::Hold(1.0),
+            ],
+        }
+    }
+}
+
+/// Progress of a tie phase: the controller state a checkpoint must keep (with the forming
+/// script's progress).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct TieProgress {
+    /// Attempts started (1 during the first).
+    pub attempt: u32,
+    /// When the current attempt's plan ended (s), if it has.
+    pub plan_done_at: Option<f64>,
+    /// Since when the knot has been shown without interruption (s), if it is.
+    pub shown_since: Option<f64>,
+    /// True once the last attempt failed.
+    pub failed: bool,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::phases::{Phase, PhasedController};
+
+    fn phase(handedness: Handedness) -> TiePhase {
+        TiePhase {
+            knot: TieKnot::Trefoil(handedness),
+            at: 0.31,
+            gains: TailGains::default(),
+            speed_cm_s: 5.0,
+            attempts: 2,
+            hold_s: 0.5,
+            settle_s: 2.0,
+        }
+    }
+
+    #[test]
+    fn the_left_handed_plan_is_the_right_handed_one_mirrored_in_z() {
+        let (right, left) = (phase(Handedness::Right).script(), phase(Handedness::Left).script());
+        assert_eq!(right.steps.len(), left.steps.len());
+        let mirrored = |w: Waypoint| match w {
+            Waypoint::FromArc { at, offset_radii: [x, y, z] } => {
+                Waypoint::FromArc { at, offset_radii: [x, y, -z] }
+            }
+            Waypoint::FromLoopCentroidRadii([x, y, z]) => {
+                Waypoint::FromLoopCentroidRadii([x, y, -z])
+            }
+            Waypoint::FromTargetRadii([x, y, z]) => Waypoint::FromTargetRadii([x, y, -z]),
+            other => other,
+        };
+        for (r, l) in right.steps.iter().zip(&left.steps) {
+            match (*r, *l) {
+                (ScriptStep::Move { to: a, .. }, ScriptStep::Move { to: b, .. }) => {
+                    assert_eq!(mirrored(a), b);
+                }
+                (a, b) => assert_eq!(a, b),
+            }
+        }
+        // Crossing over first (positive z at the crossover) is the right-handed trefoil.
+        let over = right.steps.iter().find_map(|s| match s {
+            ScriptStep::Move { to: Waypoint::FromArc { offset_radii, .. }, .. } => {
+                Some(offset_radii[2])
+            }
+            _ => None,
+        });
+        assert!(over.is_some_and(|z| z > 0.0));
+    }
+
+    #[test]
+    fn a_knot_is_shown_only_with_its_type_agreement_and_handedness() {
+        let right = TieKnot::Trefoil(Handedness::Right);
+        assert!(right.is_shown_by("3_1", 0.95, Some(true)));
+        assert!(!right.is_shown_by("3_1", 0.95, Some(false)), "the mirror image");
+        assert!(!right.is_shown_by("3_1", 0.95, None), "handedness unknown");
+        assert!(!right.is_shown_by("3_1", 0.85, Some(true)), "agreement below 0.9");
+        assert!(!right.is_shown_by("0_1", 1.0, Some(true)));
+    }
+
+    #[test]
+    fn a_tie_ends_when_shown_for_hold_s_and_fails_after_its_attempts() {
+        let tie = |attempts| {
+            PhasedController::new(
+                None,
+                vec![Phase::Tie(TiePhase { attempts, ..phase(Handedness::Right) })],
+            )
+        };
+        let shown = Some(("3_1", 0.95, Some(true)));
+        let mut controller = tie(2);
+        controller.observe_knot(10.0, shown);
+        assert_eq!(controller.state().tie.shown_since, Some(10.0));
+        controller.observe_knot(10.1, Some(("0_1", 1.0, None)));
+        assert_eq!(controller.state().tie.shown_since, None, "an interruption restarts the hold");
+
+        // Not shown 2 s after the plan ended: the second attempt starts, then the phase fails.
+        let mut controller = tie(2);
+        controller.tie.plan_done_at = Some(20.0);
+        controller.observe_knot(21.9, None);
+        assert_eq!(controller.state().tie.attempt, 1, "still settling");
+        controller.observe_knot(22.0, None);
+        assert_eq!(controller.state().tie.attempt, 2);
+        assert_eq!(controller.state().tie.plan_done_at, None, "the plan starts again");
+        assert!(controller.tie_failure().is_none());
+        controller.tie.plan_done_at = Some(40.0);
+        controller.observe_knot(42.0, None);
+        let failure = controller.tie_failure().expect("failed");
+        assert_eq!((failure.knot, failure.attempts), (TieKnot::Trefoil(Handedness::Right), 2));
+    }
+}
