@@ -105,7 +105,7 @@ fn unknown_phase() {
         "error_unknown_phase",
         |t| t.replace("Hold(0.5)", "Wait(0.5)"),
         "18:9",
-        "Unexpected variant named `Wait` in enum `Phase`, expected one of `Form`, `Hold`, or `Thigmotaxis` instead",
+        "Unexpected variant named `Wait` in enum `Phase`, expected one of `Form`, `Hold`, `Thigmotaxis`, or `Tie` instead",
     );
 }
 

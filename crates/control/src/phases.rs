@@ -5,7 +5,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::controller::{Actuation, ControlContext, Controller};
 use crate::drag::WaterDrag;
-use crate::forming::{FormingController, FormingScript};
+use crate::forming::{FormingController, FormingScript, body_length};
 use crate::knot_span::KnotSpan;
 use crate::thigmotaxis::ThigmoParameters;
 use crate::tie::{TieKnot, TiePhase, TieProgress};
@@ -56,7 +56,7 @@ fn default_thigmo_name() -> String {
 /// End conditions of a phase; it ends at the first that holds. The knot conditions read the
 /// self contacts of the step ([`KnotSpan`]) and must hold without interruption for
 /// `hold_s`; without contacts only the duration counts.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Until {
     /// Longest duration (s).
@@ -79,27 +79,43 @@ pub struct Until {
     /// Ends once the knot's span (contact stretch, cm) is at least this (loosening).
     #[serde(default)]
     pub span_above_cm: Option<f64>,
+    /// [`Until::knot_start_below_cm`] as a fraction of the body length L (body-relative:
+    /// carries over to other bodies).
+    #[serde(default)]
+    pub knot_start_below_l: Option<f64>,
+    /// [`Until::knot_start_above_cm`] as a fraction of L.
+    #[serde(default)]
+    pub knot_start_above_l: Option<f64>,
+    /// [`Until::span_below_cm`] as a fraction of L.
+    #[serde(default)]
+    pub span_below_l: Option<f64>,
+    /// [`Until::span_above_cm`] as a fraction of L.
+    #[serde(default)]
+    pub span_above_l: Option<f64>,
 }
 
 impl Until {
     /// Whether a phase that started `elapsed` seconds ago is over at time `t` with the knot at
-    /// `span`: its duration has passed, or a knot condition has held since `since` for at least
-    /// `hold_s`. Updates `since` (the phase's [`PhaseProgress::condition_since`]): set when a
-    /// knot condition starts to hold, cleared when none holds.
+    /// `span` on a body of length `body_length_cm`: its duration has passed, or a knot
+    /// condition has held since `since` for at least `hold_s`. Updates `since` (the phase's
+    /// [`PhaseProgress::condition_since`]): set when a knot condition starts to hold, cleared
+    /// when none holds.
     pub fn over(
         &self,
         t: f64,
         elapsed: f64,
         span: Option<&KnotSpan>,
+        body_length_cm: f64,
         since: &mut Option<f64>,
     ) -> bool {
-        *since = if self.knot_condition(span) { Some(since.unwrap_or(t)) } else { None };
+        let holds = self.knot_condition(span, body_length_cm);
+        *since = if holds { Some(since.unwrap_or(t)) } else { None };
         elapsed >= self.seconds || since.is_some_and(|since| t - since >= self.hold_s)
     }
 
-    /// True once a knot condition holds for the knot at `span` (the duration and `hold_s`
-    /// are not looked at).
-    fn knot_condition(&self, span: Option<&KnotSpan>) -> bool {
+    /// True once a knot condition holds for the knot at `span` on a body of length
+    /// `body_length_cm` (the duration and `hold_s` are not looked at).
+    fn knot_condition(&self, span: Option<&KnotSpan>, body_length_cm: f64) -> bool {
         let at_most = |limit: Option<f64>, value: Option<f64>| {
             limit.zip(value).is_some_and(|(limit, value)| value <= limit)
         };
@@ -108,10 +124,15 @@ impl Until {
         };
         let start = span.map(|s| s.start_cm);
         let length = span.map(KnotSpan::length_cm);
+        let of_l = |limit: Option<f64>| limit.map(|fraction| fraction * body_length_cm);
         at_most(self.knot_start_below_cm, start)
             || at_least(self.knot_start_above_cm, start)
             || at_most(self.span_below_cm, length)
             || at_least(self.span_above_cm, length)
+            || at_most(of_l(self.knot_start_below_l), start)
+            || at_least(of_l(self.knot_start_above_l), start)
+            || at_most(of_l(self.span_below_l), length)
+            || at_least(of_l(self.span_above_l), length)
     }
 }
 
@@ -219,7 +240,9 @@ impl PhasedController {
             Some(Phase::Hold(seconds)) => elapsed >= *seconds,
             Some(Phase::Thigmotaxis(phase)) => {
                 let span = KnotSpan::of(context.self_contacts, context.centreline);
-                phase.until.over(t, elapsed, span.as_ref(), &mut self.progress.condition_since)
+                let length = body_length(context);
+                let since = &mut self.progress.condition_since;
+                phase.until.over(t, elapsed, span.as_ref(), length, since)
             }
             Some(Phase::Tie(phase)) => self.tie.shown_since.is_some_and(|s| t - s >= phase.hold_s),
             None => false,
@@ -284,14 +307,27 @@ mod tests {
             knot_start_above_cm: None,
             span_below_cm: Some(20.0),
             span_above_cm: None,
+            ..Until::default()
         };
-        assert!(!until.knot_condition(Some(&span(10.0, 35.0))));
-        assert!(until.knot_condition(Some(&span(2.5, 35.0))), "knot start near the head");
-        assert!(until.knot_condition(Some(&span(10.0, 29.5))), "span tight enough");
-        assert!(!until.knot_condition(None), "without contacts only the duration counts");
+        let condition = |until: &Until, s: Option<&KnotSpan>| until.knot_condition(s, 40.0);
+        assert!(!condition(&until, Some(&span(10.0, 35.0))));
+        assert!(condition(&until, Some(&span(2.5, 35.0))), "knot start near the head");
+        assert!(condition(&until, Some(&span(10.0, 29.5))), "span tight enough");
+        assert!(!condition(&until, None), "without contacts only the duration counts");
         let loosen = Until { span_above_cm: Some(27.0), span_below_cm: None, ..until };
-        assert!(loosen.knot_condition(Some(&span(10.0, 37.0))));
-        assert!(!loosen.knot_condition(Some(&span(10.0, 29.5))));
+        assert!(condition(&loosen, Some(&span(10.0, 37.0))));
+        assert!(!condition(&loosen, Some(&span(10.0, 29.5))));
+    }
+
+    #[test]
+    fn body_relative_conditions_scale_with_the_body_length() {
+        let until = Until { seconds: 5.0, knot_start_below_l: Some(0.05), ..Until::default() };
+        let near = span(2.5, 20.0);
+        assert!(until.knot_condition(Some(&near), 60.0), "2.5 cm ≤ 0.05 · 60 cm");
+        assert!(!until.knot_condition(Some(&near), 40.0), "2.5 cm > 0.05 · 40 cm");
+        let tight = Until { seconds: 5.0, span_below_l: Some(0.5), ..Until::default() };
+        assert!(tight.knot_condition(Some(&span(10.0, 29.0)), 40.0));
+        assert!(!tight.knot_condition(Some(&span(10.0, 31.0)), 40.0));
     }
 
     #[test]
@@ -303,17 +339,18 @@ mod tests {
             knot_start_above_cm: None,
             span_below_cm: Some(20.0),
             span_above_cm: None,
+            ..Until::default()
         };
         let (tight, loose) = (span(10.0, 29.5), span(10.0, 35.0));
         let mut since = None;
-        assert!(!until.over(1.0, 1.0, Some(&tight), &mut since), "a single dip");
+        assert!(!until.over(1.0, 1.0, Some(&tight), 40.0, &mut since), "a single dip");
         assert_eq!(since, Some(1.0));
-        assert!(!until.over(1.1, 1.1, Some(&loose), &mut since), "the flicker is over");
+        assert!(!until.over(1.1, 1.1, Some(&loose), 40.0, &mut since), "the flicker is over");
         assert_eq!(since, None);
         for t in [1.2, 1.3, 1.4] {
-            assert!(!until.over(t, t, Some(&tight), &mut since), "held only since 1.2 s");
+            assert!(!until.over(t, t, Some(&tight), 40.0, &mut since), "held only since 1.2 s");
         }
-        assert!(until.over(1.5, 1.5, Some(&tight), &mut since), "held for 0.3 s");
-        assert!(until.over(5.0, 5.0, None, &mut None), "the duration ends it regardless");
+        assert!(until.over(1.5, 1.5, Some(&tight), 40.0, &mut since), "held for 0.3 s");
+        assert!(until.over(5.0, 5.0, None, 40.0, &mut None), "the duration ends it regardless");
     }
 }

@@ -280,6 +280,20 @@ pub const PARAMETERS: &[Parameter] = &[
         "None",
         "end once the knot's contact span is at least this long (loosening)",
     ),
+    p(
+        "Thigmotaxis.until.knot_start_below_l",
+        "L",
+        "None",
+        "knot_start_below_cm as a fraction of the body length (carries over to other bodies)",
+    ),
+    p(
+        "Thigmotaxis.until.knot_start_above_l",
+        "L",
+        "None",
+        "knot_start_above_cm as a fraction of L",
+    ),
+    p("Thigmotaxis.until.span_below_l", "L", "None", "span_below_cm as a fraction of L"),
+    p("Thigmotaxis.until.span_above_l", "L", "None", "span_above_cm as a fraction of L"),
 ];
 
 #[cfg(test)]
@@ -352,6 +366,10 @@ mod tests {
                         knot_start_above_cm: Some(30.0),
                         span_below_cm: Some(20.0),
                         span_above_cm: Some(30.0),
+                        knot_start_below_l: Some(0.05),
+                        knot_start_above_l: Some(0.7),
+                        span_below_l: Some(0.5),
+                        span_above_l: Some(0.7),
                     },
                 }),
             ],

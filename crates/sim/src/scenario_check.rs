@@ -172,6 +172,16 @@ impl Checker<'_> {
                 self.check(key, value, Range::Finite)?;
             }
         }
+        for (key, value) in [
+            ("knot_start_below_l", until.knot_start_below_l),
+            ("knot_start_above_l", until.knot_start_above_l),
+            ("span_below_l", until.span_below_l),
+            ("span_above_l", until.span_above_l),
+        ] {
+            if let Some(value) = value {
+                self.check(key, value, Range::Fraction)?;
+            }
+        }
         Ok(())
     }
 }
