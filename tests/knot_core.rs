@@ -5,9 +5,7 @@
 
 mod common;
 
-use std::collections::HashMap;
-
-use common::{ROOT, code_and_stderr, csv_rows, fresh_dir, run_hagfish};
+use common::{ROOT, code_and_stderr, fresh_dir, metrics_table, run_hagfish};
 
 /// ES103's body length L (cm).
 const BODY_LENGTH_CM: f64 = 42.4;
@@ -18,10 +16,7 @@ fn the_knotted_core_is_reported_in_body_relative_units() {
     let scenario = format!("{ROOT}/data/scenarios/form.ron");
     let output = run_hagfish(["run", &scenario, "--quiet", "--out", &dir.to_string_lossy()]);
     assert!(output.status.success(), "{}", code_and_stderr(&output).1);
-    let text = std::fs::read_to_string(dir.join("metrics.csv")).expect("metrics.csv");
-    let header: Vec<&str> = text.lines().next().expect("a header").split(',').collect();
-    let index: HashMap<&str, usize> = header.iter().enumerate().map(|(k, h)| (*h, k)).collect();
-    let rows = csv_rows(&dir.join("metrics.csv"));
+    let (index, rows) = metrics_table(&dir);
     let mut knotted = 0;
     for row in &rows {
         let value = |name: &str| row[index[name]].parse::<f64>().ok();

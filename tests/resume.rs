@@ -16,6 +16,7 @@ use std::time::{Duration, Instant};
 
 use common::{
     ROOT, code_and_stderr, csv_rows, frames_of, fresh_dir, hagfish, manifest, run_hagfish,
+    terminate,
 };
 
 const OUTPUTS: [&str; 7] = [
@@ -203,11 +204,7 @@ fn sigterm_stops_after_a_frame_with_a_resumable_run() {
         assert!(started.elapsed() < Duration::from_secs(120), "no frames after 120 s");
         std::thread::sleep(Duration::from_millis(5));
     }
-    let term = std::process::Command::new("kill")
-        .args(["-TERM", &child.id().to_string()])
-        .status()
-        .expect("kill runs");
-    assert!(term.success());
+    terminate(&child);
     let output = child.wait_with_output().expect("the run ends");
     let (code, stderr) = code_and_stderr(&output);
     assert_eq!(code, Some(130), "{stderr}");

@@ -8,7 +8,9 @@ mod common;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
-use common::{ROOT, code_and_stderr, csv_rows, fresh_dir, hagfish, manifest, run_hagfish};
+use common::{
+    ROOT, code_and_stderr, fresh_dir, hagfish, manifest, metrics_table, run_hagfish, terminate,
+};
 
 /// The default bounds: self penetration 10 % of the local radius, limit excess 2°.
 const SELF_BOUND: f64 = 0.1;
@@ -26,11 +28,9 @@ fn run_thesis_at(dir: &Path, time_step_s: &str) -> std::process::Output {
 
 /// Asserts that no recorded frame exceeds the acceptance bounds; returns the frame count.
 fn assert_frames_within_bounds(dir: &Path) -> usize {
-    let header = std::fs::read_to_string(dir.join("metrics.csv")).expect("metrics.csv");
-    let columns: Vec<&str> = header.lines().next().expect("a header").split(',').collect();
-    let column = |name: &str| columns.iter().position(|c| *c == name).expect(name);
-    let (penetration, limit) = (column("max_self_penetration_rel"), column("max_limit_excess_deg"));
-    let rows = csv_rows(&dir.join("metrics.csv"));
+    let (columns, rows) = metrics_table(dir);
+    let (penetration, limit) =
+        (columns["max_self_penetration_rel"], columns["max_limit_excess_deg"]);
     for row in &rows {
         let value = |k: usize| row[k].parse::<f64>().expect("a number");
         assert!(
@@ -97,11 +97,7 @@ fn sigterm_stops_a_run_with_frames_far_apart_within_a_second() {
     }
     std::thread::sleep(Duration::from_millis(200));
     let signalled = Instant::now();
-    let term = std::process::Command::new("kill")
-        .args(["-TERM", &child.id().to_string()])
-        .status()
-        .expect("kill runs");
-    assert!(term.success());
+    terminate(&child);
     let output = child.wait_with_output().expect("the run ends");
     let waited = signalled.elapsed();
     let (code, stderr) = code_and_stderr(&output);

@@ -9,11 +9,10 @@
 
 mod common;
 
-use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
-use common::{ROOT, code_and_stderr, fresh_dir, run_hagfish};
+use common::{ROOT, code_and_stderr, fresh_dir, metrics_table, run_hagfish};
 
 /// ES103's biometrics file with `edits` (text replacements) applied, written into `dir`.
 fn body(dir: &Path, name: &str, edits: &[(&str, String)]) -> PathBuf {
@@ -116,12 +115,8 @@ fn check(dir: &Path, variant: &Variant) -> Option<String> {
     if !output.status.success() {
         return Some(format!("{}: {}", variant.name, code_and_stderr(&output).1));
     }
-    let text = std::fs::read_to_string(out.join("metrics.csv")).expect("metrics.csv");
-    let mut lines = text.lines();
-    let header: HashMap<&str, usize> =
-        lines.next().expect("a header").split(',').enumerate().map(|(k, h)| (h, k)).collect();
-    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
-    let number = |row: &Vec<&str>, name: &str| row[header[name]].parse::<f64>().unwrap_or(f64::NAN);
+    let (header, rows) = metrics_table(&out);
+    let number = |row: &[String], name: &str| row[header[name]].parse::<f64>().unwrap_or(f64::NAN);
     let Some(tied) = rows.iter().position(|r| r[header["phase"]] != "tie") else {
         return Some(format!("{}: not tied in {} frames", variant.name, rows.len()));
     };
@@ -209,23 +204,19 @@ fn the_tied_knot_slides_toward_the_head_on_es103() {
     let scenario = format!("{ROOT}/data/scenarios/tie_slide.ron");
     let output = run_hagfish(["run", &scenario, "--quiet", "--out", &dir.to_string_lossy()]);
     assert!(output.status.success(), "{}", code_and_stderr(&output).1);
-    let text = std::fs::read_to_string(dir.join("metrics.csv")).expect("metrics.csv");
-    let mut lines = text.lines();
-    let header: HashMap<&str, usize> =
-        lines.next().expect("a header").split(',').enumerate().map(|(k, h)| (h, k)).collect();
-    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
-    let number = |row: &Vec<&str>, name: &str| row[header[name]].parse::<f64>().unwrap_or(f64::NAN);
-    let slide: Vec<&Vec<&str>> = rows.iter().filter(|r| r[header["phase"]] == "slide").collect();
+    let (header, rows) = metrics_table(&dir);
+    let number = |row: &[String], name: &str| row[header[name]].parse::<f64>().unwrap_or(f64::NAN);
+    let slide: Vec<&Vec<String>> = rows.iter().filter(|r| r[header["phase"]] == "slide").collect();
     assert!(slide.len() >= 10, "{} slide frames", slide.len());
     let tied = rows.iter().position(|r| r[header["phase"]] != "tie").expect("tied");
     assert!(rows[tied..].iter().all(|r| r[header["knot"]] == "3_1"), "the trefoil is lost");
     let (first, last) = (slide[0], slide[slide.len() - 1]);
-    let mid = |r: &Vec<&str>| number(r, "knot_core_mid_L");
+    let mid = |r: &Vec<String>| number(r, "knot_core_mid_L");
     let travel = mid(first) - rows[tied..].iter().map(mid).fold(f64::INFINITY, f64::min);
     assert!(travel >= 0.25, "the core's midpoint moved {travel} L toward the head");
     let nearest = rows[tied..].iter().map(|r| number(r, "knot_core_start_L")).fold(1.0, f64::min);
     assert!(nearest <= 0.05, "the core's head-ward end came to {nearest} L only");
-    let length = |r: &Vec<&str>| number(r, "knot_core_length_cm");
+    let length = |r: &Vec<String>| number(r, "knot_core_length_cm");
     let change = (length(last) / length(first) - 1.0).abs();
     assert!(change <= 0.3, "the core's length changed by {:.0} %", 100.0 * change);
     // The midpoint's speed over the middle 80 % of the slide, against the commanded 2 cm/s.

@@ -68,3 +68,19 @@ pub fn csv_rows(path: &Path) -> Vec<Vec<String>> {
 pub fn frames_of(rows: &[Vec<String>]) -> Vec<usize> {
     rows.iter().map(|r| r[0].parse().expect("a frame index")).collect()
 }
+
+/// Sends SIGTERM to `child` (with `kill`, as a user or a cluster scheduler would).
+pub fn terminate(child: &std::process::Child) {
+    let term =
+        Command::new("kill").args(["-TERM", &child.id().to_string()]).status().expect("kill runs");
+    assert!(term.success());
+}
+
+/// `metrics.csv` of a run directory: the column index of each header name, and the rows split
+/// at commas (every row as wide as the header).
+pub fn metrics_table(dir: &Path) -> (std::collections::HashMap<String, usize>, Vec<Vec<String>>) {
+    let text = std::fs::read_to_string(dir.join("metrics.csv")).expect("metrics.csv");
+    let header = text.lines().next().expect("a header").split(',');
+    let columns = header.enumerate().map(|(k, h)| (h.to_owned(), k)).collect();
+    (columns, csv_rows(&dir.join("metrics.csv")))
+}

@@ -103,6 +103,20 @@ fn default_settle() -> f64 {
 }
 
 impl TiePhase {
+    /// A tie phase for `knot` with the crossover at `at` (fraction of L) and every other
+    /// setting at its default.
+    pub fn new(knot: TieKnot, at: f64) -> Self {
+        Self {
+            knot,
+            at,
+            gains: TailGains::default(),
+            speed_cm_s: default_speed(),
+            attempts: default_attempts(),
+            hold_s: default_hold(),
+            settle_s: default_settle(),
+        }
+    }
+
     /// The plan of one attempt as a forming script. For the trefoil (crossover at `a = at`,
     /// remaining length R = 1 − a, in body lengths): sweep the tail wide, to
     /// (a + 0.63R, 0.6R, 0)·L then back to (a + 0.17R, 0.45R, 0)·L so the body lies as a "C";
@@ -159,15 +173,7 @@ mod tests {
     use crate::phases::{Phase, PhasedController};
 
     fn phase(handedness: Handedness) -> TiePhase {
-        TiePhase {
-            knot: TieKnot::Trefoil(handedness),
-            at: 0.31,
-            gains: TailGains::default(),
-            speed_cm_s: 5.0,
-            attempts: 2,
-            hold_s: 0.5,
-            settle_s: 2.0,
-        }
+        TiePhase::new(TieKnot::Trefoil(handedness), 0.31)
     }
 
     #[test]

@@ -342,15 +342,7 @@ mod tests {
                     ],
                 }),
                 Phase::Hold(1.0),
-                Phase::Tie(TiePhase {
-                    knot: TieKnot::Trefoil(Handedness::Left),
-                    at: 0.31,
-                    gains: TailGains::default(),
-                    speed_cm_s: 5.0,
-                    attempts: 2,
-                    hold_s: 0.5,
-                    settle_s: 2.0,
-                }),
+                Phase::Tie(TiePhase::new(TieKnot::Trefoil(Handedness::Left), 0.31)),
                 Phase::Thigmotaxis(ThigmoPhase {
                     name: "slide".into(),
                     parameters: ThigmoParameters {
