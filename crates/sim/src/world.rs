@@ -31,10 +31,11 @@ impl World {
             time: state.t,
             source,
         })?;
-        let mut data = StepData::new(&model, &options)?;
-        pipeline::kinematics(&model, &state, &mut data);
+        let data = StepData::new(&model, &options)?;
         let start = state.clone();
-        Ok(Self { model, options, state, data, steps: 0, start })
+        let mut world = Self { model, options, state, data, steps: 0, start };
+        world.prepare()?;
+        Ok(world)
     }
 
     /// The immutable model.
@@ -71,8 +72,15 @@ impl World {
             source,
         })?;
         self.state = state;
-        self.data.next.current = false;
-        pipeline::kinematics(&self.model, &self.state, &mut self.data);
+        self.prepare()
+    }
+
+    /// The kinematics and contacts of the current state, as the end of a step leaves them
+    /// ([`pipeline::check_result`]), so that every step detects contacts once.
+    fn prepare(&mut self) -> Result<(), SimError> {
+        let (model, options, state) = (&self.model, &self.options, &self.state);
+        pipeline::check_result(model, options, state, &mut self.data)
+            .map_err(|source| SimError::Geometry { step: self.steps, time: state.t, source })?;
         Ok(())
     }
 
@@ -135,8 +143,7 @@ impl World {
         };
         if let Err(error) = result {
             std::mem::swap(&mut self.state, &mut self.start);
-            self.data.next.current = false;
-            pipeline::kinematics(&self.model, &self.state, &mut self.data);
+            self.prepare()?;
             return Err(error);
         }
         Ok(&self.data.report)
