@@ -111,3 +111,20 @@ fn csv_rows_if_any(path: &Path) -> usize {
     let text = std::fs::read_to_string(path).unwrap_or_default();
     text.lines().count().saturating_sub(1)
 }
+
+#[test]
+fn a_chain_blowing_up_without_contact_is_stopped_before_it_is_recorded() {
+    // Without water drag the tie's chain goes unstable at h = 0.01 s (docs/physics.md): rates
+    // pass 500 rad/s within 0.2 s with no contact or limit involved.
+    let dir = fresh_dir("acceptance_vacuum");
+    let scenario = format!("{ROOT}/data/scenarios/tie.ron");
+    let out = dir.to_string_lossy();
+    let output = run_hagfish(["run", &scenario, "--quiet", "--out", &out, "--set", "drag=None"]);
+    let (code, stderr) = code_and_stderr(&output);
+    assert_eq!(code, Some(3), "{stderr}");
+    assert!(stderr.contains("rad/s (bound 100 rad/s)"), "{stderr}");
+    let rates = hagfish_sim::read_npy(&dir.join("qdot.npy")).expect("qdot.npy");
+    let fastest = rates.values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    assert!(fastest <= 100.0, "a recorded frame turns at {fastest} rad/s");
+    assert_eq!(manifest(&dir)["status"], "diverged");
+}

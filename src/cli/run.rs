@@ -355,8 +355,7 @@ fn summarise(
     if summary.substepped_steps > 0 {
         writeln!(
             out,
-            "{} steps were rejected whole (acceptance bounds) and taken as substeps, up to {} per \
-             step",
+            "steps rejected whole (acceptance bounds) and taken as substeps: {}, up to {} per step",
             summary.substepped_steps, summary.max_substeps
         )?;
     }

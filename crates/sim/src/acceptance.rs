@@ -23,6 +23,10 @@ pub struct StepAcceptance {
     /// Largest relative KKT residual accepted from a `SolvedInexact` velocity solve (the
     /// solver's `worst_relative`; `Solved` means below its acceptance, 1e-9). Default 1e-4.
     pub max_inexact_residual: f64,
+    /// Largest joint rate |q̇ᵢ| allowed at the end of a step (rad/s). Default 100: the valid
+    /// runs measured stay below 30 rad/s (ES103 family, drag down to ×0.1), while an unstable
+    /// chain passes 500 rad/s within 0.2 s without any contact or limit to reject it.
+    pub max_joint_rate_rad_s: f64,
     /// How many times a rejected step is halved before the run stops as diverged: h/2, h/4,
     /// …, h/2^k (default 4: down to h/16).
     pub max_halvings: u32,
@@ -35,6 +39,7 @@ impl Default for StepAcceptance {
             max_wall_penetration_relative: 0.1,
             max_limit_excess_deg: 2.0,
             max_inexact_residual: 1e-4,
+            max_joint_rate_rad_s: 100.0,
             max_halvings: 4,
         }
     }
@@ -48,6 +53,7 @@ impl StepAcceptance {
             ("max_wall_penetration_relative", self.max_wall_penetration_relative),
             ("max_limit_excess_deg", self.max_limit_excess_deg),
             ("max_inexact_residual", self.max_inexact_residual),
+            ("max_joint_rate_rad_s", self.max_joint_rate_rad_s),
         ];
         for (name, value) in bounds {
             if !(value.is_finite() && value > 0.0) {
@@ -91,6 +97,13 @@ pub enum Rejection {
         /// [`StepAcceptance::max_limit_excess_deg`].
         bound: f64,
     },
+    /// A joint turning faster than the bound at the end of the step.
+    JointRate {
+        /// Measured (rad/s).
+        rad_s: f64,
+        /// [`StepAcceptance::max_joint_rate_rad_s`].
+        bound: f64,
+    },
     /// A `SolvedInexact` velocity solve whose residual is too large.
     InexactSolve {
         /// The solve's worst relative KKT residual.
@@ -118,6 +131,9 @@ impl std::fmt::Display for Rejection {
             Rejection::LimitExcess { degrees, bound } => {
                 write!(f, "a joint {degrees:.3}° beyond its limit (bound {bound}°)")
             }
+            Rejection::JointRate { rad_s, bound } => {
+                write!(f, "a joint turning at {rad_s:.1} rad/s (bound {bound} rad/s)")
+            }
             Rejection::InexactSolve { residual, bound } => {
                 write!(f, "inexact velocity solve, residual {residual:.2e} (bound {bound:.0e})")
             }
@@ -134,6 +150,8 @@ pub struct EndOfStep {
     pub wall_penetration_relative: f64,
     /// Largest excess of a joint over its limits (rad).
     pub limit_excess: f64,
+    /// Largest joint rate |q̇ᵢ| (rad/s; NaN if one is not finite).
+    pub joint_rate: f64,
     /// The worst relative KKT residual of the velocity solve, if it was `SolvedInexact`.
     pub inexact_residual: Option<f64>,
 }
@@ -154,6 +172,8 @@ impl StepAcceptance {
             })
         } else if degrees > self.max_limit_excess_deg || !degrees.is_finite() {
             Some(Rejection::LimitExcess { degrees, bound: self.max_limit_excess_deg })
+        } else if end.joint_rate > self.max_joint_rate_rad_s || end.joint_rate.is_nan() {
+            Some(Rejection::JointRate { rad_s: end.joint_rate, bound: self.max_joint_rate_rad_s })
         } else {
             end.inexact_residual.filter(|r| r.is_nan() || *r > self.max_inexact_residual).map(
                 |residual| Rejection::InexactSolve { residual, bound: self.max_inexact_residual },
@@ -173,6 +193,7 @@ mod tests {
             self_penetration_relative: bounds.max_self_penetration_relative,
             wall_penetration_relative: bounds.max_wall_penetration_relative,
             limit_excess: bounds.max_limit_excess_deg.to_radians() * (1.0 - 1e-12),
+            joint_rate: bounds.max_joint_rate_rad_s,
             inexact_residual: Some(bounds.max_inexact_residual),
         };
         assert_eq!(bounds.judge(&at), None);
@@ -194,6 +215,8 @@ mod tests {
             above(|e| e.limit_excess = f64::NAN),
             Some(Rejection::LimitExcess { .. })
         ));
+        assert!(matches!(above(|e| e.joint_rate *= 1.01), Some(Rejection::JointRate { .. })));
+        assert!(matches!(above(|e| e.joint_rate = f64::NAN), Some(Rejection::JointRate { .. })));
         assert!(matches!(
             above(|e| e.inexact_residual = Some(f64::NAN)),
             Some(Rejection::InexactSolve { .. })

@@ -85,6 +85,12 @@ pub const PARAMETERS: &[Parameter] = &[
         "largest relative KKT residual accepted from an inexact velocity solve",
     ),
     p(
+        "acceptance.max_joint_rate_rad_s",
+        "rad/s",
+        "100",
+        "largest joint rate at a step's end (a chain blowing up passes 500 within 0.2 s)",
+    ),
+    p(
         "acceptance.max_halvings",
         "-",
         "4",

@@ -239,6 +239,10 @@ pub fn check_result(
         self_penetration_relative: penetration.self_relative,
         wall_penetration_relative: penetration.wall_relative,
         limit_excess: limit_excess(model, &state.q),
+        joint_rate: state
+            .qdot
+            .iter()
+            .fold(0.0, |fastest, r| if r.is_nan() { f64::NAN } else { f64::max(fastest, r.abs()) }),
         inexact_residual: inexact.then_some(solve.residuals.worst_relative),
     })
 }

@@ -205,6 +205,7 @@ pub(crate) fn check_scenario(file: &DataFile<Scenario>, bodies: usize) -> Result
         ("max_wall_penetration_relative", a.max_wall_penetration_relative),
         ("max_limit_excess_deg", a.max_limit_excess_deg),
         ("max_inexact_residual", a.max_inexact_residual),
+        ("max_joint_rate_rad_s", a.max_joint_rate_rad_s),
     ] {
         checker.check(key, value, Range::Positive)?;
     }
