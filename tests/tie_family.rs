@@ -244,3 +244,23 @@ fn the_tied_knot_slides_toward_the_head_on_es103_because_of_the_targets() {
     let (control, ..) = slide("tie_slide_control", &zero);
     assert!(travel - control >= 0.2, "travel {travel} L with the targets, {control} L without");
 }
+
+#[test]
+fn the_figure_eight_is_tied_and_held_on_es103() {
+    let dir = fresh_dir("tie_figure_eight");
+    let scenario = format!("{ROOT}/data/scenarios/figure_eight.ron");
+    let output = run_hagfish(["run", &scenario, "--quiet", "--out", &dir.to_string_lossy()]);
+    assert!(output.status.success(), "{}", code_and_stderr(&output).1);
+    let (header, rows) = metrics_table(&dir);
+    let tied = rows.iter().position(|r| r[header["phase"]] != "tie").expect("tied");
+    let after = &rows[tied..];
+    let held = after.iter().filter(|r| r[header["knot"]] == "4_1").count();
+    assert!(held as f64 >= 0.99 * after.len() as f64, "held on {held} of {}", after.len());
+    for row in after {
+        let writhe: f64 = row[header["knot_writhe"]].parse().expect("a writhe");
+        assert!(writhe.abs() < 1.5, "frame {}: writhe {writhe} (4_1 is achiral)", row[0]);
+    }
+    let penetration = rows.iter().map(|r| r[header["max_self_penetration_rel"]].parse::<f64>());
+    let deepest = penetration.map(|p| p.expect("a number")).fold(0.0, f64::max);
+    assert!(deepest < 0.02, "self penetration {:.2} % of r", 100.0 * deepest);
+}

@@ -11,8 +11,8 @@
 //! and then the phase fails (the run ends with its own status, never a hang).
 //!
 //! The plan leaves the knot loose (the tail is not pulled tight): tightening is thigmotaxis'
-//! job. Only the trefoil is planned: figure-eight and Miller Institute plans
-//! tried so far ended as trefoils or unknots (`docs/physics.md`).
+//! job. The trefoil (either handedness) and the figure-eight are planned; the Miller
+//! Institute knot is not (`docs/physics.md`).
 
 use serde::{Deserialize, Serialize};
 
@@ -33,6 +33,8 @@ pub enum Handedness {
 pub enum TieKnot {
     /// The overhand knot, 3₁, of the given handedness.
     Trefoil(Handedness),
+    /// The figure-eight knot, 4₁ (achiral).
+    FigureEight,
 }
 
 impl TieKnot {
@@ -40,6 +42,7 @@ impl TieKnot {
     pub fn name(self) -> &'static str {
         match self {
             TieKnot::Trefoil(_) => "3_1",
+            TieKnot::FigureEight => "4_1",
         }
     }
 
@@ -50,6 +53,7 @@ impl TieKnot {
         let chirality = match self {
             TieKnot::Trefoil(Handedness::Right) => right_handed == Some(true),
             TieKnot::Trefoil(Handedness::Left) => right_handed == Some(false),
+            TieKnot::FigureEight => true,
         };
         name == self.name() && agreement >= MIN_AGREEMENT && chirality
     }
@@ -117,41 +121,62 @@ impl TiePhase {
         }
     }
 
-    /// The plan of one attempt as a forming script. For the trefoil (crossover at `a = at`,
-    /// remaining length R = 1 − a, in body lengths): sweep the tail wide, to
-    /// (a + 0.63R, 0.6R, 0)·L then back to (a + 0.17R, 0.45R, 0)·L so the body lies as a "C";
-    /// cross over the body at `at` (3.5 r to one side and 3 r up, over to 4.7 r on the other
-    /// side, down to 3 r below); go under the loop's centroid (3 r below), up through it
-    /// (3.5 r above) and 6 r further, and hold 1 s (a tail end left just through the loop
-    /// slips back out: measured on ES103, the knot showed for one frame). Crossing over
-    /// first gives the right-handed trefoil (writhe ≈ +2.3 on ES103); the left-handed one is
-    /// the mirror image in z (under first).
+    /// The plan of one attempt as a forming script, in body lengths (crossover at `a = at`,
+    /// remaining length R = 1 − a) and local radii r:
+    /// - the loop: sweep the tail wide, to (a + 0.63R, 0.6R, 0)·L then back to
+    ///   (a + 0.17R, 0.45R, 0)·L so the body lies as a "C", hold 1 s; cross over the body at
+    ///   `at` (3.5 r to one side and 3 r up, over to 4.7 r on the other side, down to 3 r below);
+    /// - trefoil: go under the loop's centroid (3 r below), up through it (3.5 r above) and 6 r
+    ///   further (a tail end left just through the loop slips back out: measured on ES103, the
+    ///   knot showed for one frame). Crossing over first gives the right-handed trefoil
+    ///   (writhe ≈ +2.3 on ES103); the left-handed one is the mirror image in z (under first);
+    /// - figure-eight: wrap the loop's own strand tail-ward of the crossover, at `a + 0.08`
+    ///   (under it to 4.7 r on the first side, up to 3.5 r above), then thread the loop from
+    ///   above (3.5 r above its centroid, 3.5 r below, 6 r further). Wrapping the standing part
+    ///   head-ward of the crossover instead ties a trefoil (measured at `a − 0.04`, `a − 0.08`);
+    /// - then hold 1 s.
     pub fn script(&self) -> FormingScript {
-        let TieKnot::Trefoil(handedness) = self.knot;
-        let z = match handedness {
-            Handedness::Right => 1.0,
-            Handedness::Left => -1.0,
+        let z = match self.knot {
+            TieKnot::Trefoil(Handedness::Left) => -1.0,
+            TieKnot::Trefoil(Handedness::Right) | TieKnot::FigureEight => 1.0,
         };
         let (a, rest) = (self.at, 1.0 - self.at);
         let step = |to| ScriptStep::Move { to, speed: self.speed_cm_s };
-        let arc = |y: f64, up: f64| Waypoint::FromArc { at: a, offset_radii: [0.0, y, z * up] };
-        FormingScript {
-            gains: self.gains,
-            steps: vec![
-                step(Waypoint::BodyLengths([a + 0.63 * rest, 0.6 * rest, 0.0])),
-                step(Waypoint::BodyLengths([a + 0.17 * rest, 0.45 * rest, 0.0])),
-                ScriptStep::Hold(1.0),
-                step(arc(3.5, 3.0)),
-                step(arc(-4.7, 3.0)),
-                step(arc(-4.7, -3.0)),
-                step(Waypoint::FromLoopCentroidRadii([0.0, 0.0, -3.0 * z])),
-                step(Waypoint::FromLoopCentroidRadii([0.0, 0.0, 3.5 * z])),
-                step(Waypoint::FromTargetRadii([0.0, 0.0, 6.0 * z])),
-                ScriptStep::Hold(1.0),
-            ],
+        let arc =
+            |at: f64, y: f64, up: f64| Waypoint::FromArc { at, offset_radii: [0.0, y, z * up] };
+        let centroid = |up: f64| step(Waypoint::FromLoopCentroidRadii([0.0, 0.0, z * up]));
+        let further = |up: f64| step(Waypoint::FromTargetRadii([0.0, 0.0, z * up]));
+        let mut steps = vec![
+            step(Waypoint::BodyLengths([a + 0.63 * rest, 0.6 * rest, 0.0])),
+            step(Waypoint::BodyLengths([a + 0.17 * rest, 0.45 * rest, 0.0])),
+            ScriptStep::Hold(1.0),
+            step(arc(a, 3.5, 3.0)),
+            step(arc(a, -4.7, 3.0)),
+            step(arc(a, -4.7, -3.0)),
+        ];
+        match self.knot {
+            // Up through the loop from below.
+            TieKnot::Trefoil(_) => steps.extend([centroid(-3.0), centroid(3.5), further(6.0)]),
+            // Around the loop's strand, then down through the loop from above.
+            TieKnot::FigureEight => {
+                let wrap = a + FIGURE_EIGHT_WRAP;
+                steps.extend([
+                    step(arc(wrap, -4.7, -3.0)),
+                    step(arc(wrap, 4.7, -3.0)),
+                    step(arc(wrap, 4.7, 3.5)),
+                    centroid(3.5),
+                    centroid(-3.5),
+                    further(-6.0),
+                ]);
+            }
         }
+        steps.push(ScriptStep::Hold(1.0));
+        FormingScript { gains: self.gains, steps }
     }
 }
+
+/// How far tail-ward of the crossover (fraction of L) the figure-eight's tail wraps the loop.
+const FIGURE_EIGHT_WRAP: f64 = 0.04;
 
 /// Progress of a tie phase: the controller state a checkpoint must keep (with the forming
 /// script's progress).
@@ -216,6 +241,9 @@ mod tests {
         assert!(!right.is_shown_by("3_1", 0.95, None), "handedness unknown");
         assert!(!right.is_shown_by("3_1", 0.85, Some(true)), "agreement below 0.9");
         assert!(!right.is_shown_by("0_1", 1.0, Some(true)));
+        let eight = TieKnot::FigureEight;
+        assert!(eight.is_shown_by("4_1", 0.95, None), "achiral: no handedness asked");
+        assert!(!eight.is_shown_by("3_1", 0.95, Some(true)));
     }
 
     #[test]
