@@ -195,15 +195,7 @@ fn prepare(
             // An earlier run here (replaced with --overwrite) is kept until the new one has
             // its files, and put back if they cannot be made.
             let earlier = SetAside::new(directory)?;
-            let started = Recorder::create(directory, dofs).and_then(|recorder| {
-                let text = loaded.resolved_text();
-                hagfish_sim::replace_file(&directory.join(SCENARIO_FILE), text.as_bytes())?;
-                Ok(recorder)
-            });
-            match started
-                .map_err(CliError::from)
-                .and_then(|r| manifest.write(directory).map(|()| r))
-            {
+            match start_files(loaded, directory, dofs, manifest) {
                 Ok(recorder) => {
                     earlier.discard()?;
                     recorder
@@ -231,6 +223,20 @@ fn prepare(
         }
         _ => {}
     }
+    manifest.write(directory)?;
+    Ok(recorder)
+}
+
+/// The files a new run starts with in `directory`: the recorder's outputs, `scenario.ron`
+/// and the manifest.
+fn start_files(
+    loaded: &LoadedScenario,
+    directory: &Path,
+    dofs: usize,
+    manifest: &mut Manifest,
+) -> Result<Recorder, CliError> {
+    let recorder = Recorder::create(directory, dofs)?;
+    hagfish_sim::replace_file(&directory.join(SCENARIO_FILE), loaded.resolved_text().as_bytes())?;
     manifest.write(directory)?;
     Ok(recorder)
 }

@@ -239,10 +239,7 @@ pub fn check_result(
         self_penetration_relative: penetration.self_relative,
         wall_penetration_relative: penetration.wall_relative,
         limit_excess: limit_excess(model, &state.q),
-        joint_rate: state
-            .qdot
-            .iter()
-            .fold(0.0, |fastest, r| if r.is_nan() { f64::NAN } else { f64::max(fastest, r.abs()) }),
+        joint_rate: max_or_nan(state.qdot.iter().map(|r| r.abs())),
         inexact_residual: inexact.then_some(solve.residuals.worst_relative),
     })
 }
@@ -250,8 +247,13 @@ pub fn check_result(
 /// The largest excess of a joint angle in `q` over its limits (rad, 0 when all are within;
 /// NaN for a non-finite angle).
 pub fn limit_excess(model: &Model, q: &[f64]) -> f64 {
-    let excess = model.dofs().iter().zip(q).map(|(d, q)| (d.lower - q).max(q - d.upper));
-    excess.fold(0.0, |worst, e| if e.is_nan() { f64::NAN } else { worst.max(e) })
+    max_or_nan(model.dofs().iter().zip(q).map(|(d, q)| (d.lower - q).max(q - d.upper)))
+}
+
+/// The largest of `values` and 0, or NaN if any is NaN (`f64::max` would drop it, and a
+/// non-finite state must not pass as within bounds).
+fn max_or_nan(values: impl Iterator<Item = f64>) -> f64 {
+    values.fold(0.0, |worst, v| if v.is_nan() || worst.is_nan() { f64::NAN } else { worst.max(v) })
 }
 
 /// Optional stage 6c: predicts every self-contact gap at the end of the step, `q + h q̇`, and
@@ -328,7 +330,8 @@ fn lap_timer(start: Instant) -> impl FnMut() -> f64 {
     }
 }
 
-/// The deepest penetrations of the contacts in `data` (start-of-step fields).
+/// The deepest penetrations of the contacts in `data`'s contact fields (those of the step's
+/// start, or of its end while [`check_result`] has them swapped in).
 #[derive(Debug, Clone, Copy, Default)]
 struct Penetration {
     /// Self, cm.
@@ -365,4 +368,17 @@ fn measure_penetration(data: &mut StepData) {
     report.max_self_penetration = deepest.self_cm;
     report.max_self_penetration_relative = deepest.self_relative;
     report.max_wall_penetration = deepest.wall_cm;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::max_or_nan;
+
+    #[test]
+    fn a_nan_anywhere_makes_the_maximum_nan() {
+        assert_eq!(max_or_nan([1.0, 3.0, 2.0].into_iter()), 3.0);
+        assert_eq!(max_or_nan([-1.0, -2.0].into_iter()), 0.0);
+        assert!(max_or_nan([1.0, f64::NAN, 5.0].into_iter()).is_nan(), "NaN then a larger value");
+        assert!(max_or_nan([f64::NAN].into_iter()).is_nan());
+    }
 }

@@ -82,6 +82,7 @@ pub(crate) struct NextContacts {
     /// True while these (and the tree kinematics) are those of the world's current state.
     pub(crate) current: bool,
 }
+
 /// The wall of `options`, testing only the bodies from the first one whose sphere clears the
 /// wall by its margin in the rest shape (`centres`) on, and never fewer than
 /// `options.wall_options.first_body`: the bodies that touch the wall by construction depend on
