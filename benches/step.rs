@@ -28,7 +28,7 @@ fn form_scenario() -> LoadedScenario {
 }
 
 fn unconstrained(c: &mut Criterion) {
-    let model = form_scenario().biometrics.to_model().expect("model");
+    let model = form_scenario().body.to_model().expect("model");
     let mut state = State::rest(&model);
     for a in 0..model.dof_count() {
         state.q[a] = 0.2 * (a as f64 * 0.37).sin();

@@ -109,3 +109,54 @@ fn missing_file_exits_2_with_the_path() {
     assert_eq!(output.status.code(), Some(2), "{stderr}");
     assert!(stderr.starts_with(&format!("error: {}: ", path.display())), "{stderr}");
 }
+
+const THIN_ROD: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/data/rods/thin.ron");
+
+#[test]
+fn a_rod_prints_its_derived_springs_and_one_row_per_body() {
+    let output = hagfish_body(Path::new(THIN_ROD));
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert_eq!(output.status.code(), Some(0), "{}", String::from_utf8_lossy(&output.stderr));
+    assert_eq!(header(&stdout, "rod"), "thin");
+    assert_eq!(header(&stdout, "springs"), "bend");
+    assert!(stdout.contains("2454.500000 dyn*cm/rad = B/(2l)"), "B/(2ℓ) = 490.9/0.2:\n{stdout}");
+    assert_eq!(header(&stdout, "bodies"), "100");
+}
+
+#[test]
+fn bad_rod_values_are_exit_2_at_their_line_and_column() {
+    let text = std::fs::read_to_string(THIN_ROD).unwrap_or_else(|e| panic!("{THIN_ROD}: {e}"));
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("body_command");
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display()));
+    for (name, from, to, words) in [
+        (
+            "b_zero.ron",
+            "bending_stiffness_dyn_cm2: 490.9",
+            "bending_stiffness_dyn_cm2: 0.0",
+            &["bending_stiffness_dyn_cm2", "> 0"][..],
+        ),
+        (
+            "b_nan.ron",
+            "bending_stiffness_dyn_cm2: 490.9",
+            "bending_stiffness_dyn_cm2: NaN",
+            &["bending_stiffness_dyn_cm2"][..],
+        ),
+        ("thick.ron", "radius_cm: 0.05", "radius_cm: 1.5", &["radius_cm", "10 body lengths"][..]),
+        ("odd.ron", "body_count: 100", "body_count: 99", &["body_count", "even"][..]),
+    ] {
+        assert!(text.contains(from), "{from}");
+        let broken = text.replacen(from, to, 1);
+        let path = dir.join(name);
+        std::fs::write(&path, &broken).unwrap_or_else(|e| panic!("{e}"));
+        let value = to.split(": ").nth(1).unwrap_or_default();
+        let (line, column) = broken
+            .lines()
+            .enumerate()
+            .find_map(|(i, l)| {
+                (l.contains(to))
+                    .then(|| (i + 1, 1 + l[..l.find(value).unwrap_or(0)].chars().count()))
+            })
+            .unwrap_or_else(|| panic!("{to:?} not found"));
+        assert_fails_at(&hagfish_body(&path), &path, line, column, words);
+    }
+}

@@ -53,7 +53,7 @@ fn unknown_field() {
         "error_unknown_field",
         |t| t.replace("record_every_s", "record_evry_s"),
         "8:5",
-        "unknown field `record_evry_s`, expected one of: name, body, time_step_s, duration_s, record_every_s, drag, phases",
+        "unknown field `record_evry_s`, expected one of: name, body, time_step_s, duration_s, end_after_phases, record_every_s, drag, phases",
     );
 }
 
@@ -105,7 +105,7 @@ fn unknown_phase() {
         "error_unknown_phase",
         |t| t.replace("Hold(0.5)", "Wait(0.5)"),
         "18:9",
-        "Unexpected variant named `Wait` in enum `Phase`, expected one of `Form`, `Hold`, `Thigmotaxis`, or `Tie` instead",
+        "Unexpected variant named `Wait` in enum `Phase`, expected one of `Form`, `Hold`, `Thigmotaxis`, `Tie`, or `Load` instead",
     );
 }
 

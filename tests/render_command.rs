@@ -103,7 +103,7 @@ fn run_writes_everything_and_render_and_report_remake_it() {
     assert!(report.status.success(), "{}", String::from_utf8_lossy(&report.stderr));
     assert_outputs(&dir);
     let html = String::from_utf8(read(&dir.join("report.html"))).expect("UTF-8");
-    assert!(html.contains("the biometrics named by"), "radii from scenario.ron's biometrics");
+    assert!(html.contains("the body file named by"), "radii from scenario.ron's body file");
     assert!(html.contains("Scenario(") && html.contains("duration_s: 1.0"), "scenario text");
     let stdout = String::from_utf8_lossy(&report.stdout);
     assert!(stdout.contains("report.html") && stdout.contains("total"), "{stdout}");
@@ -198,7 +198,12 @@ fn report_html_renders_in_headless_chromium() {
         |name| attribute(&dom, "body", name).unwrap_or_else(|| panic!("no {name}: {stderr}"));
     let errors = attribute(&dom, "div id=\"errors\"", "data-count");
     assert_eq!(errors.as_deref(), Some("0"), "script errors recorded: {dom}");
-    assert_eq!(body("data-plots"), "6/6", "five plots and the animation decoded");
+    assert_eq!(
+        body("data-plots"),
+        "8/8",
+        "seven plots (three force kymographs, knot span, contacts, tension kymograph, tension at \
+         the head) and the animation decoded"
+    );
     assert_eq!(body("data-animation"), "ok");
     assert_eq!(body("data-webgl"), "ok", "WebGL view: {stderr}");
     assert_eq!(body("data-status"), "ok");

@@ -1,41 +1,50 @@
-//! `hagfish body FILE`: loads a biometrics file and prints the derived chain (D5–D8): a
-//! header with the totals and one row per body (index, s/L of its centre, radius, mass,
-//! joint type, limits per DOF in degrees).
+//! `hagfish body FILE`: loads a body file (hagfish biometrics or a rod) and prints the derived
+//! chain (D5–D8): a header with the totals (for a rod also the derived joint springs) and one
+//! row per body (index, s/L of its centre, radius, mass, joint type, limits per DOF in
+//! degrees).
 
 use std::io::Write;
 use std::path::PathBuf;
 
-use hagfish_anatomy::{Biometrics, BodyRow, BodyTable};
+use hagfish_anatomy::{Body, BodyRow, BodyTable};
 
 use super::CliError;
 
 /// Arguments of `hagfish body`.
 #[derive(Debug, clap::Args)]
 pub struct BodyArgs {
-    /// Biometrics RON file, e.g. data/hagfish/es103.ron.
+    /// Body RON file: hagfish biometrics (data/hagfish/es103.ron) or a rod (data/rods/thin.ron).
     file: PathBuf,
 }
 
 /// Loads, validates and derives the table, then writes header and rows to `out`. The model
 /// itself is built too, so that a file this command accepts also yields a valid tree.
 pub fn run(args: &BodyArgs, out: &mut impl Write) -> Result<(), CliError> {
-    let biometrics = Biometrics::load(&args.file)?;
-    let table = biometrics.body_table()?;
-    let model = biometrics.to_model()?;
-    writeln!(out, "specimen  {} ({})", biometrics.specimen, args.file.display())?;
+    let body = Body::load(&args.file)?;
+    let table = body.body_table()?;
+    let model = body.to_model()?;
+    let label = match body {
+        Body::Hagfish(_) => "specimen",
+        Body::Rod(_) => "rod     ",
+    };
+    writeln!(out, "{label}  {} ({})", body.name(), args.file.display())?;
     writeln!(
         out,
         "length    {} cm = {} bodies x {:.6} cm",
-        biometrics.length_cm,
+        body.length_cm(),
         table.rows.len(),
         table.segment_length_cm
     )?;
-    writeln!(
-        out,
-        "mass      {} g (sum over bodies {:.9} g)",
-        biometrics.mass_g,
-        table.total_mass_g()
-    )?;
+    writeln!(out, "mass      {} g (sum over bodies {:.9} g)", body.mass_g(), table.total_mass_g())?;
+    if let Body::Rod(rod) = &body {
+        writeln!(
+            out,
+            "springs   bend {:.6} dyn*cm/rad = B/(2l), twist {:.6} dyn*cm/rad = C/(2l), damping {:.6} dyn*cm*s/rad",
+            rod.bend_spring_dyn_cm_per_rad(),
+            rod.twist_spring_dyn_cm_per_rad(),
+            rod.joint_damping_dyn_cm_s_per_rad()
+        )?;
+    }
     writeln!(
         out,
         "density   {:.6} g/cm3 (volume {:.4} cm3)",

@@ -10,7 +10,7 @@ use hagfish_anatomy::AnatomyError;
 /// where there is one), so it is printed as is.
 #[derive(Debug, thiserror::Error)]
 pub enum CliError {
-    /// The biometrics file could not be read, parsed, validated or turned into a model.
+    /// The body file could not be read, parsed, validated or turned into a model.
     #[error(transparent)]
     Anatomy(#[from] AnatomyError),
     /// The scenario could not be loaded, or the run could not be set up or recorded.

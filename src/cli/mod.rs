@@ -31,7 +31,7 @@ pub struct Cli {
 /// The subcommands.
 #[derive(Debug, Subcommand)]
 enum Command {
-    /// Print the bodies derived from a biometrics file: radius, mass, joint and limits.
+    /// Print the bodies derived from a body file (hagfish or rod): radius, mass, joint, limits.
     Body(body::BodyArgs),
     /// Run a scenario into a run directory (CSV, .npy, manifest, checkpoint), or resume one.
     Run(run::RunArgs),

@@ -188,14 +188,15 @@ fn prepare(
     checkpoint: Option<&Checkpoint>,
     manifest: &mut Manifest,
 ) -> Result<Recorder, CliError> {
-    let dofs = loaded.biometrics.to_model()?.dof_count();
+    let model = loaded.body.to_model()?;
+    let (dofs, joints) = (model.dof_count(), model.body_count());
     let recorder = match checkpoint {
-        Some(checkpoint) => Recorder::reopen(directory, dofs, checkpoint)?,
+        Some(checkpoint) => Recorder::reopen(directory, dofs, joints, checkpoint)?,
         None => {
             // An earlier run here (replaced with --overwrite) is kept until the new one has
             // its files, and put back if they cannot be made.
             let earlier = SetAside::new(directory)?;
-            match start_files(loaded, directory, dofs, manifest) {
+            match start_files(loaded, directory, (dofs, joints), manifest) {
                 Ok(recorder) => {
                     earlier.discard()?;
                     recorder
@@ -232,10 +233,10 @@ fn prepare(
 fn start_files(
     loaded: &LoadedScenario,
     directory: &Path,
-    dofs: usize,
+    (dofs, joints): (usize, usize),
     manifest: &mut Manifest,
 ) -> Result<Recorder, CliError> {
-    let recorder = Recorder::create(directory, dofs)?;
+    let recorder = Recorder::create(directory, dofs, joints)?;
     hagfish_sim::replace_file(&directory.join(SCENARIO_FILE), loaded.resolved_text().as_bytes())?;
     manifest.write(directory)?;
     Ok(recorder)

@@ -7,6 +7,8 @@
 //!   regression and `cargo test --workspace --release` (`test_all.rs`).
 //! - `knotted [--export PATH] [--steps N] [--repeat R] [--time-step H] [--backend B]`: exports and times
 //!   the knotted benchmark state (`knotted.rs`).
+//! - `validate`: runs the checks against elastic-rod theory (`hagfish-validation`) and prints
+//!   the table of `docs/validation.md`; fails if a check is outside its tolerance.
 
 mod golden;
 mod knotted;
@@ -15,6 +17,7 @@ mod regress;
 mod table;
 mod test_all;
 mod tolerance;
+mod validate;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -66,6 +69,8 @@ enum Task {
         #[arg(long, value_parser = ["dense", "sparse"], default_value = "dense")]
         backend: String,
     },
+    /// Runs the checks against elastic-rod theory and prints their table (Markdown).
+    Validate,
 }
 
 /// The workspace root (the parent of this package's directory).
@@ -91,6 +96,7 @@ fn main() -> ExitCode {
                 knotted::Request { export: export.as_deref(), steps, repeat, time_step, backend };
             knotted::run(&workspace_root(), &request).map(|()| true)
         }
+        Task::Validate => validate::run(&workspace_root()),
     };
     match result {
         Ok(true) => ExitCode::SUCCESS,

@@ -10,22 +10,28 @@
 //!   piecewise linear through the marks ([`interpolate_clamped`]), mass m_i = ρπr_i²ℓ with
 //!   ρ chosen so Σ m_i = M, and per-joint limits (±twist on revolutes, ±θ(s) on both DOFs
 //!   of universals).
+//! - [`Rod`] is a uniform elastic rod (`data/rods/thin.ron`) with joint springs derived from
+//!   its bending and twist stiffness; [`Body`] is either kind, as a scenario names it.
 //! - [`Biometrics::to_model`] builds the chain along +X: alternating X-revolute /
 //!   YZ-universal joints, root anchored at the world origin, solid-cylinder inertias
 //!   ([`cylinder_inertia`]), gravity off.
 
 mod biometrics;
+mod body;
 mod error;
 mod load;
 mod locate;
 mod model;
 mod profile;
+mod rod;
 mod table;
 mod validate;
 
 pub use biometrics::{Biometrics, MAX_BODY_COUNT, TailTaper};
+pub use body::Body;
 pub use error::{AnatomyError, Field, Origin};
 pub use load::DataFile;
 pub use model::cylinder_inertia;
 pub use profile::interpolate_clamped;
+pub use rod::Rod;
 pub use table::{BodyRow, BodyTable, LimitDeg, joint_kind};

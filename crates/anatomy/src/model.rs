@@ -6,7 +6,8 @@ use hagfish_tree::{BodySpec, DofParams, JointKind, Model, ModelBuilder, Transfor
 
 use crate::biometrics::Biometrics;
 use crate::error::AnatomyError;
-use crate::table::BodyRow;
+use crate::rod::Rod;
+use crate::table::{BodyRow, BodyTable};
 
 /// Principal inertia (g·cm²) of a solid cylinder of mass `m`, radius `r` and length `ℓ`
 /// along X about its centre: `I₁ = ½ m r²`, `I₂ = I₃ = m (3r² + ℓ²) / 12` (physics.md §1).
@@ -16,52 +17,74 @@ pub fn cylinder_inertia(mass: f64, radius: f64, length: f64) -> DVec3 {
 }
 
 impl Biometrics {
-    /// Builds the model: body `i` of [`Biometrics::body_table`] hangs from joint `i` at its
-    /// proximal end, with its frame at its centre (`body_offset = (ℓ/2, 0, 0)`); joint 0 is
-    /// the root at the world origin, joint `i ≥ 1` sits at `(ℓ, 0, 0)` in joint `i − 1`'s
-    /// frame. Each DOF gets the stiffness of its joint type, the common damping, rest 0 and
-    /// the table's limits in radians. Gravity is zero (neutral buoyancy, D4).
+    /// Builds the model ([`build_chain`]): each DOF gets the stiffness of its joint type, the
+    /// common damping, rest 0 and the table's limits in radians. Gravity is zero (neutral
+    /// buoyancy, D4).
     pub fn to_model(&self) -> Result<Model, AnatomyError> {
-        let table = self.body_table()?;
-        let ell = table.segment_length_cm;
-        let mut builder = ModelBuilder::new().gravity(DVec3::ZERO);
-        for row in &table.rows {
-            let (parent, joint_offset) = match row.index {
-                0 => (None, Transform::IDENTITY),
-                i => (Some(i - 1), Transform::from_translation(DVec3::new(ell, 0.0, 0.0))),
+        build_chain(&self.body_table()?, |row| {
+            let stiffness = match row.joint {
+                JointKind::Revolute { .. } => self.twist_stiffness_dyn_cm_per_rad,
+                _ => self.bending_stiffness_dyn_cm_per_rad,
             };
-            builder.add_body(BodySpec {
-                parent,
-                joint: row.joint,
-                joint_offset,
-                body_offset: Transform::from_translation(DVec3::new(0.5 * ell, 0.0, 0.0)),
-                mass: row.mass_g,
-                principal_inertia: cylinder_inertia(row.mass_g, row.radius_cm, ell),
-                radius: row.radius_cm,
-                length: ell,
-                dofs: self.dof_params(row),
-            });
-        }
-        Ok(builder.build()?)
+            (stiffness, self.damping_dyn_cm_s_per_rad)
+        })
     }
+}
 
-    /// Spring, damper and limits (rad) of each DOF of `row`'s joint.
-    fn dof_params(&self, row: &BodyRow) -> Vec<DofParams> {
-        let stiffness = match row.joint {
-            JointKind::Revolute { .. } => self.twist_stiffness_dyn_cm_per_rad,
-            _ => self.bending_stiffness_dyn_cm_per_rad,
+impl Rod {
+    /// Builds the model ([`build_chain`]) with the springs and dampers derived from the
+    /// continuous stiffnesses ([`Rod::bend_spring_dyn_cm_per_rad`] and its siblings), no
+    /// limits, gravity zero.
+    pub fn to_model(&self) -> Result<Model, AnatomyError> {
+        let damping = self.joint_damping_dyn_cm_s_per_rad();
+        build_chain(&self.body_table()?, |row| match row.joint {
+            JointKind::Revolute { .. } => (self.twist_spring_dyn_cm_per_rad(), damping),
+            _ => (self.bend_spring_dyn_cm_per_rad(), damping),
+        })
+    }
+}
+
+/// Builds the chain of `table` along +X: body `i` hangs from joint `i` at its proximal end,
+/// with its frame at its centre (`body_offset = (ℓ/2, 0, 0)`); joint 0 is the root at the
+/// world origin, joint `i ≥ 1` sits at `(ℓ, 0, 0)` in joint `i − 1`'s frame; solid-cylinder
+/// inertias. `spring_and_damper(row)` gives the stiffness (dyn·cm/rad) and damping
+/// (dyn·cm·s/rad) of every DOF of the row's joint; rest 0, limits from the table in radians.
+fn build_chain(
+    table: &BodyTable,
+    spring_and_damper: impl Fn(&BodyRow) -> (f64, f64),
+) -> Result<Model, AnatomyError> {
+    let ell = table.segment_length_cm;
+    let mut builder = ModelBuilder::new().gravity(DVec3::ZERO);
+    for row in &table.rows {
+        let (parent, joint_offset) = match row.index {
+            0 => (None, Transform::IDENTITY),
+            i => (Some(i - 1), Transform::from_translation(DVec3::new(ell, 0.0, 0.0))),
         };
-        row.limits_deg
+        let (stiffness, damping) = spring_and_damper(row);
+        let dofs = row
+            .limits_deg
             .iter()
             .map(|limit| DofParams {
                 stiffness,
-                damping: self.damping_dyn_cm_s_per_rad,
+                damping,
                 rest: 0.0,
                 lower: limit.lower.to_radians(),
                 upper: limit.upper.to_radians(),
             })
-            .collect()
+            .collect();
+        builder.add_body(BodySpec {
+            parent,
+            joint: row.joint,
+            joint_offset,
+            body_offset: Transform::from_translation(DVec3::new(0.5 * ell, 0.0, 0.0)),
+            mass: row.mass_g,
+            principal_inertia: cylinder_inertia(row.mass_g, row.radius_cm, ell),
+            radius: row.radius_cm,
+            length: ell,
+            dofs,
+        });
     }
+    Ok(builder.build()?)
 }
 
 #[cfg(test)]

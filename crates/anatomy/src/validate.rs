@@ -6,7 +6,7 @@ use crate::error::{AnatomyError, Field, Origin};
 
 /// The admissible range of a real-valued field.
 #[derive(Clone, Copy, Debug)]
-enum Bound {
+pub(crate) enum Bound {
     /// Finite and > 0 (lengths, masses, circumferences).
     Positive,
     /// Finite and ≥ 0 (stiffness, damping).
@@ -39,12 +39,12 @@ impl Bound {
 }
 
 /// Runs the checks with one way of turning a field into an [`Origin`].
-struct Checker<'a> {
-    locate: &'a dyn Fn(&Field) -> Origin,
+pub(crate) struct Checker<'a> {
+    pub(crate) locate: &'a dyn Fn(&Field) -> Origin,
 }
 
 impl Checker<'_> {
-    fn value(&self, field: Field, value: f64, bound: Bound) -> Result<(), AnatomyError> {
+    pub(crate) fn value(&self, field: Field, value: f64, bound: Bound) -> Result<(), AnatomyError> {
         if bound.admits(value) {
             return Ok(());
         }

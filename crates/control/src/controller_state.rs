@@ -82,7 +82,12 @@ mod tests {
     fn a_saved_state_comes_back_and_a_foreign_one_is_refused() {
         let phases = vec![form(), Phase::Hold(1.0)];
         let saved = ControllerState {
-            phases: PhaseProgress { phase: 1, started_at: 2.5, condition_since: Some(2.7) },
+            phases: PhaseProgress {
+                phase: 1,
+                started_at: 2.5,
+                condition_since: Some(2.7),
+                load_since: None,
+            },
             forming: Some(ScriptProgress {
                 step: 1,
                 started_at: Some(1.5),
@@ -102,12 +107,18 @@ mod tests {
             mismatch(&ControllerState { forming: None, ..saved }),
             "Form phase without progress"
         );
-        let beyond = PhaseProgress { phase: 3, started_at: 0.0, condition_since: None };
+        let beyond =
+            PhaseProgress { phase: 3, started_at: 0.0, condition_since: None, load_since: None };
         assert!(mismatch(&ControllerState { phases: beyond, ..saved }), "phase beyond the last");
         let passive = controller(vec![Phase::Hold(1.0)]).restore(&saved);
         assert!(passive.is_err(), "forming progress without a Form phase");
         let finished = ControllerState {
-            phases: PhaseProgress { phase: 2, started_at: 3.5, condition_since: None },
+            phases: PhaseProgress {
+                phase: 2,
+                started_at: 3.5,
+                condition_since: None,
+                load_since: None,
+            },
             ..saved
         };
         assert!(!mismatch(&finished), "after the last phase the forming script is kept");

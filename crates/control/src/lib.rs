@@ -17,6 +17,7 @@ mod drag;
 mod error;
 mod forming;
 mod knot_span;
+mod load;
 mod loops;
 mod phases;
 mod tail_pd;
@@ -29,8 +30,12 @@ pub use drag::WaterDrag;
 pub use error::ControlError;
 pub use forming::{FormingController, FormingScript, ScriptProgress, ScriptStep, Waypoint};
 pub use knot_span::KnotSpan;
+pub use load::{LoadDirection, LoadPhase};
 pub use loops::{ProjectedLoop, largest_projected_loop};
-pub use phases::{Phase, PhaseProgress, PhasedController, ThigmoPhase, TieFailure, Until};
+pub use phases::{
+    Observation, Phase, PhaseProgress, PhasedController, ThigmoPhase, TieFailure, Until,
+    kinetic_energy,
+};
 pub use tail_pd::TailGains;
 pub use thigmotaxis::{SlidingTargets, Strand, ThigmoParameters, ThigmoRequest};
 pub use tie::{Handedness, MIN_AGREEMENT, TieKnot, TiePhase, TieProgress};

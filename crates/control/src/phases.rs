@@ -7,6 +7,7 @@ use crate::controller::{Actuation, ControlContext, Controller};
 use crate::drag::WaterDrag;
 use crate::forming::{FormingController, FormingScript, body_length};
 use crate::knot_span::KnotSpan;
+use crate::load::LoadPhase;
 use crate::thigmotaxis::ThigmoParameters;
 use crate::tie::{TieKnot, TiePhase, TieProgress};
 
@@ -23,6 +24,9 @@ pub enum Phase {
     /// Ties a knot by control from the body's current state ([`TiePhase`]); ends once the
     /// knot analysis shows it, or fails after its attempts.
     Tie(TiePhase),
+    /// Puts a load on the tail end ([`LoadPhase`]), which stays on after the phase, until a
+    /// condition (e.g. settled).
+    Load(LoadPhase),
 }
 
 impl Phase {
@@ -31,7 +35,7 @@ impl Phase {
         match self {
             Phase::Form(script) => Some(script.clone()),
             Phase::Tie(tie) => Some(tie.script()),
-            Phase::Hold(_) | Phase::Thigmotaxis(_) => None,
+            Phase::Hold(_) | Phase::Thigmotaxis(_) | Phase::Load(_) => None,
         }
     }
 }
@@ -92,23 +96,46 @@ pub struct Until {
     /// [`Until::span_above_cm`] as a fraction of L.
     #[serde(default)]
     pub span_above_l: Option<f64>,
+    /// Ends once the kinetic energy `½ Σ Vᵢ·IᵢVᵢ` is at most this (erg = g·cm²/s²) for
+    /// `hold_s`: the body has settled.
+    #[serde(default)]
+    pub kinetic_energy_below_erg: Option<f64>,
+}
+
+/// What a phase's end conditions look at, at the start of a step.
+#[derive(Clone, Copy, Debug)]
+pub struct Observation<'a> {
+    /// The knot's contact span, if there are self contacts.
+    pub span: Option<&'a KnotSpan>,
+    /// The body length L (cm).
+    pub body_length_cm: f64,
+    /// The kinetic energy (erg).
+    pub kinetic_energy_erg: f64,
+}
+
+/// The kinetic energy of the body, `½ Σᵢ Vᵢ·(Iᵢ Vᵢ)` over the world twists and inertias of
+/// `context`'s kinematics (erg = g·cm²/s²).
+pub fn kinetic_energy(context: &ControlContext<'_>) -> f64 {
+    let data = context.kinematics;
+    0.5 * data.velocities.iter().zip(&data.inertias).map(|(v, i)| v.dot(&i.apply(v))).sum::<f64>()
 }
 
 impl Until {
-    /// Whether a phase that started `elapsed` seconds ago is over at time `t` with the knot at
-    /// `span` on a body of length `body_length_cm`: its duration has passed, or a knot
-    /// condition has held since `since` for at least `hold_s`. Updates `since` (the phase's
-    /// [`PhaseProgress::condition_since`]): set when a knot condition starts to hold, cleared
-    /// when none holds.
+    /// Whether a phase that started `elapsed` seconds ago is over at time `t` given what is
+    /// `observed`: its duration has passed, or a knot or settle condition has held since
+    /// `since` for at least `hold_s`. Updates `since` (the phase's
+    /// [`PhaseProgress::condition_since`]): set when a condition starts to hold, cleared when
+    /// none holds.
     pub fn over(
         &self,
         t: f64,
         elapsed: f64,
-        span: Option<&KnotSpan>,
-        body_length_cm: f64,
+        observed: &Observation<'_>,
         since: &mut Option<f64>,
     ) -> bool {
-        let holds = self.knot_condition(span, body_length_cm);
+        let settled =
+            self.kinetic_energy_below_erg.is_some_and(|e| observed.kinetic_energy_erg <= e);
+        let holds = settled || self.knot_condition(observed.span, observed.body_length_cm);
         *since = if holds { Some(since.unwrap_or(t)) } else { None };
         elapsed >= self.seconds || since.is_some_and(|since| t - since >= self.hold_s)
     }
@@ -139,6 +166,10 @@ impl Until {
 /// Progress through the phases: the controller state a checkpoint must keep.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct PhaseProgress {
+    /// When the latest load phase so far started (s), or `None` before any: its load stays
+    /// on ([`LoadPhase`]).
+    #[serde(default)]
+    pub load_since: Option<f64>,
     /// Index of the current phase (`phases.len()` after the last: passive).
     pub phase: usize,
     /// Time the current phase started (s).
@@ -176,7 +207,9 @@ impl PhasedController {
             Some(Phase::Tie(_)) => TieProgress { attempt: 1, ..TieProgress::default() },
             _ => TieProgress::default(),
         };
-        Self { drag, phases, progress: PhaseProgress::default(), forming, tie }
+        let load_since = matches!(phases.first(), Some(Phase::Load(_))).then_some(0.0);
+        let progress = PhaseProgress { load_since, ..PhaseProgress::default() };
+        Self { drag, phases, progress, forming, tie }
     }
 
     /// Takes the knot analysis of a recorded frame at time `t` (its Rolfsen name,
@@ -226,6 +259,7 @@ impl PhasedController {
             Some(Phase::Hold(_)) => "hold",
             Some(Phase::Thigmotaxis(phase)) => &phase.name,
             Some(Phase::Tie(_)) => "tie",
+            Some(Phase::Load(_)) => "load",
             None => "done",
         }
     }
@@ -238,11 +272,17 @@ impl PhasedController {
         match self.phases.get(self.progress.phase) {
             Some(Phase::Form(_)) => self.forming.as_ref().is_none_or(FormingController::finished),
             Some(Phase::Hold(seconds)) => elapsed >= *seconds,
-            Some(Phase::Thigmotaxis(phase)) => {
+            Some(
+                Phase::Thigmotaxis(ThigmoPhase { until, .. })
+                | Phase::Load(LoadPhase { until, .. }),
+            ) => {
                 let span = KnotSpan::of(context.self_contacts, context.centreline);
-                let length = body_length(context);
-                let since = &mut self.progress.condition_since;
-                phase.until.over(t, elapsed, span.as_ref(), length, since)
+                let observed = Observation {
+                    span: span.as_ref(),
+                    body_length_cm: body_length(context),
+                    kinetic_energy_erg: kinetic_energy(context),
+                };
+                until.over(t, elapsed, &observed, &mut self.progress.condition_since)
             }
             Some(Phase::Tie(phase)) => self.tie.shown_since.is_some_and(|s| t - s >= phase.hold_s),
             None => false,
@@ -250,8 +290,12 @@ impl PhasedController {
     }
 
     fn advance(&mut self, t: f64) {
-        self.progress =
-            PhaseProgress { phase: self.progress.phase + 1, started_at: t, condition_since: None };
+        let phase = self.progress.phase + 1;
+        let load_since = match self.phases.get(phase) {
+            Some(Phase::Load(_)) => Some(t),
+            _ => self.progress.load_since,
+        };
+        self.progress = PhaseProgress { phase, started_at: t, condition_since: None, load_since };
         if let Some(script) = self.phases.get(self.progress.phase).and_then(Phase::script) {
             self.forming = Some(FormingController::new(script));
         }
@@ -285,14 +329,38 @@ impl Controller for PhasedController {
                 }
             }
             Some(Phase::Thigmotaxis(phase)) => phase.parameters.actuate(context, out),
-            None => {}
+            Some(Phase::Load(_)) | None => {}
         }
+        if let Some((load, since)) = self.active_load() {
+            load.actuate(since, context, out);
+        }
+    }
+}
+
+impl PhasedController {
+    /// The latest load phase up to the current one and when it started, if any.
+    fn active_load(&self) -> Option<(&LoadPhase, f64)> {
+        let since = self.progress.load_since?;
+        let upto = (self.progress.phase + 1).min(self.phases.len());
+        self.phases[..upto].iter().rev().find_map(|phase| match phase {
+            Phase::Load(load) => Some((load, since)),
+            _ => None,
+        })
+    }
+
+    /// True once every phase is over (the body is then passive, but for a load that stays).
+    pub fn finished(&self) -> bool {
+        self.progress.phase >= self.phases.len()
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn seen(span: Option<&KnotSpan>) -> Observation<'_> {
+        Observation { span, body_length_cm: 40.0, kinetic_energy_erg: 1.0 }
+    }
 
     fn span(start_cm: f64, end_cm: f64) -> KnotSpan {
         KnotSpan { start_cm, end_cm, first_contact_cm: start_cm, last_contact_cm: start_cm }
@@ -343,14 +411,14 @@ mod tests {
         };
         let (tight, loose) = (span(10.0, 29.5), span(10.0, 35.0));
         let mut since = None;
-        assert!(!until.over(1.0, 1.0, Some(&tight), 40.0, &mut since), "a single dip");
+        assert!(!until.over(1.0, 1.0, &seen(Some(&tight)), &mut since), "a single dip");
         assert_eq!(since, Some(1.0));
-        assert!(!until.over(1.1, 1.1, Some(&loose), 40.0, &mut since), "the flicker is over");
+        assert!(!until.over(1.1, 1.1, &seen(Some(&loose)), &mut since), "the flicker is over");
         assert_eq!(since, None);
         for t in [1.2, 1.3, 1.4] {
-            assert!(!until.over(t, t, Some(&tight), 40.0, &mut since), "held only since 1.2 s");
+            assert!(!until.over(t, t, &seen(Some(&tight)), &mut since), "held only since 1.2 s");
         }
-        assert!(until.over(1.5, 1.5, Some(&tight), 40.0, &mut since), "held for 0.3 s");
-        assert!(until.over(5.0, 5.0, None, 40.0, &mut None), "the duration ends it regardless");
+        assert!(until.over(1.5, 1.5, &seen(Some(&tight)), &mut since), "held for 0.3 s");
+        assert!(until.over(5.0, 5.0, &seen(None), &mut None), "the duration ends it regardless");
     }
 }

@@ -26,6 +26,15 @@ impl SplineWeights {
     /// The most bodies a spline point blends (the four control points of its segment).
     pub const CAPACITY: usize = 4;
 
+    /// The weight 1 on `body` alone: a body centre as a spline-point blend (a wall contact).
+    pub fn single(body: usize) -> SplineWeights {
+        let mut bodies = [0; SplineWeights::CAPACITY];
+        let mut weights = [0.0; SplineWeights::CAPACITY];
+        bodies[0] = body;
+        weights[0] = 1.0;
+        SplineWeights { bodies, weights, len: 1 }
+    }
+
     /// Folds the four segment weights of segment `k` (on c_{k−1}..c_{k+2}) of a chain of
     /// `body_count` ≥ 2 centres onto real bodies, replacing the phantom end points by
     /// their definitions c₋₁ = 2c₀ − c₁ and c_N = 2c_{N−1} − c_{N−2}.

@@ -90,7 +90,7 @@ fn preformatted(text: Option<&String>, missing: &str) -> String {
 /// The page for `run` with its drawn `plots` and `gif` animation.
 pub fn page(run: &RunDir, plots: &[Plot], gif: &[u8]) -> String {
     let mut table = String::from("<table>\n");
-    for (key, value) in summary::rows(&run.metrics) {
+    for (key, value) in summary::rows(&run.metrics, run.tension.as_ref()) {
         let _ = writeln!(table, "<tr><th>{}</th><td>{}</td></tr>", escape(&key), escape(&value));
     }
     table.push_str("</table>");

@@ -34,6 +34,7 @@ mod radii;
 mod raster;
 mod run_dir;
 mod summary;
+mod tension;
 #[cfg(test)]
 mod test_files;
 mod vtk;
@@ -47,3 +48,4 @@ pub use outputs::{
 };
 pub use radii::{DEFAULT_RADIUS_CM, Radii};
 pub use run_dir::RunDir;
+pub use tension::Tension;

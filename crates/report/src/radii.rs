@@ -1,4 +1,4 @@
-//! The body radii of a run: from the biometrics that the run directory's `scenario.ron`
+//! The body radii of a run: from the body file that the run directory's `scenario.ron`
 //! names, else a constant.
 
 use std::path::Path;
@@ -14,12 +14,12 @@ pub const DEFAULT_RADIUS_CM: f64 = 0.85;
 pub struct Radii {
     /// Radius of each body (cm), head first.
     pub values: Vec<f64>,
-    /// A sentence for the report: the biometrics file, or why the constant was used.
+    /// A sentence for the report: the body file, or why the constant was used.
     pub source: String,
 }
 
 impl Radii {
-    /// The radii of `bodies` bodies: derived from the biometrics named by `scenario` (read as
+    /// The radii of `bodies` bodies: derived from the body file named by `scenario` (read as
     /// a scenario file, its body path relative to it, as `hagfish run` reads it) if that file
     /// exists, loads and has as many bodies; else [`DEFAULT_RADIUS_CM`] for every body.
     pub fn for_run(scenario: &Path, bodies: usize) -> Self {
@@ -32,14 +32,14 @@ impl Radii {
         }
         let table = LoadedScenario::load(scenario)
             .map_err(|e| e.to_string())
-            .and_then(|s| s.biometrics.body_table().map_err(|e| e.to_string()));
+            .and_then(|s| s.body.body_table().map_err(|e| e.to_string()));
         match table {
             Ok(t) if t.rows.len() == bodies => Self {
                 values: t.rows.iter().map(|r| r.radius_cm).collect(),
-                source: format!("the biometrics named by {}", scenario.display()),
+                source: format!("the body file named by {}", scenario.display()),
             },
             Ok(t) => {
-                constant(format!("the biometrics have {} bodies, the run {bodies}", t.rows.len()))
+                constant(format!("the body file has {} bodies, the run {bodies}", t.rows.len()))
             }
             Err(e) => constant(e),
         }
@@ -55,7 +55,7 @@ mod tests {
         let form = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/scenarios/form.ron");
         let radii = Radii::for_run(&form, 100);
         assert_eq!(radii.values.len(), 100);
-        assert!(radii.source.contains("biometrics"), "{}", radii.source);
+        assert!(radii.source.contains("body file"), "{}", radii.source);
         assert!(radii.values.iter().all(|r| *r > 0.1 && *r < 2.0), "{:?}", radii.values);
         assert!(radii.values[0] != radii.values[99]);
 

@@ -9,6 +9,7 @@ use crate::error::ReportError;
 use crate::forces::ThigmoForces;
 use crate::metrics::Metrics;
 use crate::radii::Radii;
+use crate::tension::Tension;
 
 /// Everything read from a run directory.
 #[derive(Clone, Debug)]
@@ -30,6 +31,9 @@ pub struct RunDir {
     /// A one-line description of `contacts.csv` (rows and columns, or why it is unreadable),
     /// if present.
     pub contacts: Option<String>,
+    /// The tension column of `internal.csv`, if present (runs made before it existed lack
+    /// it).
+    pub tension: Option<Tension>,
 }
 
 impl RunDir {
@@ -42,6 +46,8 @@ impl RunDir {
         let radii = Radii::for_run(&dir.join("scenario.ron"), centreline.bodies);
         let contacts_path = dir.join("contacts.csv");
         let contacts = contacts_path.exists().then(|| describe_csv(&contacts_path));
+        let internal = dir.join("internal.csv");
+        let tension = internal.exists().then(|| Tension::read(&internal)).transpose()?;
         Ok(Self {
             dir: dir.to_path_buf(),
             centreline,
@@ -51,6 +57,7 @@ impl RunDir {
             scenario: read_optional(&dir.join("scenario.ron"))?,
             manifest: read_optional(&dir.join("manifest.json"))?,
             contacts,
+            tension,
         })
     }
 }

@@ -1,9 +1,11 @@
-//! The report's summary table: a few numbers per run, computed from `metrics.csv`.
+//! The report's summary table: a few numbers per run, computed from `metrics.csv` (and the
+//! tension of `internal.csv` when the run has it).
 
 use crate::metrics::Metrics;
+use crate::tension::Tension;
 
 /// (quantity, value) rows describing the run.
-pub fn rows(m: &Metrics) -> Vec<(String, String)> {
+pub fn rows(m: &Metrics, tension: Option<&Tension>) -> Vec<(String, String)> {
     let last = m.frames() - 1;
     let max = |v: &[f64]| v.iter().fold(0.0, |a: f64, b| a.max(*b));
     let mut rows = vec![
@@ -50,6 +52,15 @@ pub fn rows(m: &Metrics) -> Vec<(String, String)> {
             format!("{} ({})", unsolved.len(), kinds.join(", "))
         },
     ));
+    if let Some(tension) = tension {
+        let head = tension.at_head();
+        let (final_n, peak) = (head.last().copied().unwrap_or(0.0), max(&head));
+        let mean = head.iter().sum::<f64>() / head.len().max(1) as f64;
+        rows.push((
+            "tension at the head (the pull the body transmits)".to_string(),
+            format!("final {final_n:.4e} dyn, max {peak:.4e} dyn, mean over frames {mean:.4e} dyn"),
+        ));
+    }
     rows
 }
 
@@ -86,7 +97,7 @@ mod tests {
             limit_excess_deg: vec![0.0, 0.25, 0.0],
             ..Metrics::default()
         };
-        let rows = rows(&m);
+        let rows = rows(&m, None);
         let get = |k: &str| rows.iter().find(|r| r.0 == k).map(|r| r.1.clone()).expect(k);
         assert_eq!(get("phases"), "form 0.00–0.10 s, thigmo 0.20–0.20 s");
         assert_eq!(get("final knot"), "3_1 (agreement 0.97)");

@@ -4,7 +4,8 @@
 //!
 //! kinematics, effective mass M̃ (CRBA), Cholesky factor of M̃, dynamics (M̃, momentum,
 //! forces), broad phase, narrow phase, whole contact detection, constraint rows, contact solve
-//! (with its velocity-product re-solve), integration, and the whole step.
+//! (with its velocity-product re-solve), the internal forces (the load each joint transmits),
+//! integration, and the whole step.
 //!
 //! Stages that change their input (solve, integrate, step) are timed with their input reset
 //! outside the timed region.
@@ -85,6 +86,11 @@ fn stages(c: &mut Criterion) {
             }
             total
         })
+    });
+    run_all(&mut data);
+    pipeline::solve_and_resolve(model, options, &state, &mut data).expect("solve");
+    group.bench_function("internal_forces", |b| {
+        b.iter(|| pipeline::internal_forces(model, options, &state, &mut data))
     });
     group.bench_function("integrate", |b| {
         b.iter_custom(|iterations| {

@@ -5,7 +5,8 @@
 //! [`hagfish_tree::State`], and [`StepData`] for everything derived. One step runs named
 //! stages ([`pipeline`]): kinematics → contact detection (centreline, self and wall contacts)
 //! → control → dynamics (M̃, f̃) → constraint rows (head, limits, wall, self contact;
-//! [`rows`]) → velocity solve (Cholesky / KKT / QP, `hagfish-solver`) → integration → the
+//! [`rows`]) → velocity solve (Cholesky / KKT / QP, `hagfish-solver`) → internal forces (the
+//! load each joint transmits, [`JointLoad`]) → integration → the
 //! result's check (its kinematics and contacts, kept for the next step; [`StepAcceptance`]).
 //! CGS units throughout.
 
@@ -20,6 +21,7 @@ mod force_columns;
 mod force_field;
 mod forces;
 mod hash;
+mod internal_forces;
 mod knot_core;
 mod memory;
 mod npy;
@@ -47,6 +49,7 @@ pub use error::SimError;
 pub use force_field::{ForceFieldLog, ForceFieldStats};
 pub use forces::{DofLabel, GroupForces, RECORDED_GROUPS, dof_labels};
 pub use hash::{fnv1a64, state_hash};
+pub use internal_forces::{InternalForces, JointLoad};
 pub use knot_core::KnotCore;
 pub use memory::{available_memory, check_memory, step_memory_estimate};
 pub use npy::{NpyArray, read_npy};

@@ -30,9 +30,20 @@ const fn p(
 /// The scenario parameters, in file order.
 pub const PARAMETERS: &[Parameter] = &[
     p("name", "-", "required", "short name of the scenario, used in outputs"),
-    p("body", "path", "required", "biometrics RON file, relative to the scenario file"),
+    p(
+        "body",
+        "path",
+        "required",
+        "body RON file (hagfish Biometrics or Rod), relative to the scenario file",
+    ),
     p("time_step_s", "s", "required", "time step h of the implicit integrator, > 0"),
     p("duration_s", "s", "required", "simulated time, > 0"),
+    p(
+        "end_after_phases",
+        "-",
+        "false",
+        "end the run (with a frame) once the last phase is over, e.g. a load has settled",
+    ),
     p(
         "record_every_s",
         "s",
@@ -300,6 +311,28 @@ pub const PARAMETERS: &[Parameter] = &[
     ),
     p("Thigmotaxis.until.span_below_l", "L", "None", "span_below_cm as a fraction of L"),
     p("Thigmotaxis.until.span_above_l", "L", "None", "span_above_cm as a fraction of L"),
+    p(
+        "Thigmotaxis.until.kinetic_energy_below_erg",
+        "erg",
+        "None",
+        "ends once the kinetic energy is at most this for hold_s (settled)",
+    ),
+    p(
+        "phases[].Load",
+        "-",
+        "-",
+        "phase: a force on the tail end, ramped up; stays on after the phase",
+    ),
+    p("Load.force_dyn", "dyn", "required", "magnitude once ramped, ≥ 0 (0 removes a load)"),
+    p(
+        "Load.direction",
+        "-",
+        "required",
+        "Fixed((x, y, z)), or TailTangent: along the last body's axis (a follower load)",
+    ),
+    p("Load.direction.Fixed", "-", "-", "a fixed world direction (normalised): a dead load"),
+    p("Load.ramp_s", "s", "0", "time to ramp the magnitude up from 0"),
+    p("Load.until", "-", "required", "when the phase ends: fields as Thigmotaxis.until"),
 ];
 
 #[cfg(test)]
@@ -307,8 +340,8 @@ mod tests {
     use std::collections::BTreeSet;
 
     use hagfish_control::{
-        FormingScript, Handedness, Phase, ScriptStep, SlidingTargets, TailGains, ThigmoParameters,
-        ThigmoPhase, TieKnot, TiePhase, Until, WaterDrag, Waypoint,
+        FormingScript, Handedness, LoadDirection, LoadPhase, Phase, ScriptStep, SlidingTargets,
+        TailGains, ThigmoParameters, ThigmoPhase, TieKnot, TiePhase, Until, WaterDrag, Waypoint,
     };
 
     use super::*;
@@ -328,6 +361,7 @@ mod tests {
             body: "body.ron".into(),
             time_step_s: 0.01,
             duration_s: 1.0,
+            end_after_phases: true,
             record_every_s: 0.1,
             drag: Some(WaterDrag::default()),
             backend: crate::DynamicsBackend::SparseMaximal,
@@ -368,7 +402,20 @@ mod tests {
                         knot_start_above_l: Some(0.7),
                         span_below_l: Some(0.5),
                         span_above_l: Some(0.7),
+                        kinetic_energy_below_erg: Some(1e-6),
                     },
+                }),
+                Phase::Load(LoadPhase {
+                    force_dyn: 1.0,
+                    direction: LoadDirection::Fixed((0.0, 1.0, 0.0)),
+                    ramp_s: 0.5,
+                    until: Until { seconds: 1.0, ..Until::default() },
+                }),
+                Phase::Load(LoadPhase {
+                    force_dyn: 1.0,
+                    direction: LoadDirection::TailTangent,
+                    ramp_s: 0.5,
+                    until: Until { seconds: 1.0, ..Until::default() },
                 }),
             ],
         }

@@ -3,7 +3,7 @@
 //! ```text
 //! kinematics → detect_contacts → control → dynamics → build_rows → solve_velocities
 //!   → [predict_contact_gaps | refresh_velocity_products | add_overshooting_limit_rows
-//!      → solve_velocities]* → integrate → check_result
+//!      → solve_velocities]* → internal_forces → integrate → check_result
 //! ```
 //!
 //! `check_result` runs the kinematics and contact detection of the new state, judges it
@@ -22,6 +22,7 @@ use hagfish_tree::{Model, State};
 use crate::acceptance::EndOfStep;
 use crate::backend::{self, Reuse};
 use crate::error::SimError;
+pub use crate::internal_forces::internal_forces;
 use crate::options::StepOptions;
 use crate::report::{StageTimings, StepReport};
 use crate::rows::{
@@ -199,6 +200,8 @@ pub fn step(
             rows: data.rows.len(),
         });
     }
+    internal_forces(model, options, state, data);
+    timings.internal_forces = lap();
     hagfish_tree::integrate(state, data.solver.velocity(), options.time_step)
         .map_err(|source| SimError::Tree { step: step_index, time, source })?;
     timings.integrate = lap();

@@ -5,7 +5,10 @@
 //! - `metrics.csv`: one row per frame (see [`METRICS_HEADER`]).
 //! - `forces.csv`: `frame,time_s,joint,axis,group,value_dyn_cm`, per DOF and recorded group.
 //! - `contacts.csv`: one row per self contact per frame (see [`CONTACTS_HEADER`]).
-//! - `q.npy`, `qdot.npy`, `thigmo_force.npy`: frames × DOFs (f64, see `npy.rs`).
+//! - `internal.csv`: one row per joint per frame, the load it transmits (see
+//!   [`INTERNAL_HEADER`]).
+//! - `q.npy`, `qdot.npy`, `thigmo_force.npy`: frames × DOFs (f64, see `npy.rs`);
+//!   `internal.npy`: frames × (joints · 6), the columns of `internal.csv` per joint.
 //! - `checkpoint.ron`: the latest frame's [`Checkpoint`], replaced atomically.
 
 use std::path::{Path, PathBuf};
@@ -21,6 +24,7 @@ use crate::checkpoint::{CHECKPOINT_FILE, Checkpoint};
 use crate::error::SimError;
 use crate::force_columns::ForceColumns;
 use crate::forces::{DofLabel, GroupForces, RECORDED_GROUPS};
+use crate::internal_forces::JointLoad;
 use crate::knot_core::KnotCore;
 use crate::npy::NpyWriter;
 use crate::output_file::OutputFile;
@@ -49,6 +53,12 @@ contact_span_cm,contact_midpoint_cm,solver_path,solver_status,solver_iterations,
 /// at its start): spline parameters, arc lengths from the head, gap and the two points.
 pub const CONTACTS_HEADER: &str = "frame,time_s,contact,u_a,u_b,arc_a_cm,arc_b_cm,gap_cm,\
 a_x_cm,a_y_cm,a_z_cm,b_x_cm,b_y_cm,b_z_cm";
+
+/// Header of `internal.csv`: the load each joint transmits in the step that ended at the
+/// frame ([`JointLoad`]): joint index, its arc length from the head, the force and moment
+/// of the tail-ward part on the head-ward part in the frame of the body after the joint.
+pub const INTERNAL_HEADER: &str = "frame,time_s,joint,s_cm,tension_dyn,shear_y_dyn,shear_z_dyn,\
+twist_dyn_cm,bend_y_dyn_cm,bend_z_dyn_cm";
 
 /// Worst values over the steps between two frames.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -127,6 +137,9 @@ pub struct Frame<'a> {
     pub labels: &'a [DofLabel],
     /// Generalized constraint forces averaged over the steps since the previous frame.
     pub forces: &'a GroupForces,
+    /// The load each joint transmitted in the step that ended at the frame (zeros for frame
+    /// 0).
+    pub internal: &'a [JointLoad],
 }
 
 /// An output file and its length in bytes at a checkpoint.
@@ -147,38 +160,51 @@ pub struct Recorder {
     metrics: OutputFile,
     forces: OutputFile,
     contacts: OutputFile,
+    internal: OutputFile,
     q: NpyWriter,
     qdot: NpyWriter,
     thigmo: NpyWriter,
+    internal_npy: NpyWriter,
     force_columns: ForceColumns,
 }
 
 /// The CSV files and their headers, in the order of [`Recorder::files`].
-const CSV_FILES: [(&str, &str); 4] = [
+const CSV_FILES: [(&str, &str); 5] = [
     ("centreline.csv", CENTRELINE_HEADER),
     ("metrics.csv", METRICS_HEADER),
     ("forces.csv", FORCES_HEADER),
     ("contacts.csv", CONTACTS_HEADER),
+    ("internal.csv", INTERNAL_HEADER),
 ];
 
 /// The `.npy` files, in the order of [`Recorder::files`].
-const NPY_FILES: [&str; 3] = ["q.npy", "qdot.npy", "thigmo_force.npy"];
+const NPY_FILES: [&str; 4] = ["q.npy", "qdot.npy", "thigmo_force.npy", "internal.npy"];
+
+/// Values per joint in `internal.npy` (the six load columns of `internal.csv`).
+pub const INTERNAL_VALUES_PER_JOINT: usize = 6;
 
 impl Recorder {
     /// The names of the files a recorder writes in its directory.
-    pub const FILE_NAMES: [&str; 7] = [
+    pub const FILE_NAMES: [&str; 9] = [
         CSV_FILES[0].0,
         CSV_FILES[1].0,
         CSV_FILES[2].0,
         CSV_FILES[3].0,
+        CSV_FILES[4].0,
         NPY_FILES[0],
         NPY_FILES[1],
         NPY_FILES[2],
+        NPY_FILES[3],
     ];
 
+    /// The columns of each `.npy` file for `dofs` DOFs and `joints` joints.
+    fn npy_columns(dofs: usize, joints: usize) -> [usize; 4] {
+        [dofs, dofs, dofs, INTERNAL_VALUES_PER_JOINT * joints]
+    }
+
     /// Creates `directory` (and parents) and the output files (CSV with their headers, `.npy`
-    /// with `dofs` columns and no rows).
-    pub fn create(directory: &Path, dofs: usize) -> Result<Self, SimError> {
+    /// with `dofs` columns, or six per joint, and no rows).
+    pub fn create(directory: &Path, dofs: usize, joints: usize) -> Result<Self, SimError> {
         std::fs::create_dir_all(directory)
             .map_err(|source| SimError::Output { path: directory.to_path_buf(), source })?;
         let csv = |(name, header): (&str, &str)| -> Result<OutputFile, SimError> {
@@ -188,7 +214,12 @@ impl Recorder {
             Ok(file)
         };
         let csv = CSV_FILES.map(csv);
-        let npy = NPY_FILES.map(|name| NpyWriter::create(&directory.join(name), dofs));
+        let columns = Self::npy_columns(dofs, joints);
+        let mut k = 0;
+        let npy = NPY_FILES.map(|name| {
+            k += 1;
+            NpyWriter::create(&directory.join(name), columns[k - 1])
+        });
         Self::from_files(directory, csv, npy)
     }
 
@@ -197,6 +228,7 @@ impl Recorder {
     pub fn reopen(
         directory: &Path,
         dofs: usize,
+        joints: usize,
         checkpoint: &Checkpoint,
     ) -> Result<Self, SimError> {
         let length = |name: &str| {
@@ -211,7 +243,12 @@ impl Recorder {
             length(name).and_then(|l| OutputFile::reopen(&directory.join(name), l))
         });
         let frames = checkpoint.frames;
-        let npy = NPY_FILES.map(|name| NpyWriter::reopen(&directory.join(name), dofs, frames));
+        let columns = Self::npy_columns(dofs, joints);
+        let mut k = 0;
+        let npy = NPY_FILES.map(|name| {
+            k += 1;
+            NpyWriter::reopen(&directory.join(name), columns[k - 1], frames)
+        });
         Self::from_files(directory, csv, npy)
     }
 
@@ -219,29 +256,31 @@ impl Recorder {
     /// `.npy` writers (in [`NPY_FILES`] order), or the first error among them.
     fn from_files(
         directory: &Path,
-        csv: [Result<OutputFile, SimError>; 4],
-        npy: [Result<NpyWriter, SimError>; 3],
+        csv: [Result<OutputFile, SimError>; 5],
+        npy: [Result<NpyWriter, SimError>; 4],
     ) -> Result<Self, SimError> {
-        let [centreline, metrics, forces, contacts] = csv;
-        let [q, qdot, thigmo] = npy;
+        let [centreline, metrics, forces, contacts, internal] = csv;
+        let [q, qdot, thigmo, internal_npy] = npy;
         Ok(Self {
             directory: directory.to_path_buf(),
             centreline: centreline?,
             metrics: metrics?,
             forces: forces?,
             contacts: contacts?,
+            internal: internal?,
             q: q?,
             qdot: qdot?,
             thigmo: thigmo?,
+            internal_npy: internal_npy?,
             force_columns: ForceColumns::default(),
         })
     }
 
     /// Every output file with its current length.
     pub fn files(&self) -> Vec<RecordedFile> {
-        let csv = [&self.centreline, &self.metrics, &self.forces, &self.contacts]
+        let csv = [&self.centreline, &self.metrics, &self.forces, &self.contacts, &self.internal]
             .map(|f| RecordedFile { name: file_name(f.path()), bytes: f.len() });
-        let npy = [&self.q, &self.qdot, &self.thigmo]
+        let npy = [&self.q, &self.qdot, &self.thigmo, &self.internal_npy]
             .map(|f| RecordedFile { name: file_name(f.path()), bytes: f.len() });
         csv.into_iter().chain(npy).collect()
     }
@@ -344,6 +383,31 @@ impl Recorder {
     }
 }
 
+/// The six values of a load in the column order of [`INTERNAL_HEADER`].
+fn load_values(load: &JointLoad) -> [f64; INTERNAL_VALUES_PER_JOINT] {
+    [
+        load.tension_dyn,
+        load.shear_y_dyn,
+        load.shear_z_dyn,
+        load.twist_dyn_cm,
+        load.bend_y_dyn_cm,
+        load.bend_z_dyn_cm,
+    ]
+}
+
+impl Recorder {
+    fn write_internal(&mut self, frame: &Frame<'_>, prefix: &str) -> Result<(), SimError> {
+        let spacing = frame.body_length_cm / frame.internal.len().max(1) as f64;
+        for (joint, load) in frame.internal.iter().enumerate() {
+            let [n, sy, sz, t, my, mz] = load_values(load).map(Scientific);
+            let s = joint as f64 * spacing;
+            self.internal
+                .line(format_args!("{prefix},{joint},{s:.4},{n},{sy},{sz},{t},{my},{mz}"))?;
+        }
+        Ok(())
+    }
+}
+
 impl FrameSink for Recorder {
     /// Appends one frame to every file, each file's rows in one write. Every CSV row starts
     /// with the frame's index and time, formatted once.
@@ -353,14 +417,22 @@ impl FrameSink for Recorder {
         self.write_metrics(frame, &prefix)?;
         self.write_forces(frame, &prefix)?;
         self.write_contacts(frame, &prefix)?;
-        for file in [&mut self.centreline, &mut self.metrics, &mut self.forces, &mut self.contacts]
-        {
+        self.write_internal(frame, &prefix)?;
+        for file in [
+            &mut self.centreline,
+            &mut self.metrics,
+            &mut self.forces,
+            &mut self.contacts,
+            &mut self.internal,
+        ] {
             file.flush()?;
         }
         self.q.append(&frame.state.q)?;
         self.qdot.append(&frame.state.qdot)?;
         let thigmo = RECORDED_GROUPS.iter().position(|g| *g == hagfish_solver::RowGroup::Thigmo);
-        self.thigmo.append(thigmo.map_or(&[][..], |g| &frame.forces.values[g]))
+        self.thigmo.append(thigmo.map_or(&[][..], |g| &frame.forces.values[g]))?;
+        let loads: Vec<f64> = frame.internal.iter().flat_map(load_values).collect();
+        self.internal_npy.append(&loads)
     }
 
     /// Writes `checkpoint.ron` (atomically) with the current file lengths.

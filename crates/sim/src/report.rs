@@ -46,6 +46,8 @@ pub struct StageTimings {
     pub build_rows: f64,
     /// Every velocity solve of the step, with the velocity-product refreshes and added rows.
     pub solve: f64,
+    /// The load each joint transmits (backward pass over the tree).
+    pub internal_forces: f64,
     /// Position update.
     pub integrate: f64,
     /// The result's kinematics and contacts (taken over by the next step) and its judgement.
@@ -61,12 +63,13 @@ impl StageTimings {
         self.dynamics += other.dynamics;
         self.build_rows += other.build_rows;
         self.solve += other.solve;
+        self.internal_forces += other.internal_forces;
         self.integrate += other.integrate;
         self.check += other.check;
     }
 
     /// The named stages and their seconds, in pipeline order.
-    pub fn stages(&self) -> [(&'static str, f64); 8] {
+    pub fn stages(&self) -> [(&'static str, f64); 9] {
         [
             ("kinematics", self.kinematics),
             ("detect_contacts", self.detect_contacts),
@@ -74,6 +77,7 @@ impl StageTimings {
             ("dynamics", self.dynamics),
             ("build_rows", self.build_rows),
             ("solve", self.solve),
+            ("internal_forces", self.internal_forces),
             ("integrate", self.integrate),
             ("check", self.check),
         ]
@@ -87,6 +91,7 @@ impl StageTimings {
             + self.dynamics
             + self.build_rows
             + self.solve
+            + self.internal_forces
             + self.integrate
             + self.check
     }

@@ -187,14 +187,16 @@ pub fn run(
                 break RunEnd::TieFailed(failure);
             }
         }
-        if world.steps() >= steps {
+        let phases_over = scenario.end_after_phases && controller.finished();
+        if world.steps() >= steps || phases_over {
             break RunEnd::Completed;
         }
         if let Err(error) = recording.advance(&mut world, &mut controller, &mut summary) {
             let at = Box::new(recording.checkpoint(&world, &controller, &summary));
             break RunEnd::Diverged { error, at };
         }
-        record = world.steps() % record_every == 0;
+        let phases_over = scenario.end_after_phases && controller.finished();
+        record = world.steps() % record_every == 0 || phases_over;
         if !record && options.stop.is_some_and(|flag| flag.load(Ordering::Relaxed)) {
             break RunEnd::Interrupted;
         }
@@ -359,6 +361,7 @@ impl Recording {
             centreline: &data.centreline,
             labels: &self.labels,
             forces: &self.forces,
+            internal: &data.internal.loads,
         })?;
         summary.maxima.merge(&self.maxima);
         self.maxima = IntervalMaxima::default();

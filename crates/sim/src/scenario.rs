@@ -15,7 +15,7 @@
 
 use std::path::{Path, PathBuf};
 
-use hagfish_anatomy::{AnatomyError, Biometrics, DataFile, Field};
+use hagfish_anatomy::{AnatomyError, Body, DataFile, Field};
 use hagfish_control::{Phase, PhasedController, WaterDrag};
 use hagfish_tree::State;
 use serde::{Deserialize, Serialize};
@@ -34,12 +34,17 @@ use crate::world::World;
 pub struct Scenario {
     /// A short name, used in outputs.
     pub name: String,
-    /// The biometrics file, relative to the scenario file (absolute once loaded).
+    /// The body file (hagfish biometrics or a rod), relative to the scenario file (absolute
+    /// once loaded).
     pub body: PathBuf,
     /// Time step h (s), at least [`MIN_TIME_STEP_S`].
     pub time_step_s: f64,
     /// Simulated time (s), > 0.
     pub duration_s: f64,
+    /// End the run as soon as the last phase is over (e.g. a load phase has settled), with a
+    /// frame recorded there, instead of at `duration_s` (default false).
+    #[serde(default)]
+    pub end_after_phases: bool,
     /// Interval between recorded frames (s); frame 0 is the initial state.
     #[serde(default = "default_record_every")]
     pub record_every_s: f64,
@@ -73,13 +78,13 @@ fn pretty_ron(scenario: &Scenario) -> String {
     ron::ser::to_string_pretty(scenario, config).unwrap_or_default()
 }
 
-/// A scenario with its biometrics loaded and checked.
+/// A scenario with its body (hagfish biometrics or rod) loaded and checked.
 #[derive(Clone, Debug)]
 pub struct LoadedScenario {
     /// The scenario as read, with the body path made absolute.
     pub scenario: Scenario,
-    /// The body's biometrics.
-    pub biometrics: Biometrics,
+    /// The body file's content.
+    pub body: Body,
     /// The scenario file's path.
     pub path: PathBuf,
     /// FNV-1a hash of the body file's bytes (16 hex digits), so that a resume can tell that
@@ -89,7 +94,7 @@ pub struct LoadedScenario {
 
 impl LoadedScenario {
     /// Reads the scenario at `path`, checks its values (each error at its `file:line:column`)
-    /// and loads the biometrics it names.
+    /// and loads the body file it names.
     pub fn load(path: impl AsRef<Path>) -> Result<Self, SimError> {
         Self::checked(DataFile::<Scenario>::read(path.as_ref())?)
     }
@@ -125,14 +130,14 @@ impl LoadedScenario {
     fn checked(file: DataFile<Scenario>) -> Result<Self, SimError> {
         let directory = file.path.parent().unwrap_or(Path::new("."));
         let body = directory.join(&file.value.body);
-        let biometrics = Biometrics::load(&body).map_err(|source| match source {
+        let loaded = Body::load(&body).map_err(|source| match source {
             AnatomyError::Io { .. } => SimError::BodyFile {
                 at: file.locate(&Field::whole("body")),
                 source: Box::new(source),
             },
             other => SimError::DataFile(other),
         })?;
-        check_scenario(&file, biometrics.body_count)?;
+        check_scenario(&file, loaded.body_count())?;
         let bytes = std::fs::read(&body).map_err(|source| SimError::BodyFile {
             at: file.locate(&Field::whole("body")),
             source: Box::new(AnatomyError::Io { path: body.clone(), source }),
@@ -140,7 +145,7 @@ impl LoadedScenario {
         let body_hash = format!("{:016x}", crate::hash::fnv1a64(&bytes));
         let body = std::fs::canonicalize(&body).unwrap_or(body);
         let resolved = Scenario { body, ..file.value };
-        Ok(Self { scenario: resolved, biometrics, path: file.path, body_hash })
+        Ok(Self { scenario: resolved, body: loaded, path: file.path, body_hash })
     }
 
     /// The scenario as RON text with every default filled in and the body file as an absolute
@@ -156,7 +161,7 @@ impl LoadedScenario {
 
     /// The world at rest and the scenario's controller, ready to run.
     pub fn build(&self) -> Result<(World, PhasedController), SimError> {
-        let model = self.biometrics.to_model()?;
+        let model = self.body.to_model()?;
         let state = State::rest(&model);
         let options = StepOptions {
             time_step: self.scenario.time_step_s,

@@ -11,7 +11,8 @@ use std::collections::HashMap;
 
 use hagfish_anatomy::{AnatomyError, DataFile, Field};
 use hagfish_control::{
-    FormingScript, Phase, ScriptStep, TailGains, ThigmoPhase, TiePhase, Waypoint,
+    FormingScript, LoadDirection, LoadPhase, Phase, ScriptStep, TailGains, ThigmoPhase, TiePhase,
+    Until, Waypoint,
 };
 
 use crate::scenario::{MIN_TIME_STEP_S, Scenario};
@@ -159,7 +160,28 @@ impl Checker<'_> {
         }
         self.check("tail_pull_dyn", p.tail_pull_dyn, Range::Finite)?;
         self.check("max_force_dyn", p.max_force_dyn, Range::Positive)?;
-        let until = &phase.until;
+        self.until(&phase.until)
+    }
+
+    fn load(&mut self, phase: &LoadPhase) -> Result<(), AnatomyError> {
+        self.check("force_dyn", phase.force_dyn, Range::NonNegative)?;
+        if let LoadDirection::Fixed((x, y, z)) = phase.direction {
+            let field = self.next_field("Fixed");
+            let length = (x * x + y * y + z * z).sqrt();
+            if !(length.is_finite() && length > 0.0) {
+                return Err(AnatomyError::OutOfRange {
+                    at: self.file.locate(&field),
+                    field,
+                    value: length,
+                    expected: "a finite, non-zero direction".into(),
+                });
+            }
+        }
+        self.check("ramp_s", phase.ramp_s, Range::NonNegative)?;
+        self.until(&phase.until)
+    }
+
+    fn until(&mut self, until: &Until) -> Result<(), AnatomyError> {
         self.check("seconds", until.seconds, Range::NonNegative)?;
         self.check("hold_s", until.hold_s, Range::NonNegative)?;
         for (key, value) in [
@@ -181,6 +203,9 @@ impl Checker<'_> {
             if let Some(value) = value {
                 self.check(key, value, Range::Fraction)?;
             }
+        }
+        if let Some(energy) = until.kinetic_energy_below_erg {
+            self.check("kinetic_energy_below_erg", energy, Range::NonNegative)?;
         }
         Ok(())
     }
@@ -216,6 +241,7 @@ pub(crate) fn check_scenario(file: &DataFile<Scenario>, bodies: usize) -> Result
             Phase::Hold(seconds) => checker.check("Hold", *seconds, Range::NonNegative)?,
             Phase::Thigmotaxis(phase) => checker.thigmotaxis(phase)?,
             Phase::Tie(phase) => checker.tie(phase)?,
+            Phase::Load(phase) => checker.load(phase)?,
         }
     }
     Ok(())

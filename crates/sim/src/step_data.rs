@@ -13,6 +13,7 @@ use hagfish_tree::{Data, Model, State, position_kinematics};
 use crate::backend::DynamicsBackend;
 use crate::contact_prediction::ContactPredictor;
 use crate::error::SimError;
+use crate::internal_forces::InternalForces;
 use crate::memory::check_memory;
 use crate::options::StepOptions;
 use crate::report::StepReport;
@@ -58,6 +59,8 @@ pub struct StepData {
     /// The sparse backend's factor of the maximal-coordinate system (stages `dynamics` and
     /// `solve_velocities`); `None` on the dense backend.
     pub tree_factor: Option<TreeFactor>,
+    /// The load each joint transmits during the step (stage `internal_forces`).
+    pub internal: InternalForces,
     pub(crate) detector: ContactDetector,
     pub(crate) wall: Option<Wall>,
     pub(crate) centres: Vec<DVec3>,
@@ -146,6 +149,7 @@ impl StepData {
                 DynamicsBackend::DenseReduced => None,
                 DynamicsBackend::SparseMaximal => Some(TreeFactor::new(model)?),
             },
+            internal: InternalForces::new(model.body_count()),
             detector,
             wall,
             centres,

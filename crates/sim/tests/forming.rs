@@ -64,7 +64,9 @@ fn ties_a_trefoil_on_perturbed_bodies() {
         [(1.1, 0.9, 1.2), (0.9, 1.1, 0.8), (1.1, 1.1, 0.8), (0.9, 0.9, 1.2)]
     {
         let mut loaded = form_scenario();
-        let body = &mut loaded.biometrics;
+        let hagfish_anatomy::Body::Hagfish(body) = &mut loaded.body else {
+            panic!("form.ron simulates a hagfish")
+        };
         body.length_cm *= length;
         body.circumferences_cm.iter_mut().for_each(|c| *c *= radius);
         body.bending_stiffness_dyn_cm_per_rad *= stiffness;

@@ -14,7 +14,7 @@ fn forming_world(self_contact: bool) -> (World, PhasedController) {
     let loaded =
         LoadedScenario::load(concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/scenarios/form.ron"))
             .expect("form.ron loads");
-    let model = loaded.biometrics.to_model().expect("model");
+    let model = loaded.body.to_model().expect("model");
     let options = StepOptions { self_contact, ..StepOptions::default() };
     let state = State::rest(&model);
     let world = World::new(model, options, state).expect("world");

@@ -98,7 +98,7 @@ fn form_scenario() -> LoadedScenario {
 
 #[test]
 fn sparse_steps_like_dense_with_head_limit_wall_and_contact_rows() {
-    let model = form_scenario().biometrics.to_model().expect("ES103 builds");
+    let model = form_scenario().body.to_model().expect("ES103 builds");
     let options = StepOptions::default();
     let mut state = State::rest(&model);
     for a in 0..model.dof_count() {

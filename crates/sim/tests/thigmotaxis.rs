@@ -69,7 +69,7 @@ fn run(name: &str, perturbation: f64) -> (Vec<Record>, RunSummary) {
     let path = format!("{}/../../data/scenarios/{name}.ron", env!("CARGO_MANIFEST_DIR"));
     let mut loaded = LoadedScenario::load(&path).expect("scenario loads");
     loaded.scenario.time_step_s *= 1.0 + perturbation;
-    let model = loaded.biometrics.to_model().expect("model builds");
+    let model = loaded.body.to_model().expect("model builds");
     let data = Data::new(&model);
     let mut records = Records { frames: Vec::new(), model, data };
     let outcome = hagfish_sim::run(&loaded, RunOptions::default(), &mut records, &mut |_| {})

@@ -23,6 +23,7 @@ mod error;
 pub mod integrator;
 pub mod jacobian;
 mod joint;
+pub mod joint_wrenches;
 pub mod kinematics;
 pub mod mass_matrix;
 mod model;
@@ -37,6 +38,7 @@ pub use integrator::{
     step_unconstrained,
 };
 pub use joint::{DofParams, JointKind};
+pub use joint_wrenches::joint_wrenches;
 pub use kinematics::{forward_kinematics, position_kinematics, velocity_kinematics};
 pub use mass_matrix::{effective_mass, mass_matrix};
 pub use model::{Body, BodySpec, Joint, Model, ModelBuilder, PathToRoot};

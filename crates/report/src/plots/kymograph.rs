@@ -1,6 +1,6 @@
-//! Force kymograph: one axis of the thigmotaxic force field as a joint × time heatmap
-//! (the thesis' Figure 6.2 as a picture), diverging colours centred at zero with symmetric
-//! limits, and a colour bar.
+//! Kymograph: a quantity per joint and frame as a joint × time heatmap (one axis of the
+//! thigmotaxic force field, the thesis' Figure 6.2 as a picture; the tension along the body),
+//! diverging colours centred at zero with symmetric limits, and a colour bar.
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -9,7 +9,6 @@ use super::figure::{DrawResult, Figure};
 use super::rgb;
 use crate::colour::diverging;
 use crate::font::FAMILY;
-use crate::forces::{AXES, ThigmoForces};
 
 /// The quantile of the non-zero magnitudes that sets the colour limits.
 pub const PERCENTILE: f64 = 0.99;
@@ -17,13 +16,19 @@ pub const PERCENTILE: f64 = 0.99;
 /// Colour steps on each side of zero.
 const LEVELS: i32 = 16;
 
-/// The kymograph of axis `axis` (index into [`AXES`]).
+/// A joint × time field and how to label it.
 #[derive(Clone, Copy, Debug)]
 pub struct Kymograph<'a> {
-    /// The force field.
-    pub forces: &'a ThigmoForces,
-    /// Index into [`AXES`].
-    pub axis: usize,
+    /// Simulation time of each frame (s).
+    pub times: &'a [f64],
+    /// Joints per frame (0 = head).
+    pub joints: usize,
+    /// The values, frames × joints, frame-major (`values[f * joints + j]`).
+    pub values: &'a [f64],
+    /// Caption above the heatmap.
+    pub caption: &'a str,
+    /// Unit shown on the colour bar.
+    pub unit: &'a str,
 }
 
 impl Kymograph<'_> {
@@ -32,7 +37,7 @@ impl Kymograph<'_> {
     /// take the end colours.
     pub fn limit(&self) -> f64 {
         let mut magnitudes: Vec<f64> =
-            self.forces.values[self.axis].iter().map(|v| v.abs()).filter(|v| *v > 0.0).collect();
+            self.values.iter().map(|v| v.abs()).filter(|v| *v > 0.0).collect();
         if magnitudes.is_empty() {
             return 1.0;
         }
@@ -42,8 +47,8 @@ impl Kymograph<'_> {
 
     /// Runs of equal colour along time, per joint: (first frame, last frame, joint, level).
     fn runs(&self) -> Vec<(usize, usize, usize, i32)> {
-        let (frames, joints) = (self.forces.frames(), self.forces.joints);
-        let values = &self.forces.values[self.axis];
+        let (frames, joints) = (self.times.len(), self.joints);
+        let values = self.values;
         let limit = self.limit();
         let level = |value: f64| {
             let l = f64::from(LEVELS);
@@ -88,7 +93,8 @@ impl Kymograph<'_> {
                 rgb(diverging(f64::from(l) / f64::from(LEVELS))).filled(),
             )
         }))?;
-        area.draw_text("dyn·cm, clipped", &(FAMILY, 11).into_text_style(area), (30, 16))?;
+        let label = format!("{}, clipped", self.unit);
+        area.draw_text(&label, &(FAMILY, 11).into_text_style(area), (30, 16))?;
         Ok(())
     }
 }
@@ -100,11 +106,11 @@ impl Figure for Kymograph<'_> {
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<DB> {
         let (main, bar) = root.split_horizontally(680);
-        let edges = cell_edges(&self.forces.times);
-        let joints = self.forces.joints.max(1) as f64;
-        let all_zero = if self.forces.max_abs(self.axis) > 0.0 { "" } else { " (all zero)" };
+        let edges = cell_edges(self.times);
+        let joints = self.joints.max(1) as f64;
+        let all_zero = if self.values.iter().any(|v| *v != 0.0) { "" } else { " (all zero)" };
         let mut chart = ChartBuilder::on(&main)
-            .caption(format!("Thigmotaxis force, axis {}{all_zero}", AXES[self.axis]), (FAMILY, 18))
+            .caption(format!("{}{all_zero}", self.caption), (FAMILY, 18))
             .margin(10)
             .x_label_area_size(40)
             .y_label_area_size(52)
@@ -158,18 +164,14 @@ mod tests {
 
     #[test]
     fn runs_merge_equal_colours_and_cover_every_cell_once() {
-        let forces = ThigmoForces {
-            times: vec![0.0, 0.1, 0.2, 0.3],
-            joints: 2,
-            // frame-major: (f0 j0, f0 j1), (f1 j0, f1 j1), …
-            values: [vec![0.0, 4.0, 0.0, 4.0, -4.0, 4.0, 0.0, 4.0], vec![], vec![]],
-        };
-        let k = Kymograph { forces: &forces, axis: 0 };
+        let times = [0.0, 0.1, 0.2, 0.3];
+        // frame-major: (f0 j0, f0 j1), (f1 j0, f1 j1), …
+        let values = [0.0, 4.0, 0.0, 4.0, -4.0, 4.0, 0.0, 4.0];
+        let k = Kymograph { times: &times, joints: 2, values: &values, caption: "", unit: "" };
         assert_eq!(k.limit(), 4.0);
-        let mut spiky = forces.clone();
-        spiky.values[0] = (1..=200).map(f64::from).collect();
-        spiky.values[0][7] = -1e6;
-        let limit = Kymograph { forces: &spiky, axis: 0 }.limit();
+        let mut spiky: Vec<f64> = (1..=200).map(f64::from).collect();
+        spiky[7] = -1e6;
+        let limit = Kymograph { values: &spiky, ..k }.limit();
         assert_eq!(limit, 199.0, "the 99th percentile of 1 … 200 without 8, and 1e6");
         assert_eq!(
             k.runs(),

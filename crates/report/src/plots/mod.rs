@@ -1,5 +1,6 @@
 //! The run's plots, each as PNG and SVG: force kymographs per axis, the knot's position
-//! and the contacts' span against time, and the contact counts against time.
+//! and the contacts' span against time, the contact counts against time, and (when the run
+//! has `internal.csv`) the tension kymograph and the tension at the head against time.
 
 mod figure;
 mod kymograph;
@@ -33,8 +34,41 @@ pub fn draw(run: &RunDir, plots: &Path) -> Result<Vec<Plot>, ReportError> {
             "Thigmotaxis force kymograph, axis {name} (joint × time, dyn·cm; colours clipped \
              at the 99th percentile of |force|)"
         );
-        let figure = Kymograph { forces: &run.forces, axis };
+        let caption = format!("Thigmotaxis force, axis {name}");
+        let figure = Kymograph {
+            times: &run.forces.times,
+            joints: run.forces.joints,
+            values: &run.forces.values[axis],
+            caption: &caption,
+            unit: "dyn·cm",
+        };
         drawn.push(figure::render(&figure, &stem, &title, &plots.join(format!("{stem}.png")))?);
+    }
+    if let Some(tension) = &run.tension {
+        let stem = "kymograph_tension";
+        let title = "Tension along the body (joint × time, dyn, > 0 pulling apart; colours \
+                     clipped at the 99th percentile of |tension|)";
+        let figure = Kymograph {
+            times: &tension.times,
+            joints: tension.joints,
+            values: &tension.values,
+            caption: "Axial tension N at each joint",
+            unit: "dyn",
+        };
+        drawn.push(figure::render(&figure, stem, title, &plots.join(format!("{stem}.png")))?);
+        let head = TimeSeries {
+            title: "Tension at the head (the pull the body transmits to the wall)".into(),
+            y_label: "tension at joint 0 (dyn)".into(),
+            times: tension.times.clone(),
+            lines: vec![Line {
+                label: "N at the head".into(),
+                colour: [0, 0, 0],
+                values: tension.at_head().into_iter().map(Some).collect(),
+            }],
+        };
+        let stem = "tension_head";
+        let title = head.title.clone();
+        drawn.push(figure::render(&head, stem, &title, &plots.join(format!("{stem}.png")))?);
     }
     let m = &run.metrics;
     let line = |label: &str, colour: Rgb, values: &[Option<f64>]| Line {
@@ -76,7 +110,9 @@ pub fn draw(run: &RunDir, plots: &Path) -> Result<Vec<Plot>, ReportError> {
 /// Whether `name` is a plot file this module writes (`<stem>.png` or `<stem>.svg`).
 pub fn is_own_file(name: &str) -> bool {
     let stem = name.strip_suffix(".png").or_else(|| name.strip_suffix(".svg"));
-    stem.is_some_and(|s| s.starts_with("kymograph_") || s == "knot_span" || s == "contacts")
+    stem.is_some_and(|s| {
+        s.starts_with("kymograph_") || ["knot_span", "contacts", "tension_head"].contains(&s)
+    })
 }
 
 /// Writes each plot as `<stem>.png` and `<stem>.svg` into `plots` (created if missing) and

@@ -14,4 +14,5 @@ pub use limits::{add_limit_rows, add_overshooting_limit_rows};
 pub use self_contact::{add_self_contact_rows, add_spline_point_row};
 pub use stabilisation::unilateral_rhs;
 pub use thigmo::add_thigmo_rows;
+pub(crate) use thigmo::thigmo_strands;
 pub use wall::add_wall_rows;

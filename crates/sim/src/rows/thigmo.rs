@@ -7,8 +7,9 @@
 //! `−tᵀ(P(u_this) − P(u_other)) q̇ ≥ |v|`. Merely lowering the bound of the head-ward row below
 //! zero would only *allow* tail-ward sliding, never drive it.
 
+use glam::DVec3;
 use hagfish_control::{Strand, ThigmoRequest};
-use hagfish_geometry::SelfContact;
+use hagfish_geometry::{SelfContact, SplineWeights};
 use hagfish_solver::{RowGroup, RowKind, Rows};
 use hagfish_tree::{Data, Model};
 
@@ -31,12 +32,22 @@ pub fn add_thigmo_rows(
             RowGroup::Thigmo,
             request.speed.abs(),
         );
-        let (this, other, tail_ward) = match request.strand {
-            Strand::Anterior => (&contact.weights_a, &contact.weights_b, contact.tangent_a),
-            Strand::Posterior => (&contact.weights_b, &contact.weights_a, contact.tangent_b),
-        };
-        let tangent = if request.speed < 0.0 { -tail_ward } else { tail_ward };
+        let (this, other, tangent) = thigmo_strands(request, contact);
         add_spline_point_row(model, data, this, tangent, 1.0, row);
         add_spline_point_row(model, data, other, tangent, -1.0, row);
     }
+}
+
+/// The strand a request drives, the other strand and the direction of the row
+/// (`tᵀ(P_this − P_other) q̇ ≥ |v|`): the driven strand's tail-ward tangent, reversed for a
+/// negative target speed.
+pub(crate) fn thigmo_strands<'c>(
+    request: &ThigmoRequest,
+    contact: &'c SelfContact,
+) -> (&'c SplineWeights, &'c SplineWeights, DVec3) {
+    let (this, other, tail_ward) = match request.strand {
+        Strand::Anterior => (&contact.weights_a, &contact.weights_b, contact.tangent_a),
+        Strand::Posterior => (&contact.weights_b, &contact.weights_a, contact.tangent_b),
+    };
+    (this, other, if request.speed < 0.0 { -tail_ward } else { tail_ward })
 }

@@ -1,0 +1,70 @@
+//! `internal.csv`: the axial tension N (dyn) each joint transmits, per frame (the other load
+//! columns are for the user; the report plots the tension).
+
+use std::path::Path;
+
+use crate::csv::CsvFile;
+use crate::error::ReportError;
+
+/// The `tension_dyn` column of `internal.csv` as a frames × joints matrix, frame-major
+/// (`values[f * joints + j]`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Tension {
+    /// Simulation time of each frame (s).
+    pub times: Vec<f64>,
+    /// Joints per frame (0 = head).
+    pub joints: usize,
+    /// Tension per frame and joint (dyn).
+    pub values: Vec<f64>,
+}
+
+impl Tension {
+    /// Reads `internal.csv`; frames must be numbered from 0 without gaps and list every joint.
+    pub fn read(path: &Path) -> Result<Self, ReportError> {
+        let file = CsvFile::read(path)?;
+        let [frame, time, joint, tension] =
+            ["frame", "time_s", "joint", "tension_dyn"].map(|c| file.column(c));
+        let (frame, time, joint, tension) = (frame?, time?, joint?, tension?);
+        let mut times: Vec<f64> = Vec::new();
+        let mut entries = Vec::new();
+        for record in file.records() {
+            let record = record?;
+            let f = record.index(frame)?;
+            if f == times.len() {
+                times.push(record.number(time)?);
+            } else if f + 1 != times.len() {
+                return Err(record.error(frame, "is not the current or the next frame"));
+            }
+            entries.push((f, record.index(joint)?, record.number(tension)?));
+        }
+        let joints = entries.iter().map(|e| e.1 + 1).max().unwrap_or(0);
+        let mut values = vec![0.0; times.len() * joints];
+        for (f, j, v) in entries {
+            values[f * joints + j] = v;
+        }
+        Ok(Self { times, joints, values })
+    }
+
+    /// The tension at joint 0 (the head, where the body pulls on the wall) per frame (dyn).
+    pub fn at_head(&self) -> Vec<f64> {
+        self.values.chunks(self.joints.max(1)).map(|frame| frame[0]).collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reads_the_tension_by_frame_and_joint() {
+        let text = "frame,time_s,joint,s_cm,tension_dyn,shear_y_dyn,shear_z_dyn,twist_dyn_cm,\
+            bend_y_dyn_cm,bend_z_dyn_cm\n\
+            0,0,0,0,1.5,0,0,0,0,0\n0,0,1,1,2.5,0,0,0,0,0\n\
+            1,0.1,0,0,-3,0,0,0,0,0\n1,0.1,1,1,4,0,0,0,0,0\n";
+        let path = crate::test_files::write("internal.csv", text);
+        let t = Tension::read(&path).expect("reads");
+        assert_eq!((t.times.len(), t.joints), (2, 2));
+        assert_eq!(t.values, vec![1.5, 2.5, -3.0, 4.0]);
+        assert_eq!(t.at_head(), vec![1.5, -3.0]);
+    }
+}

@@ -1,0 +1,147 @@
+//! Stage `internal_forces`: the load each joint transmits during the step (`docs/physics.md`,
+//! "Internal forces"), from the step's constraint and applied forces by a backward pass over
+//! the tree ([`hagfish_tree::joint_wrenches`]).
+//!
+//! Self-contact, wall and thigmotaxis rows push on body centres: a row with coefficient
+//! `dᵀ Σ_m s_m w_m P_m` (direction d, spline weights w_m, sign s_m = ±1 for the two strands)
+//! and impulse λ exerts the force `s_m w_m (λ/h) d` at centre m. Head and limit rows act in
+//! joint space and show up as the joints' torques. The result, per joint j, is the force and
+//! moment that the distal part (the subtree) exerts on the proximal part, in the frame of
+//! body j (x along the body): the rod's internal force n and moment m at the joint.
+
+use glam::DVec3;
+use hagfish_geometry::SplineWeights;
+use hagfish_solver::RowGroup;
+use hagfish_tree::{Model, Spatial, State};
+
+use crate::options::StepOptions;
+use crate::rows::thigmo_strands;
+use crate::step_data::StepData;
+
+/// The internal load at one joint: the force (dyn) and moment (dyn·cm) that the part of the
+/// body beyond the joint (tail-ward) exerts on the part before it, in the frame of the body
+/// that follows the joint (x along the body, the twist axis). Positive tension pulls the
+/// two parts apart.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct JointLoad {
+    /// Axial force N = n·t (dyn), > 0 in tension.
+    pub tension_dyn: f64,
+    /// Shear force along the body's y axis (dyn).
+    pub shear_y_dyn: f64,
+    /// Shear force along the body's z axis (dyn).
+    pub shear_z_dyn: f64,
+    /// Twisting moment m·t (dyn·cm).
+    pub twist_dyn_cm: f64,
+    /// Bending moment about the body's y axis (dyn·cm).
+    pub bend_y_dyn_cm: f64,
+    /// Bending moment about the body's z axis (dyn·cm).
+    pub bend_z_dyn_cm: f64,
+}
+
+impl JointLoad {
+    /// The magnitude of the bending moment `√(m_y² + m_z²)` (dyn·cm).
+    pub fn bending_dyn_cm(&self) -> f64 {
+        self.bend_y_dyn_cm.hypot(self.bend_z_dyn_cm)
+    }
+}
+
+/// Buffers of the stage, allocated once per world.
+#[derive(Clone, Debug, Default)]
+pub struct InternalForces {
+    /// Constraint wrenches on each body from self-contact, wall and thigmotaxis rows (world,
+    /// at the origin).
+    external: Vec<Spatial>,
+    /// The wrench each joint's parent exerts on its subtree (world, at the origin).
+    wrenches: Vec<Spatial>,
+    /// The loads of the last step, one per joint, head first.
+    pub loads: Vec<JointLoad>,
+}
+
+impl InternalForces {
+    /// Buffers for `bodies` joints.
+    pub fn new(bodies: usize) -> Self {
+        Self {
+            external: vec![Spatial::ZERO; bodies],
+            wrenches: vec![Spatial::ZERO; bodies],
+            loads: vec![JointLoad::default(); bodies],
+        }
+    }
+}
+
+/// Stage 6d (after the last solve, before `integrate`): fills `data.internal.loads` for the
+/// step from `state` (still the step's start) to the solved velocities.
+pub fn internal_forces(model: &Model, options: &StepOptions, state: &State, data: &mut StepData) {
+    let h = options.time_step;
+    collect_row_wrenches(data, h);
+    let internal = &mut data.internal;
+    hagfish_tree::joint_wrenches(
+        model,
+        &mut data.tree,
+        &state.qdot,
+        data.solver.velocity(),
+        h,
+        &internal.external,
+        &mut internal.wrenches,
+    );
+    for (j, (load, w)) in internal.loads.iter_mut().zip(&internal.wrenches).enumerate() {
+        let frame = &data.tree.joint_frames[j];
+        let rt = frame.rotation.transpose();
+        // The subtree's action on the parent is −W; its moment about the joint point p is
+        // −(n_O − p × f).
+        let force = rt * -w.linear;
+        let moment = rt * -(w.angular - frame.translation.cross(w.linear));
+        *load = JointLoad {
+            tension_dyn: force.x,
+            shear_y_dyn: force.y,
+            shear_z_dyn: force.z,
+            twist_dyn_cm: moment.x,
+            bend_y_dyn_cm: moment.y,
+            bend_z_dyn_cm: moment.z,
+        };
+    }
+}
+
+/// Sums the forces of the self-contact, wall and thigmotaxis rows on the body centres into
+/// `data.internal.external`. Rows of each group come in the order of their sources (the
+/// contacts; the requests whose contact exists), as `build_rows` appends them.
+fn collect_row_wrenches(data: &mut StepData, h: f64) {
+    let external = &mut data.internal.external;
+    external.fill(Spatial::ZERO);
+    let centres = &data.centres;
+    let mut push = |weights: &SplineWeights, sign: f64, direction: DVec3, force: f64| {
+        for (body, w) in weights.iter() {
+            external[body] += Spatial::point_force(centres[body], direction * (sign * w * force));
+        }
+    };
+    let mut walls = data.wall_contacts.iter();
+    let mut contacts = data.self_contacts.iter();
+    let mut requests = data
+        .actuation
+        .thigmo
+        .iter()
+        .filter_map(|r| data.self_contacts.get(r.contact).map(|c| thigmo_strands(r, c)));
+    let multipliers = data.solver.multipliers();
+    for (group, &lambda) in data.rows.groups().iter().zip(multipliers) {
+        let force = lambda / h;
+        match group {
+            RowGroup::Wall => {
+                if let Some(c) = walls.next() {
+                    push(&SplineWeights::single(c.body), 1.0, c.normal, force);
+                }
+            }
+            RowGroup::Contact => {
+                if let Some(c) = contacts.next() {
+                    push(&c.weights_b, 1.0, c.normal, force);
+                    push(&c.weights_a, -1.0, c.normal, force);
+                }
+            }
+            RowGroup::Thigmo => {
+                if let Some((this, other, tangent)) = requests.next() {
+                    push(this, 1.0, tangent, force);
+                    push(other, -1.0, tangent, force);
+                }
+            }
+            RowGroup::Head | RowGroup::Limit => {}
+        }
+    }
+}
