@@ -113,11 +113,10 @@ pub struct Observation<'a> {
     pub kinetic_energy_erg: f64,
 }
 
-/// The kinetic energy of the body, `½ Σᵢ Vᵢ·(Iᵢ Vᵢ)` over the world twists and inertias of
-/// `context`'s kinematics (erg = g·cm²/s²).
+/// The kinetic energy of the body at the start of the step (erg,
+/// [`hagfish_tree::kinetic_energy`]).
 pub fn kinetic_energy(context: &ControlContext<'_>) -> f64 {
-    let data = context.kinematics;
-    0.5 * data.velocities.iter().zip(&data.inertias).map(|(v, i)| v.dot(&i.apply(v))).sum::<f64>()
+    hagfish_tree::kinetic_energy(context.kinematics)
 }
 
 impl Until {

@@ -77,3 +77,9 @@ pub fn generalized_force(model: &Model, q: &[f64], data: &mut Data) {
     }
     data.generalized_force = f;
 }
+
+/// The kinetic energy `½ Σᵢ Vᵢ·(Iᵢ Vᵢ)` (erg = g·cm²/s²) at the twists and inertias of the last
+/// [`crate::forward_kinematics`] call.
+pub fn kinetic_energy(data: &Data) -> f64 {
+    0.5 * data.velocities.iter().zip(&data.inertias).map(|(v, i)| v.dot(&i.apply(v))).sum::<f64>()
+}

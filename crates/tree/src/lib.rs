@@ -31,7 +31,7 @@ pub mod spatial;
 mod state;
 
 pub use data::Data;
-pub use dynamics::{generalized_force, generalized_momentum, inverse_dynamics};
+pub use dynamics::{generalized_force, generalized_momentum, inverse_dynamics, kinetic_energy};
 pub use error::TreeError;
 pub use integrator::{
     assemble_effective_momentum, factor_effective_mass, integrate, solve_unconstrained,
