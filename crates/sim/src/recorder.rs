@@ -215,11 +215,8 @@ impl Recorder {
         };
         let csv = CSV_FILES.map(csv);
         let columns = Self::npy_columns(dofs, joints);
-        let mut k = 0;
-        let npy = NPY_FILES.map(|name| {
-            k += 1;
-            NpyWriter::create(&directory.join(name), columns[k - 1])
-        });
+        let npy =
+            std::array::from_fn(|k| NpyWriter::create(&directory.join(NPY_FILES[k]), columns[k]));
         Self::from_files(directory, csv, npy)
     }
 
@@ -244,10 +241,8 @@ impl Recorder {
         });
         let frames = checkpoint.frames;
         let columns = Self::npy_columns(dofs, joints);
-        let mut k = 0;
-        let npy = NPY_FILES.map(|name| {
-            k += 1;
-            NpyWriter::reopen(&directory.join(name), columns[k - 1], frames)
+        let npy = std::array::from_fn(|k| {
+            NpyWriter::reopen(&directory.join(NPY_FILES[k]), columns[k], frames)
         });
         Self::from_files(directory, csv, npy)
     }
