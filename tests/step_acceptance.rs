@@ -17,7 +17,7 @@ const SELF_BOUND: f64 = 0.1;
 const LIMIT_BOUND_DEG: f64 = 2.0;
 
 fn thesis() -> String {
-    format!("{ROOT}/data/scenarios/thesis.ron")
+    format!("{ROOT}/data/scenarios/thesis_scripted.ron")
 }
 
 /// Runs the thesis scenario with `time_step_s` into `dir`.

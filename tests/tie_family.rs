@@ -198,51 +198,93 @@ fn a_tie_stopped_mid_plan_resumes_bit_for_bit() {
     }
 }
 
-/// The slide of `tie_slide.ron` with `extra` arguments: the core midpoint's travel toward
-/// the head (L) from the slide's start, the core's nearest head-ward end (L), its length
-/// change (fraction) and the midpoint's speed over the middle 80 % of the slide (cm/s).
-fn slide(name: &str, extra: &[&str]) -> (f64, f64, f64, f64) {
+/// What the slide of `thesis.ron` did in one run.
+struct Slide {
+    /// The core midpoint's travel toward the head from the slide's start to its nearest (L).
+    travel: f64,
+    /// The core's nearest head-ward end after tying (L).
+    nearest: f64,
+    /// The core's length change from the slide's first frame to its last (fraction).
+    change: f64,
+    /// The midpoint's mean speed over the middle 80 % of the slide (cm/s).
+    speed: f64,
+    /// The deepest self penetration of the run (fraction of the local radius).
+    penetration: f64,
+}
+
+/// Runs `thesis.ron` with `extra` arguments into a fresh directory named `name`.
+fn slide(name: &str, extra: &[String]) -> Slide {
     let dir = fresh_dir(name);
-    let scenario = format!("{ROOT}/data/scenarios/tie_slide.ron");
+    let scenario = format!("{ROOT}/data/scenarios/thesis.ron");
     let out = dir.to_string_lossy();
     let mut args = vec!["run", &scenario, "--quiet", "--out", &out];
-    args.extend_from_slice(extra);
+    args.extend(extra.iter().map(String::as_str));
     let output = run_hagfish(&args);
-    assert!(output.status.success(), "{}", code_and_stderr(&output).1);
+    assert!(output.status.success(), "{name}: {}", code_and_stderr(&output).1);
     let (header, rows) = metrics_table(&dir);
     let number = |row: &[String], name: &str| row[header[name]].parse::<f64>().unwrap_or(f64::NAN);
     let slide: Vec<&Vec<String>> = rows.iter().filter(|r| r[header["phase"]] == "slide").collect();
-    assert!(slide.len() >= 10, "{} slide frames", slide.len());
+    assert!(slide.len() >= 10, "{name}: {} slide frames", slide.len());
     let tied = rows.iter().position(|r| r[header["phase"]] != "tie").expect("tied");
-    assert!(rows[tied..].iter().all(|r| r[header["knot"]] == "3_1"), "the trefoil is lost");
+    assert!(rows[tied..].iter().all(|r| r[header["knot"]] == "3_1"), "{name}: trefoil lost");
     let (first, last) = (slide[0], slide[slide.len() - 1]);
     let mid = |r: &Vec<String>| number(r, "knot_core_mid_L");
-    let travel = mid(first) - rows[tied..].iter().map(mid).fold(f64::INFINITY, f64::min);
-    let nearest = rows[tied..].iter().map(|r| number(r, "knot_core_start_L")).fold(1.0, f64::min);
     let length = |r: &Vec<String>| number(r, "knot_core_length_cm");
-    let change = length(last) / length(first) - 1.0;
     let (a, b) = (slide.len() / 10, slide.len() * 9 / 10 - 1);
     let (ta, tb) = (number(slide[a], "time_s"), number(slide[b], "time_s"));
-    let speed = (mid(slide[a]) - mid(slide[b])) * 42.4 / (tb - ta);
-    (travel, nearest, change, speed)
+    Slide {
+        travel: mid(first) - rows[tied..].iter().map(mid).fold(f64::INFINITY, f64::min),
+        nearest: rows[tied..].iter().map(|r| number(r, "knot_core_start_L")).fold(1.0, f64::min),
+        change: length(last) / length(first) - 1.0,
+        speed: (mid(slide[a]) - mid(slide[b])) * 42.4 / (tb - ta),
+        penetration: rows.iter().map(|r| number(r, "max_self_penetration_rel")).fold(0.0, f64::max),
+    }
 }
 
+/// The slide of `thesis.ron` on ES103, as written and with the time step changed by 1 to 7
+/// parts in 10¹² (rounding-level: the slide amplifies rounding, so a claim must hold for
+/// every such trajectory, not just one): the core's midpoint travels ≥ 0.25 L toward the
+/// head, its head-ward end reaches ≤ 0.05 L, the midpoint moves at 2 cm/s ± 30 % and the
+/// tubes never sink into each other by 2 % of the radius. The core's length changes by at
+/// most 30 % in the run as written; in one of the seven perturbed runs (δh/h = 7e-12) it
+/// grows by 38 % (docs/physics.md). And the slide is the targets' doing: the control run with
+/// zero slide targets moves the core at least 0.2 L less.
 #[test]
-fn the_tied_knot_slides_toward_the_head_on_es103_because_of_the_targets() {
-    let (travel, nearest, change, speed) = slide("tie_slide", &[]);
-    assert!(travel >= 0.25, "the core's midpoint moved {travel} L toward the head");
-    assert!(nearest <= 0.05, "the core's head-ward end came to {nearest} L only");
-    assert!(change.abs() <= 0.3, "the core's length changed by {:.0} %", 100.0 * change);
-    assert!((speed / 2.0 - 1.0).abs() <= 0.3, "the knot slid at {speed} cm/s, 2 commanded");
-    // The control run: the same slide phase (and tail pull) with zero targets.
+fn the_tied_knot_slides_to_the_head_on_es103_because_of_the_targets() {
+    let runs: Vec<Slide> = std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..8)
+            .map(|k| {
+                scope.spawn(move || {
+                    let h = 0.01 * (1.0 + f64::from(k) * 1e-12);
+                    let extra = ["--set".to_string(), format!("time_step_s={h:?}")];
+                    slide(&format!("thesis_slide_{k}"), if k == 0 { &[] } else { &extra })
+                })
+            })
+            .collect();
+        handles.into_iter().map(|h| h.join().expect("a run")).collect()
+    });
+    for (k, run) in runs.iter().enumerate() {
+        let label = format!("δh/h = {k}e-12");
+        assert!(run.travel >= 0.25, "{label}: the core's midpoint moved {} L", run.travel);
+        assert!(run.nearest <= 0.05, "{label}: the core's head-ward end came to {} L", run.nearest);
+        assert!((run.speed / 2.0 - 1.0).abs() <= 0.3, "{label}: {} cm/s, 2 asked", run.speed);
+        assert!(run.penetration < 0.02, "{label}: penetration {} of r", run.penetration);
+    }
+    let written = &runs[0];
+    assert!(written.change.abs() <= 0.3, "the core's length changed by {}", written.change);
     let zero = [
-        "--set",
         "phases[2].Thigmotaxis.parameters.head=(0.0, 0.0)",
-        "--set",
         "phases[2].Thigmotaxis.parameters.tail=(0.0, 0.0)",
     ];
-    let (control, ..) = slide("tie_slide_control", &zero);
-    assert!(travel - control >= 0.2, "travel {travel} L with the targets, {control} L without");
+    let zero: Vec<String> =
+        zero.iter().flat_map(|s| ["--set".to_string(), s.to_string()]).collect();
+    let control = slide("thesis_slide_control", &zero);
+    assert!(
+        written.travel - control.travel >= 0.2,
+        "travel {} L with the targets, {} L without",
+        written.travel,
+        control.travel
+    );
 }
 
 #[test]

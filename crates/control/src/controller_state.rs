@@ -87,6 +87,7 @@ mod tests {
                 started_at: 2.5,
                 condition_since: Some(2.7),
                 load_since: None,
+                core_start_l: Some(0.3),
             },
             forming: Some(ScriptProgress {
                 step: 1,
@@ -107,18 +108,12 @@ mod tests {
             mismatch(&ControllerState { forming: None, ..saved }),
             "Form phase without progress"
         );
-        let beyond =
-            PhaseProgress { phase: 3, started_at: 0.0, condition_since: None, load_since: None };
+        let beyond = PhaseProgress { phase: 3, started_at: 0.0, ..PhaseProgress::default() };
         assert!(mismatch(&ControllerState { phases: beyond, ..saved }), "phase beyond the last");
         let passive = controller(vec![Phase::Hold(1.0)]).restore(&saved);
         assert!(passive.is_err(), "forming progress without a Form phase");
         let finished = ControllerState {
-            phases: PhaseProgress {
-                phase: 2,
-                started_at: 3.5,
-                condition_since: None,
-                load_since: None,
-            },
+            phases: PhaseProgress { phase: 2, started_at: 3.5, ..PhaseProgress::default() },
             ..saved
         };
         assert!(!mismatch(&finished), "after the last phase the forming script is kept");

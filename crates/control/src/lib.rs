@@ -33,8 +33,8 @@ pub use knot_span::KnotSpan;
 pub use load::{LoadDirection, LoadPhase};
 pub use loops::{ProjectedLoop, largest_projected_loop};
 pub use phases::{
-    Observation, Phase, PhaseProgress, PhasedController, ThigmoPhase, TieFailure, Until,
-    kinetic_energy,
+    KnotObservation, Observation, Phase, PhaseProgress, PhasedController, ThigmoPhase, TieFailure,
+    Until, kinetic_energy,
 };
 pub use tail_pd::TailGains;
 pub use thigmotaxis::{SlidingTargets, Strand, ThigmoParameters, ThigmoRequest};

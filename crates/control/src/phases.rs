@@ -96,6 +96,13 @@ pub struct Until {
     /// [`Until::span_above_cm`] as a fraction of L.
     #[serde(default)]
     pub span_above_l: Option<f64>,
+    /// Ends once the knotted core's head-ward end is within this fraction of L of the head:
+    /// the core (shortest knotted sub-arc, `hagfish_knots`) of the latest recorded frame, so
+    /// it is looked at every `record_every_s`. Unlike [`Until::knot_start_below_l`] (the
+    /// first self contact, which a loop of the tail end can make near the head while the
+    /// knot is still far from it), this is where the knot itself is.
+    #[serde(default)]
+    pub core_start_below_l: Option<f64>,
     /// Ends once the kinetic energy `½ Σ Vᵢ·IᵢVᵢ` is at most this (erg = g·cm²/s²) for
     /// `hold_s`: the body has settled.
     #[serde(default)]
@@ -111,6 +118,9 @@ pub struct Observation<'a> {
     pub body_length_cm: f64,
     /// The kinetic energy (erg).
     pub kinetic_energy_erg: f64,
+    /// The knotted core's head-ward end at the latest recorded frame (fraction of L), if
+    /// that frame was knotted.
+    pub core_start_l: Option<f64>,
 }
 
 /// The kinetic energy of the body at the start of the step (erg,
@@ -134,7 +144,13 @@ impl Until {
     ) -> bool {
         let settled =
             self.kinetic_energy_below_erg.is_some_and(|e| observed.kinetic_energy_erg <= e);
-        let holds = settled || self.knot_condition(observed.span, observed.body_length_cm);
+        let core_near_head = self
+            .core_start_below_l
+            .zip(observed.core_start_l)
+            .is_some_and(|(limit, start)| start <= limit);
+        let holds = settled
+            || core_near_head
+            || self.knot_condition(observed.span, observed.body_length_cm);
         *since = if holds { Some(since.unwrap_or(t)) } else { None };
         elapsed >= self.seconds || since.is_some_and(|since| t - since >= self.hold_s)
     }
@@ -162,6 +178,19 @@ impl Until {
     }
 }
 
+/// What the knot analysis of a recorded frame shows ([`PhasedController::observe_knot`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct KnotObservation<'a> {
+    /// The knot type's Rolfsen name (`0_1`, `3_1`, …).
+    pub name: &'a str,
+    /// The fraction of closure directions that agree on it.
+    pub agreement: f64,
+    /// The handedness of the knotted core (sign of its writhe), if it has one.
+    pub right_handed: Option<bool>,
+    /// The knotted core's head-ward end (fraction of L), if the frame is knotted.
+    pub core_start_l: Option<f64>,
+}
+
 /// Progress through the phases: the controller state a checkpoint must keep.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct PhaseProgress {
@@ -177,6 +206,10 @@ pub struct PhaseProgress {
     /// interruption (s), or `None`.
     #[serde(default)]
     pub condition_since: Option<f64>,
+    /// The knotted core's head-ward end at the latest recorded frame (fraction of L), or
+    /// `None` if that frame was not knotted ([`Until::core_start_below_l`]).
+    #[serde(default)]
+    pub core_start_l: Option<f64>,
 }
 
 /// Drag plus phases, in order.
@@ -211,17 +244,17 @@ impl PhasedController {
         Self { drag, phases, progress, forming, tie }
     }
 
-    /// Takes the knot analysis of a recorded frame at time `t` (its Rolfsen name,
-    /// agreement and the core's handedness; `None` if it failed). A tie phase ends on it
-    /// (the knot shown for `hold_s`), or starts its plan again, or fails (`settle_s` after
-    /// its plan without the knot).
-    pub fn observe_knot(&mut self, t: f64, knot: Option<(&str, f64, Option<bool>)>) {
+    /// Takes the knot analysis of a recorded frame at time `t` (`None` if it failed). Its
+    /// core's head-ward end is kept for [`Until::core_start_below_l`]. A tie phase ends on
+    /// it (the knot shown for `hold_s`), or starts its plan again, or fails (`settle_s`
+    /// after its plan without the knot).
+    pub fn observe_knot(&mut self, t: f64, knot: Option<KnotObservation<'_>>) {
+        self.progress.core_start_l = knot.and_then(|k| k.core_start_l);
         let Some(Phase::Tie(phase)) = self.phases.get(self.progress.phase) else {
             return;
         };
-        let shown = knot.is_some_and(|(name, agreement, right_handed)| {
-            phase.knot.is_shown_by(name, agreement, right_handed)
-        });
+        let shown =
+            knot.is_some_and(|k| phase.knot.is_shown_by(k.name, k.agreement, k.right_handed));
         self.tie.shown_since = if shown { Some(self.tie.shown_since.unwrap_or(t)) } else { None };
         let late = self.tie.plan_done_at.is_some_and(|done| t - done >= phase.settle_s);
         if shown || !late || self.tie.failed {
@@ -280,6 +313,7 @@ impl PhasedController {
                     span: span.as_ref(),
                     body_length_cm: body_length(context),
                     kinetic_energy_erg: kinetic_energy(context),
+                    core_start_l: self.progress.core_start_l,
                 };
                 until.over(t, elapsed, &observed, &mut self.progress.condition_since)
             }
@@ -294,7 +328,9 @@ impl PhasedController {
             Some(Phase::Load(_)) => Some(t),
             _ => self.progress.load_since,
         };
-        self.progress = PhaseProgress { phase, started_at: t, condition_since: None, load_since };
+        let core_start_l = self.progress.core_start_l;
+        self.progress =
+            PhaseProgress { phase, started_at: t, condition_since: None, load_since, core_start_l };
         if let Some(script) = self.phases.get(self.progress.phase).and_then(Phase::script) {
             self.forming = Some(FormingController::new(script));
         }
@@ -358,7 +394,7 @@ mod tests {
     use super::*;
 
     fn seen(span: Option<&KnotSpan>) -> Observation<'_> {
-        Observation { span, body_length_cm: 40.0, kinetic_energy_erg: 1.0 }
+        Observation { span, body_length_cm: 40.0, kinetic_energy_erg: 1.0, core_start_l: None }
     }
 
     fn span(start_cm: f64, end_cm: f64) -> KnotSpan {
@@ -384,6 +420,30 @@ mod tests {
         let loosen = Until { span_above_cm: Some(27.0), span_below_cm: None, ..until };
         assert!(condition(&loosen, Some(&span(10.0, 37.0))));
         assert!(!condition(&loosen, Some(&span(10.0, 29.5))));
+    }
+
+    #[test]
+    fn the_core_condition_looks_at_the_core_of_the_latest_recorded_frame() {
+        let until = Until { seconds: 5.0, core_start_below_l: Some(0.04), ..Until::default() };
+        let at = |core_start_l| Observation { core_start_l, ..seen(None) };
+        let mut since = None;
+        assert!(!until.over(1.0, 1.0, &at(Some(0.05)), &mut since), "still 0.05 L away");
+        assert!(!until.over(1.1, 1.1, &at(None), &mut since), "an unknotted frame");
+        assert!(until.over(1.2, 1.2, &at(Some(0.04)), &mut since), "within 0.04 L");
+
+        let mut controller = PhasedController::new(None, vec![Phase::Hold(1.0)]);
+        let knot = KnotObservation {
+            name: "3_1",
+            agreement: 1.0,
+            right_handed: Some(true),
+            core_start_l: Some(0.3),
+        };
+        controller.observe_knot(0.5, Some(knot));
+        assert_eq!(controller.progress().core_start_l, Some(0.3), "kept in any phase");
+        controller.advance(1.0);
+        assert_eq!(controller.progress().core_start_l, Some(0.3), "and across phases");
+        controller.observe_knot(1.1, None);
+        assert_eq!(controller.progress().core_start_l, None, "a failed analysis forgets it");
     }
 
     #[test]

@@ -195,7 +195,7 @@ pub struct TieProgress {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::phases::{Phase, PhasedController};
+    use crate::phases::{KnotObservation, Phase, PhasedController};
 
     fn phase(handedness: Handedness) -> TiePhase {
         TiePhase::new(TieKnot::Trefoil(handedness), 0.31)
@@ -254,11 +254,14 @@ mod tests {
                 vec![Phase::Tie(TiePhase { attempts, ..phase(Handedness::Right) })],
             )
         };
-        let shown = Some(("3_1", 0.95, Some(true)));
+        let seen = |name, agreement, right_handed| {
+            Some(KnotObservation { name, agreement, right_handed, core_start_l: Some(0.4) })
+        };
+        let shown = seen("3_1", 0.95, Some(true));
         let mut controller = tie(2);
         controller.observe_knot(10.0, shown);
         assert_eq!(controller.state().tie.shown_since, Some(10.0));
-        controller.observe_knot(10.1, Some(("0_1", 1.0, None)));
+        controller.observe_knot(10.1, seen("0_1", 1.0, None));
         assert_eq!(controller.state().tie.shown_since, None, "an interruption restarts the hold");
 
         // Not shown 2 s after the plan ended: the second attempt starts, then the phase fails.

@@ -203,8 +203,8 @@ mod tests {
     use super::*;
 
     fn scenario() -> Scenario {
-        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/scenarios/thesis.ron");
-        crate::LoadedScenario::load(path).expect("thesis.ron").scenario
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/scenarios/thesis_scripted.ron");
+        crate::LoadedScenario::load(path).expect("thesis_scripted.ron").scenario
     }
 
     fn set_one(text: &str) -> Result<Scenario, SimError> {

@@ -312,6 +312,12 @@ pub const PARAMETERS: &[Parameter] = &[
     p("Thigmotaxis.until.span_below_l", "L", "None", "span_below_cm as a fraction of L"),
     p("Thigmotaxis.until.span_above_l", "L", "None", "span_above_cm as a fraction of L"),
     p(
+        "Thigmotaxis.until.core_start_below_l",
+        "L",
+        "None",
+        "end once the knotted core's head-ward end is this close to the head (latest frame)",
+    ),
+    p(
         "Thigmotaxis.until.kinetic_energy_below_erg",
         "erg",
         "None",
@@ -402,6 +408,7 @@ mod tests {
                         knot_start_above_l: Some(0.7),
                         span_below_l: Some(0.5),
                         span_above_l: Some(0.7),
+                        core_start_below_l: Some(0.04),
                         kinetic_energy_below_erg: Some(1e-6),
                     },
                 }),

@@ -6,7 +6,7 @@
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use glam::DVec3;
-use hagfish_control::{KnotSpan, PhasedController};
+use hagfish_control::{KnotObservation, KnotSpan, PhasedController};
 use hagfish_knots::{KnotAnalyser, KnotOptions, KnotReport};
 use hagfish_solver::RowGroup;
 use hagfish_tree::State;
@@ -15,6 +15,7 @@ use crate::checkpoint::{CHECKPOINT_FILE, CHECKPOINT_FORMAT, Checkpoint, ExactF64
 use crate::error::SimError;
 use crate::force_field::ForceFieldLog;
 use crate::forces::{GroupForces, dof_labels};
+use crate::knot_core::KnotCore;
 use crate::recorder::{Frame, FrameSink, IntervalMaxima};
 use crate::report::{StageTimings, StepReport};
 use crate::scenario::LoadedScenario;
@@ -336,8 +337,13 @@ impl Recording {
         world.body_centres(&mut self.centres);
         let knot = self.knots.analyse(&self.centres, &self.knot_options).ok();
         let name = knot.as_ref().map(|k| k.knot.to_string());
-        let observed = knot.as_ref().zip(name.as_deref());
-        let observed = observed.map(|(k, name)| (name, k.agreement, k.right_handed()));
+        let observed = knot.as_ref().zip(name.as_deref()).map(|(k, name)| KnotObservation {
+            name,
+            agreement: k.agreement,
+            right_handed: k.right_handed(),
+            core_start_l: KnotCore::of(k, &self.centres, &self.radii, self.body_length_cm)
+                .map(|core| core.of_body_length(core.start_cm)),
+        });
         controller.observe_knot(world.state().t, observed);
         let dofs = world.model().dof_count();
         self.forces.finish_interval(dofs, world.options().time_step);

@@ -199,6 +199,7 @@ impl Checker<'_> {
             ("knot_start_above_l", until.knot_start_above_l),
             ("span_below_l", until.span_below_l),
             ("span_above_l", until.span_above_l),
+            ("core_start_below_l", until.core_start_below_l),
         ] {
             if let Some(value) = value {
                 self.check(key, value, Range::Fraction)?;

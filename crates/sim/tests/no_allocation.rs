@@ -1,6 +1,6 @@
 //! A step allocates nothing once warm. Two knotted states are stepped on with their
 //! scenario's own controller: the knotted benchmark state (`form.ron` at t = 23.13 s, about
-//! 40 self contacts, knot-forming pull; on both dynamics backends) and `thesis.ron` at
+//! 40 self contacts, knot-forming pull; on both dynamics backends) and `thesis_scripted.ron` at
 //! t = 21 s (thigmotaxis rows).
 //! After warm-up steps the next steps must not touch the heap (counted by an instrumented
 //! global allocator). One test function: the counter is global, so nothing else may run
@@ -56,7 +56,8 @@ fn knotted_steps_do_not_allocate() {
     let mut sparse_controller = controller.clone();
     assert_steps_do_not_allocate("form.ron", &mut world, &mut controller);
     assert_steps_do_not_allocate("form.ron, sparse backend", &mut sparse, &mut sparse_controller);
-    let thesis = LoadedScenario::load(format!("{root}/data/scenarios/thesis.ron")).expect("loads");
+    let thesis =
+        LoadedScenario::load(format!("{root}/data/scenarios/thesis_scripted.ron")).expect("loads");
     let (mut world, mut controller) = thesis.build_at(21.0).expect("thesis at 21 s");
-    assert_steps_do_not_allocate("thesis.ron", &mut world, &mut controller);
+    assert_steps_do_not_allocate("thesis_scripted.ron", &mut world, &mut controller);
 }

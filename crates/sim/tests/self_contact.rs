@@ -130,7 +130,7 @@ fn no_touching_pair_is_missed_along_a_tangled_trajectory() {
 /// every segment pair (outside the index gap), every ~10th frame of the tangled trajectory:
 /// each contact it finds has a record within cluster radius + 1 in both parameters (the record
 /// its pair's result is merged into) at most 1e-4 cm shallower (measured: 6e-14 cm here,
-/// 2.3e-5 cm along `thesis.ron`).
+/// 2.3e-5 cm along `thesis_scripted.ron`).
 #[test]
 fn records_are_as_deep_as_the_search_from_every_start() {
     let (mut contacts, mut worst) = (0, 0.0_f64);

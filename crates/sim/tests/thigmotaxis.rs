@@ -1,5 +1,5 @@
 //! Thigmotaxic inverse dynamics, end to end at h = 0.01 s (issue #6): the scenarios
-//! `thesis.ron` (form → tighten → slide to the head), `loosen.ron` and `reverse.ron` run in
+//! `thesis_scripted.ron` (form → tighten → slide to the head), `loosen.ron` and `reverse.ron` run in
 //! full and their frames are checked against the thesis' claims.
 //!
 //! The thigmotaxis phases amplify rounding (contacts appear and vanish at the margin), so each
@@ -163,7 +163,7 @@ fn thesis_tightens_then_slides_the_knot_to_the_head() {
 }
 
 fn check_thesis(perturbation: f64) {
-    let (records, summary) = run("thesis", perturbation);
+    let (records, summary) = run("thesis_scripted", perturbation);
     let label = format!("thesis, δh/h = {perturbation:e}");
 
     let tighten = phase(&records, "tighten");
