@@ -53,7 +53,7 @@ fn unknown_field() {
         "error_unknown_field",
         |t| t.replace("record_every_s", "record_evry_s"),
         "8:5",
-        "unknown field `record_evry_s`, expected one of: name, body, time_step_s, duration_s, end_after_phases, record_every_s, drag, phases",
+        "unknown field `record_evry_s`, expected one of: name, body, time_step_s, duration_s, end_after_phases, record_every_s, drag, initial_shape, phases",
     );
 }
 
@@ -64,6 +64,22 @@ fn wrong_type() {
         |t| t.replace("time_step_s: 0.01", "time_step_s: \"fast\""),
         "6:17",
         "Expected float",
+    );
+}
+
+#[test]
+fn an_initial_knot_that_is_no_torus_knot_is_located_at_its_value() {
+    assert_user_error(
+        "error_initial_shape",
+        |t| {
+            t.replace(
+                "    phases: [",
+                "    initial_shape: Some(OpenTorusKnot((crossings: 4, radius_l: 0.02, start_l: \
+                 0.1))),\n    phases: [",
+            )
+        },
+        "10:51",
+        "crossings = 4 is out of range: expected an odd number ≥ 3",
     );
 }
 

@@ -63,6 +63,37 @@ pub const PARAMETERS: &[Parameter] = &[
         "required in drag",
         "quadratic drag ½ρC_d per projected area, ≥ 0 (water: 0.5)",
     ),
+    p(
+        "initial_shape",
+        "-",
+        "None",
+        "the body's shape at t = 0: Some(OpenTorusKnot((...))) or None (straight along +X)",
+    ),
+    p(
+        "initial_shape.OpenTorusKnot",
+        "-",
+        "-",
+        "an open (2, q) torus knot: head line along +X, the knot, tail line along +X",
+    ),
+    p(
+        "initial_shape.OpenTorusKnot.crossings",
+        "-",
+        "required",
+        "q of the open (2, q) torus knot, odd ≥ 3: 3 trefoil, 5 cinquefoil",
+    ),
+    p(
+        "initial_shape.OpenTorusKnot.radius_l",
+        "L",
+        "required",
+        "the torus' major radius R₀ (its minor radius is R₀/2)",
+    ),
+    p(
+        "initial_shape.OpenTorusKnot.start_l",
+        "L",
+        "required",
+        "the straight head part before the knot, ≥ 3(R₀ + R₀/2)/L (off the wall)",
+    ),
+    p("initial_shape.OpenTorusKnot.mirror", "-", "false", "the mirror image (z → −z)"),
     p("phases", "-", "required", "the phases of control, in order; passive after the last"),
     p(
         "backend",
@@ -370,6 +401,12 @@ mod tests {
             end_after_phases: true,
             record_every_s: 0.1,
             drag: Some(WaterDrag::default()),
+            initial_shape: Some(crate::InitialShape::OpenTorusKnot(crate::OpenTorusKnot {
+                crossings: 3,
+                radius_l: 0.025,
+                start_l: 0.15,
+                mirror: true,
+            })),
             backend: crate::DynamicsBackend::SparseMaximal,
             acceptance: crate::StepAcceptance::default(),
             phases: vec![

@@ -23,6 +23,7 @@ use serde::{Deserialize, Serialize};
 use crate::acceptance::StepAcceptance;
 use crate::backend::DynamicsBackend;
 use crate::error::SimError;
+use crate::initial_shape::InitialShape;
 use crate::options::StepOptions;
 use crate::overrides::{Override, apply_overrides};
 use crate::scenario_check::check_scenario;
@@ -51,6 +52,9 @@ pub struct Scenario {
     /// Water drag on the body, or `None` for a body in vacuum.
     #[serde(default)]
     pub drag: Option<WaterDrag>,
+    /// The body's shape at t = 0 ([`InitialShape`]), or `None` (default): straight along +X.
+    #[serde(default)]
+    pub initial_shape: Option<InitialShape>,
     /// The phases of control, in order.
     pub phases: Vec<Phase>,
     /// The linear algebra of the velocity step: `DenseReduced` (default) or `SparseMaximal`
@@ -137,7 +141,7 @@ impl LoadedScenario {
             },
             other => SimError::DataFile(other),
         })?;
-        check_scenario(&file, loaded.body_count())?;
+        check_scenario(&file, loaded.body_count(), loaded.length_cm())?;
         let bytes = std::fs::read(&body).map_err(|source| SimError::BodyFile {
             at: file.locate(&Field::whole("body")),
             source: Box::new(AnatomyError::Io { path: body.clone(), source }),
@@ -162,7 +166,10 @@ impl LoadedScenario {
     /// The world at rest and the scenario's controller, ready to run.
     pub fn build(&self) -> Result<(World, PhasedController), SimError> {
         let model = self.body.to_model()?;
-        let state = State::rest(&model);
+        let mut state = State::rest(&model);
+        if let Some(shape) = &self.scenario.initial_shape {
+            state.q = shape.pose(&model, self.body.length_cm());
+        }
         let options = StepOptions {
             time_step: self.scenario.time_step_s,
             backend: self.scenario.backend,

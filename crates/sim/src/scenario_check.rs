@@ -15,6 +15,7 @@ use hagfish_control::{
     Until, Waypoint,
 };
 
+use crate::initial_shape::{InitialShape, OpenTorusKnot};
 use crate::scenario::{MIN_TIME_STEP_S, Scenario};
 
 /// What a value must be.
@@ -163,6 +164,54 @@ impl Checker<'_> {
         self.until(&phase.until)
     }
 
+    /// The next `key`'s value must satisfy `holds`, else it is out of range: `expected`.
+    fn require(
+        &mut self,
+        key: &'static str,
+        value: f64,
+        holds: bool,
+        expected: impl FnOnce() -> String,
+    ) -> Result<(), AnatomyError> {
+        let field = self.next_field(key);
+        if holds {
+            return Ok(());
+        }
+        Err(AnatomyError::OutOfRange {
+            at: self.file.locate(&field),
+            field,
+            value,
+            expected: expected(),
+        })
+    }
+
+    /// An open torus knot that is a knot, stays off the wall and fits in the body.
+    fn open_torus_knot(
+        &mut self,
+        knot: &OpenTorusKnot,
+        length_cm: f64,
+    ) -> Result<(), AnatomyError> {
+        let q = knot.crossings;
+        self.require("crossings", f64::from(q), q >= 3 && q % 2 == 1, || {
+            "an odd number ≥ 3 (3: trefoil, 5: cinquefoil)".into()
+        })?;
+        let min_start = knot.min_start_l();
+        self.require("start_l", knot.start_l, knot.start_l >= min_start, || {
+            format!("at least 3(R₀ + a)/L = {min_start:.4}, so that the knot stays off the wall")
+        })?;
+        let radius = knot.radius_l;
+        if !(radius.is_finite() && radius > 0.0) {
+            return self.check("radius_l", radius, Range::Positive);
+        }
+        // The tail beyond the knot: at least the knot's own diameter, to be pulled on.
+        let needed = knot.knotted_length_cm(length_cm) + 3.0 * radius * length_cm;
+        self.require("radius_l", radius, needed <= length_cm, || {
+            format!(
+                "a knot that fits: its head line, knot and a tail of 3 R₀ take {needed:.2} cm \
+                 of the body's {length_cm:.2} cm"
+            )
+        })
+    }
+
     fn load(&mut self, phase: &LoadPhase) -> Result<(), AnatomyError> {
         self.check("force_dyn", phase.force_dyn, Range::NonNegative)?;
         if let LoadDirection::Fixed((x, y, z)) = phase.direction {
@@ -213,7 +262,11 @@ impl Checker<'_> {
 }
 
 /// Checks every value of the scenario in `file` for a body of `bodies` bodies.
-pub(crate) fn check_scenario(file: &DataFile<Scenario>, bodies: usize) -> Result<(), AnatomyError> {
+pub(crate) fn check_scenario(
+    file: &DataFile<Scenario>,
+    bodies: usize,
+    body_length_cm: f64,
+) -> Result<(), AnatomyError> {
     let s = &file.value;
     let mut checker = Checker { file, seen: HashMap::new() };
     // The top-level `body:` (the biometrics file) comes before any `FromBody(body: …)`.
@@ -224,6 +277,9 @@ pub(crate) fn check_scenario(file: &DataFile<Scenario>, bodies: usize) -> Result
     if let Some(drag) = s.drag {
         checker.check("linear_dyn_s_per_cm3", drag.linear_dyn_s_per_cm3, Range::NonNegative)?;
         checker.check("quadratic_g_per_cm3", drag.quadratic_g_per_cm3, Range::NonNegative)?;
+    }
+    if let Some(InitialShape::OpenTorusKnot(knot)) = &s.initial_shape {
+        checker.open_torus_knot(knot, body_length_cm)?;
     }
     let a = &s.acceptance;
     for (key, value) in [

@@ -8,11 +8,14 @@
 //! - [`cantilever`]: small tip load (Euler–Bernoulli `PL³/3B`), the internal bending moment
 //!   against statics, and a large tip load against the elastica ([`elastica_tip`]).
 //! - [`tension`]: a straight rod pulled at the tail: the axial force at every joint.
+//! - [`loose_knot`]: a loose trefoil in a thin rod under tension: the loop radius
+//!   (`T R²/B → 1/2`) and the first integral of the Kirchhoff equations.
 
 pub mod cantilever;
 mod check;
 mod elastica;
 mod error;
+pub mod loose_knot;
 mod settle;
 pub mod tension;
 
@@ -29,5 +32,6 @@ pub fn all_checks(root: &std::path::Path) -> Result<Vec<Check>, ValidationError>
     }
     checks.push(cantilever::large_load(root, 3.0)?);
     checks.push(tension::axial(root)?);
+    checks.extend(loose_knot::study(root)?.checks());
     Ok(checks)
 }

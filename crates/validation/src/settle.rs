@@ -55,18 +55,10 @@ pub fn settle(loaded: &LoadedScenario) -> Result<Settled, ValidationError> {
         world.step(&mut controller)?;
     }
     if !controller.finished() {
-        let data = &world.data().tree;
-        let energy = 0.5
-            * data
-                .velocities
-                .iter()
-                .zip(&data.inertias)
-                .map(|(v, i)| v.dot(&i.apply(v)))
-                .sum::<f64>();
         return Err(ValidationError::NotSettled {
             path: loaded.path.clone(),
             seconds: world.state().t,
-            energy_erg: energy,
+            energy_erg: hagfish_tree::kinetic_energy(&world.data().tree),
         });
     }
     Ok(Settled { world, controller, rod, load })

@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use hagfish_validation::{Check, all_checks, cantilever, tension};
+use hagfish_validation::{Check, all_checks, cantilever, loose_knot, tension};
 
 fn root() -> &'static Path {
     Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
@@ -48,8 +48,30 @@ fn a_straight_rod_pulled_at_the_tail_carries_the_pull_at_every_joint() {
     assert_passes(&tension::axial(root()).expect("runs"));
 }
 
+/// The loose trefoil (Audoly, Clauvelin & Neukirch 2007): `T R²/B` within 10 % of 1/2 at
+/// four tensions spanning 10×, R ∝ T^(−1/2), and as h/R falls (the rod's radius halved twice,
+/// the bodies doubled with it) both the error of `T R²/B` and the first integral's deviation
+/// outside the braid fall, the latter below 1 % on the finest.
+#[test]
+fn a_loose_trefoil_under_tension_has_t_r2_over_b_one_half_as_h_over_r_falls() {
+    let study = loose_knot::study(root()).expect("runs");
+    for check in study.checks() {
+        assert_passes(&check);
+    }
+    let knots = &study.refinement;
+    let thinness: Vec<f64> = knots.iter().map(|k| k.rod_radius_cm / k.loop_radius_cm()).collect();
+    assert!(thinness.windows(2).all(|w| w[1] < w[0]), "h/R {thinness:?}");
+    let errors: Vec<f64> =
+        knots.iter().map(|k| (k.tension_number(k.loop_radius_cm()) - 0.5).abs()).collect();
+    assert!(errors.windows(2).all(|w| w[1] < w[0]), "T R²/B errors {errors:?} at h/R {thinness:?}");
+    let integrals: Vec<f64> =
+        knots.iter().map(|k| k.worst_first_integral(|j| k.outside_braid[j])).collect();
+    assert!(integrals.windows(2).all(|w| w[1] < w[0]), "H/T − 1 outside the braid {integrals:?}");
+    assert!(integrals[2] < 0.01, "H/T − 1 outside the braid {integrals:?}");
+}
+
 #[test]
 fn the_table_has_every_check() {
     let checks = all_checks(root()).expect("runs");
-    assert!(checks.len() >= 8, "{} checks", checks.len());
+    assert!(checks.len() >= 17, "{} checks", checks.len());
 }

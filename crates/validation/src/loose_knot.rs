@@ -1,0 +1,310 @@
+//! The loose trefoil under tension (`data/validation/loose_trefoil.ron`; Audoly, Clauvelin &
+//! Neukirch, Phys. Rev. Lett. 99, 164301, 2007): a thin rod posed as an open trefoil, held at
+//! the head, pulled at the tail by T along +X, frictionless self contact, settled.
+//!
+//! Away from the braid (the stretch where the strands touch) no force acts on the rod, and a
+//! frictionless contact force is normal to it, so the Kirchhoff equations keep the first
+//! integral `H = Bκ²/2 + Cτ²/2 + n·t` constant along the whole rod: `H = T` (its value on the
+//! straight tail). Where the loop's tangent is perpendicular to the pull, `n·t → 0` at
+//! leading order in h/R (h the rod's radius), so there `Bκ²/2 = T`: the loop's radius of
+//! curvature R obeys `T R²/B = 1/2`.
+//!
+//! Measured on the settled chain:
+//! - R where the tangent crosses ⊥ +X outside the braid (at least [`BRAID_MARGIN`] rod radii
+//!   and [`BRAID_MARGIN_SEGMENTS`] body lengths of arc from any contact): the chain's segment directions are the tangents at the
+//!   segments' midpoints, interpolated linearly to the crossing; the curvature `θ/(2ℓ)` of the
+//!   bending joints (θ the angle between the segments a joint joins), interpolated likewise;
+//! - `H/T` at every joint from the internal forces: `|m_bend|²/(2B) + m_twist²/(2C) + N`.
+
+use std::path::Path;
+
+use glam::DVec3;
+use hagfish_anatomy::Body;
+use hagfish_control::Phase;
+use hagfish_sim::LoadedScenario;
+use hagfish_tree::JointKind;
+
+use crate::check::Check;
+use crate::error::ValidationError;
+use crate::settle::{Settled, settle};
+
+/// The scenario file, relative to the workspace root.
+pub const SCENARIO: &str = "data/validation/loose_trefoil.ron";
+
+/// How far (in rod radii of arc length) from every contact a point must be to count as
+/// outside the braid; and at least [`BRAID_MARGIN_SEGMENTS`] body lengths ℓ, the chain's
+/// own resolution (a body touched by a contact carries its force over its whole length).
+pub const BRAID_MARGIN: f64 = 10.0;
+
+/// The least braid margin in body lengths ℓ.
+pub const BRAID_MARGIN_SEGMENTS: f64 = 4.0;
+
+/// What the settled loose knot measured.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LooseKnot {
+    /// The pull T (dyn).
+    pub tension_dyn: f64,
+    /// The rod's bending stiffness B (dyn·cm²).
+    pub bending_stiffness_dyn_cm2: f64,
+    /// The rod's radius h (cm).
+    pub rod_radius_cm: f64,
+    /// Radii of curvature (cm) where the loop's tangent is perpendicular to the pull, in
+    /// order along the rod (two for a loop: where it rises and where it comes back).
+    pub loop_radii_cm: Vec<f64>,
+    /// The first integral at every joint over T, `H_j/T`.
+    pub first_integral: Vec<f64>,
+    /// Whether each joint lies outside the braid (see [`BRAID_MARGIN`]).
+    pub outside_braid: Vec<bool>,
+    /// Whether each joint is a bending joint.
+    pub bending_joint: Vec<bool>,
+}
+
+impl LooseKnot {
+    /// The loop radius R: the mean of [`LooseKnot::loop_radii_cm`] (cm; NaN if none).
+    pub fn loop_radius_cm(&self) -> f64 {
+        self.loop_radii_cm.iter().sum::<f64>() / self.loop_radii_cm.len() as f64
+    }
+
+    /// `T R²/B` with R a loop radius (→ 1/2).
+    pub fn tension_number(&self, radius_cm: f64) -> f64 {
+        self.tension_dyn * radius_cm * radius_cm / self.bending_stiffness_dyn_cm2
+    }
+
+    /// The largest `|H_j/T − 1|` over the joints `select` picks (by index).
+    pub fn worst_first_integral(&self, select: impl Fn(usize) -> bool) -> f64 {
+        let deviations = self.first_integral.iter().enumerate().filter(|(j, _)| select(*j));
+        deviations.map(|(_, h)| (h - 1.0).abs()).fold(0.0, f64::max)
+    }
+}
+
+/// A change of the shipped loose-trefoil set-up, for the refinements.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Refinement {
+    /// Bodies of the rod, instead of the rod file's.
+    pub bodies: Option<usize>,
+    /// The rod's radius h (cm), instead of the rod file's.
+    pub rod_radius_cm: Option<f64>,
+    /// The time step (s), instead of the scenario's (a thinner rod needs a smaller one: a
+    /// strand must not pass through another within one step).
+    pub time_step_s: Option<f64>,
+}
+
+/// The loose-trefoil scenario with the pull `tension_dyn`, changed by `refinement`.
+pub fn scenario(
+    root: &Path,
+    tension_dyn: f64,
+    refinement: Refinement,
+) -> Result<LoadedScenario, ValidationError> {
+    let mut loaded = LoadedScenario::load(root.join(SCENARIO))?;
+    if let Body::Rod(rod) = &mut loaded.body {
+        rod.body_count = refinement.bodies.unwrap_or(rod.body_count);
+        rod.radius_cm = refinement.rod_radius_cm.unwrap_or(rod.radius_cm);
+    }
+    if let Some(h) = refinement.time_step_s {
+        loaded.scenario.time_step_s = h;
+    }
+    if let Some(Phase::Load(load)) = loaded.scenario.phases.first_mut() {
+        load.force_dyn = tension_dyn;
+    }
+    Ok(loaded)
+}
+
+/// Settles the scenario at `tension_dyn`, changed by `refinement`, and measures it.
+pub fn run(
+    root: &Path,
+    tension_dyn: f64,
+    refinement: Refinement,
+) -> Result<LooseKnot, ValidationError> {
+    measure(&settle(&scenario(root, tension_dyn, refinement)?)?)
+}
+
+/// The loop radii and the first integral of a settled loose knot.
+pub fn measure(settled: &Settled) -> Result<LooseKnot, ValidationError> {
+    let (world, rod) = (&settled.world, &settled.rod);
+    let model = world.model();
+    let data = world.data();
+    let ell = rod.segment_length_cm();
+    let (b, c, t) =
+        (rod.bending_stiffness_dyn_cm2, rod.twist_stiffness_dyn_cm2, settled.load.force_dyn);
+    // Arc length (from the head end) of the contact points and of joint j (jℓ).
+    let contacts: Vec<f64> = data
+        .self_contacts
+        .iter()
+        .flat_map(|contact| [contact.u_a, contact.u_b])
+        .map(|u| (u + 0.5) * ell)
+        .collect();
+    let margin = (BRAID_MARGIN * rod.radius_cm).max(BRAID_MARGIN_SEGMENTS * ell);
+    let outside = |s: f64| contacts.iter().all(|contact| (contact - s).abs() >= margin);
+    let directions: Vec<DVec3> =
+        data.tree.body_frames.iter().map(|frame| frame.rotation.col(0)).collect();
+    let joints = model.joints();
+    let bending: Vec<bool> =
+        joints.iter().map(|joint| matches!(joint.kind, JointKind::UniversalYz)).collect();
+    // Curvature at each bending joint: the turn between the bodies it joins over 2ℓ.
+    let curvature = |j: usize| directions[j - 1].angle_between(directions[j]) / (2.0 * ell);
+    let mut loop_radii_cm = Vec::new();
+    for j in (1..directions.len()).filter(|&j| bending[j]) {
+        let (before, after) = (directions[j - 1].x, directions[j].x);
+        if before.signum() == after.signum() {
+            continue;
+        }
+        // Tangents at the segments' midpoints, jℓ ∓ ℓ; the crossing between them.
+        let fraction = before / (before - after);
+        let s = (j as f64 - 1.0 + 2.0 * fraction) * ell;
+        if !outside(s) {
+            continue;
+        }
+        let neighbour = if fraction < 0.5 { j.checked_sub(2) } else { Some(j + 2) };
+        let kappa = match neighbour.filter(|&k| k >= 1 && k < directions.len() && bending[k]) {
+            Some(k) => {
+                let weight = ((s - j as f64 * ell) / (2.0 * ell)).abs();
+                (1.0 - weight) * curvature(j) + weight * curvature(k)
+            }
+            None => curvature(j),
+        };
+        loop_radii_cm.push(1.0 / kappa);
+    }
+    let first_integral = data
+        .internal
+        .loads
+        .iter()
+        .map(|load| {
+            let bend = load.bending_dyn_cm();
+            (bend * bend / (2.0 * b) + load.twist_dyn_cm.powi(2) / (2.0 * c) + load.tension_dyn) / t
+        })
+        .collect();
+    let outside_braid = (0..joints.len()).map(|j| outside(j as f64 * ell)).collect();
+    if loop_radii_cm.is_empty() {
+        return Err(ValidationError::Scenario {
+            path: std::path::PathBuf::from(SCENARIO),
+            reason: "no point of the settled loop has its tangent perpendicular to the pull \
+                     (is the knot still there?)"
+                .into(),
+        });
+    }
+    Ok(LooseKnot {
+        tension_dyn: t,
+        bending_stiffness_dyn_cm2: b,
+        rod_radius_cm: rod.radius_cm,
+        loop_radii_cm,
+        first_integral,
+        outside_braid,
+        bending_joint: bending,
+    })
+}
+
+/// The pulls of the study (dyn): 5 to 50, spanning 10×, so R spans √10.
+pub const TENSIONS_DYN: [f64; 4] = [5.0, 10.0, 20.0, 50.0];
+
+/// The pull of the refinement (dyn).
+pub const REFINED_TENSION_DYN: f64 = 10.0;
+
+/// The refinement in h/R at a fixed resolution of the braid (body length ℓ = 7.5 h): the
+/// rod's radius halved twice with twice the bodies each time (and the time step halved
+/// with it), from the coarse set-up to the fine one; the shipped rod (h = 0.02 cm, 400 bodies)
+/// is the middle one.
+pub const REFINEMENTS: [Refinement; 2] = [
+    Refinement { bodies: Some(200), rod_radius_cm: Some(0.04), time_step_s: Some(0.02) },
+    Refinement { bodies: Some(800), rod_radius_cm: Some(0.01), time_step_s: Some(0.01) },
+];
+
+/// Every run of the loose-trefoil study, settled and measured.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LooseKnotStudy {
+    /// The shipped set-up at each of [`TENSIONS_DYN`].
+    pub tensions: Vec<LooseKnot>,
+    /// At [`REFINED_TENSION_DYN`], h/R falling: the coarse refinement, the shipped set-up,
+    /// the fine refinement.
+    pub refinement: Vec<LooseKnot>,
+}
+
+/// Runs the study, each run in its own thread.
+pub fn study(root: &Path) -> Result<LooseKnotStudy, ValidationError> {
+    let cases: Vec<(f64, Refinement)> = TENSIONS_DYN
+        .iter()
+        .map(|&t| (t, Refinement::default()))
+        .chain(REFINEMENTS.iter().map(|&r| (REFINED_TENSION_DYN, r)))
+        .collect();
+    let mut knots = std::thread::scope(|scope| {
+        let runs: Vec<_> =
+            cases.iter().map(|&(t, r)| scope.spawn(move || run(root, t, r))).collect();
+        runs.into_iter().map(|r| r.join().expect("a validation run panicked")).collect::<Vec<_>>()
+    })
+    .into_iter()
+    .collect::<Result<Vec<LooseKnot>, _>>()?;
+    let fine = knots.pop().expect("the fine refinement");
+    let coarse = knots.pop().expect("the coarse refinement");
+    let shipped = knots
+        .iter()
+        .find(|k| k.tension_dyn == REFINED_TENSION_DYN)
+        .expect("the refined tension is one of the study's")
+        .clone();
+    Ok(LooseKnotStudy { tensions: knots, refinement: vec![coarse, shipped, fine] })
+}
+
+impl LooseKnotStudy {
+    /// The rows of the table: `T R²/B` at each tension, the slope of log R against log T,
+    /// `T R²/B` and the first integral outside the braid along the refinement.
+    pub fn checks(&self) -> Vec<Check> {
+        let mut checks = Vec::new();
+        for knot in &self.tensions {
+            checks.push(tension_number_check("loose trefoil", knot));
+        }
+        let (first, last) = (&self.tensions[0], &self.tensions[self.tensions.len() - 1]);
+        let slope = (last.loop_radius_cm() / first.loop_radius_cm()).ln()
+            / (last.tension_dyn / first.tension_dyn).ln();
+        checks.push(Check {
+            name: "loose trefoil: slope of log R against log T".into(),
+            setup: format!("T = {} … {} dyn", first.tension_dyn, last.tension_dyn),
+            formula: "R ∝ T^(−1/2)",
+            source: "Audoly, Clauvelin & Neukirch (2007)",
+            expected: -0.5,
+            measured: slope,
+            unit: "",
+            tolerance: 0.02,
+        });
+        for knot in &self.refinement {
+            checks.push(tension_number_check("loose trefoil, refined", knot));
+        }
+        for knot in &self.refinement {
+            checks.push(Check {
+                name: "loose trefoil: first integral H/T outside the braid".into(),
+                setup: format!(
+                    "T = {} dyn, h/R = {:.4}, {} bodies; joints ≥ max({BRAID_MARGIN} h, \
+                     {BRAID_MARGIN_SEGMENTS} ℓ) of arc from every contact",
+                    knot.tension_dyn,
+                    knot.rod_radius_cm / knot.loop_radius_cm(),
+                    knot.first_integral.len()
+                ),
+                formula: "H = Bκ²/2 + Cτ²/2 + n·t = T",
+                source: "Kirchhoff rod with frictionless contact (Audoly et al. 2007)",
+                expected: 1.0,
+                measured: 1.0 + knot.worst_first_integral(|j| knot.outside_braid[j]),
+                unit: "",
+                tolerance: 0.1,
+            });
+        }
+        checks
+    }
+}
+
+/// The `T R²/B` row of one run.
+fn tension_number_check(name: &str, knot: &LooseKnot) -> Check {
+    let r = knot.loop_radius_cm();
+    let radii: Vec<String> = knot.loop_radii_cm.iter().map(|r| format!("{r:.4}")).collect();
+    Check {
+        name: format!("{name}, T = {} dyn: T R²/B", knot.tension_dyn),
+        setup: format!(
+            "R = {r:.4} cm (at the ⊥ points: {}), h/R = {:.4}, {} bodies, settled 40 s",
+            radii.join(", "),
+            knot.rod_radius_cm / r,
+            knot.first_integral.len()
+        ),
+        formula: "T R²/B → 1/2 (R: radius of curvature where t ⊥ T)",
+        source: "Audoly, Clauvelin & Neukirch, PRL 99, 164301 (2007)",
+        expected: 0.5,
+        measured: knot.tension_number(r),
+        unit: "",
+        tolerance: 0.1,
+    }
+}
