@@ -24,4 +24,17 @@ pub enum ValidationError {
         /// Kinetic energy at the end (erg).
         energy_erg: f64,
     },
+    /// The knot the run started with is not the one it settled into.
+    #[error(
+        "{path}: the knot changed from {expected} to {found} while settling (a strand passed \
+         through another within one step: try a smaller time step)"
+    )]
+    KnotChanged {
+        /// The scenario file.
+        path: std::path::PathBuf,
+        /// The knot type of the initial shape.
+        expected: String,
+        /// The knot type at the end.
+        found: String,
+    },
 }

@@ -21,7 +21,8 @@ use std::path::Path;
 use glam::DVec3;
 use hagfish_anatomy::Body;
 use hagfish_control::Phase;
-use hagfish_sim::LoadedScenario;
+use hagfish_knots::{KnotOptions, analyse_knot};
+use hagfish_sim::{InitialShape, LoadedScenario};
 use hagfish_tree::JointKind;
 
 use crate::check::Check;
@@ -109,13 +110,36 @@ pub fn scenario(
     Ok(loaded)
 }
 
-/// Settles the scenario at `tension_dyn`, changed by `refinement`, and measures it.
+/// Settles the scenario at `tension_dyn`, changed by `refinement`, and measures it; an
+/// error if the knot it settled into is not the one it started as (the step lets a thin
+/// strand pass through another when it moves more than its diameter in one step).
 pub fn run(
     root: &Path,
     tension_dyn: f64,
     refinement: Refinement,
 ) -> Result<LooseKnot, ValidationError> {
-    measure(&settle(&scenario(root, tension_dyn, refinement)?)?)
+    let loaded = scenario(root, tension_dyn, refinement)?;
+    let Some(InitialShape::OpenTorusKnot(start)) = loaded.scenario.initial_shape else {
+        return Err(ValidationError::Scenario {
+            path: loaded.path.clone(),
+            reason: "it has no initial knot (initial_shape)".into(),
+        });
+    };
+    let settled = settle(&loaded)?;
+    let (expected, found) = (format!("{}_1", start.crossings), knot_type(&settled));
+    if found != expected {
+        return Err(ValidationError::KnotChanged { path: loaded.path.clone(), expected, found });
+    }
+    measure(&settled)
+}
+
+/// The knot type (Rolfsen name) of the settled rod's body centres.
+fn knot_type(settled: &Settled) -> String {
+    let data = &settled.world.data().tree;
+    let centres: Vec<DVec3> =
+        (0..settled.world.model().body_count()).map(|i| data.body_centre(i)).collect();
+    analyse_knot(&centres, &KnotOptions::default())
+        .map_or_else(|e| format!("? ({e})"), |report| report.knot.to_string())
 }
 
 /// The loop radii and the first integral of a settled loose knot.

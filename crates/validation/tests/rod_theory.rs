@@ -2,7 +2,8 @@
 
 use std::path::Path;
 
-use hagfish_validation::{Check, all_checks, cantilever, loose_knot, tension};
+use hagfish_validation::loose_knot::Refinement;
+use hagfish_validation::{Check, ValidationError, all_checks, cantilever, loose_knot, tension};
 
 fn root() -> &'static Path {
     Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
@@ -68,6 +69,20 @@ fn a_loose_trefoil_under_tension_has_t_r2_over_b_one_half_as_h_over_r_falls() {
         knots.iter().map(|k| k.worst_first_integral(|j| k.outside_braid[j])).collect();
     assert!(integrals.windows(2).all(|w| w[1] < w[0]), "H/T − 1 outside the braid {integrals:?}");
     assert!(integrals[2] < 0.01, "H/T − 1 outside the braid {integrals:?}");
+}
+
+/// A rod four times thinner at the shipped time step lets a strand pass through another
+/// within one step (each step is accepted: its end state does not penetrate): the runner
+/// reports the lost knot instead of measuring the unknotted rod.
+#[test]
+fn a_knot_lost_while_settling_is_an_error_not_a_measurement() {
+    let thin = Refinement { rod_radius_cm: Some(0.005), ..Refinement::default() };
+    match loose_knot::run(root(), 10.0, thin) {
+        Err(ValidationError::KnotChanged { expected, found, .. }) => {
+            assert_eq!((expected.as_str(), found.as_str()), ("3_1", "0_1"));
+        }
+        other => panic!("expected the knot to be lost, got {other:?}"),
+    }
 }
 
 #[test]
