@@ -1,4 +1,4 @@
-//! Scaling of the whole step with the number of bodies (issue #8), per backend
+//! Scaling of the whole step with the number of bodies, per backend
 //! (`StepOptions::backend`): chains of 100, 200, 400 and 1000 ES103-like bodies of the same
 //! segment length (0.424 cm; alternating X-revolute / YZ-universal joints, ±45° bending and
 //! ±48° twist limits, so 150 to 1500 DOFs), in a bent, moving state.

@@ -1,5 +1,5 @@
 //! The tie controller on a family of bodies and time steps, without retuning
-//! (`data/scenarios/tie.ron` as shipped, issue #14): length 35 and 50 cm (mass ∝ length),
+//! (`data/scenarios/tie.ron` as shipped): length 35 and 50 cm (mass ∝ length),
 //! circumferences ±15 %, stiffness ×0.1 and ×10, damping ×10, 50 and 300 bodies, the tail
 //! taper, h = 0.005 and 0.02 s, drag ×0.5 and ×2, and ES103 in both handednesses. In each,
 //! the trefoil of the asked handedness (sign of the core's writhe) is tied, holds on every

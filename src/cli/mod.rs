@@ -1,5 +1,5 @@
 //! The command line: one [`Command`] variant and one file per subcommand (`body`, `run`,
-//! `params`, `knot`; `render` and `report` to follow), all sharing [`CliError`].
+//! `params`, `knot`, `render`, `report`), all sharing [`CliError`].
 
 mod body;
 mod error;

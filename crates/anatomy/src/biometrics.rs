@@ -42,7 +42,7 @@ pub struct Biometrics {
 }
 
 /// A linear taper of the radius from its value at the last mark to `tip_radius_cm` at the
-/// tail tip (s = L), for the paddle-shaped tail (D5, redmax-notes A6).
+/// tail tip (s = L), for the paddle-shaped tail (docs/physics.md, "Body").
 #[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TailTaper {

@@ -1,4 +1,4 @@
-//! Building the kinematic tree from the body table (redmax-notes §2.3): a chain along +X,
+//! Building the kinematic tree from the body table : a chain along +X,
 //! the root joint anchored at the wall point (the world origin), gravity off (D4).
 
 use glam::DVec3;
@@ -10,7 +10,7 @@ use crate::rod::Rod;
 use crate::table::{BodyRow, BodyTable};
 
 /// Principal inertia (g·cm²) of a solid cylinder of mass `m`, radius `r` and length `ℓ`
-/// along X about its centre: `I₁ = ½ m r²`, `I₂ = I₃ = m (3r² + ℓ²) / 12` (physics.md §1).
+/// along X about its centre: `I₁ = ½ m r²`, `I₂ = I₃ = m (3r² + ℓ²) / 12` (docs/physics.md, "Body").
 pub fn cylinder_inertia(mass: f64, radius: f64, length: f64) -> DVec3 {
     let transverse = mass * (3.0 * radius * radius + length * length) / 12.0;
     DVec3::new(0.5 * mass * radius * radius, transverse, transverse)

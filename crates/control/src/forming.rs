@@ -1,4 +1,4 @@
-//! The scripted knot-forming controller (thesis §3.3.1 and §5.1; brief D13).
+//! The scripted knot-forming controller (thesis §3.3.1 and §5.1; D13).
 //!
 //! A PD pull on the last body ([`TailGains`]) follows a target that moves at a constant speed
 //! through a script of waypoints: crossover → tail wrap → tail insertion → tighten. A limp

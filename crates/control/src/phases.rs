@@ -1,5 +1,5 @@
 //! A scenario's controller: water drag on every step plus a sequence of phases, each with its
-//! own way of ending (brief D13: an explicit phase switch, not "first contact").
+//! own way of ending (D13: an explicit phase switch, not "first contact").
 
 use serde::{Deserialize, Serialize};
 

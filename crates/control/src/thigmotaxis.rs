@@ -1,4 +1,4 @@
-//! Thigmotaxic inverse dynamics (thesis §5.2, Eq. 5.1; brief §5, D11, D14).
+//! Thigmotaxic inverse dynamics (thesis §5.2, Eq. 5.1; D11, D14 of docs/physics.md).
 //!
 //! On the first and the last self contact (sorted by the anterior parameter u_a; a is the
 //! anterior point, b the posterior one, tangents t pointing tail-ward), the controller asks for

@@ -2,10 +2,11 @@
 //!
 //! Body i is bounded by a parry3d sphere at c_i of radius ρ_i = √(r_i² + (ℓ_i/2)²) + δ:
 //! √(r² + (ℓ/2)²) covers the disc-shaped body (a cylinder of radius r and length ℓ, whose
-//! rim lies that far from its centre, redmax-notes §11.3), and the inflation δ absorbs
+//! rim lies that far from its centre), and the inflation δ absorbs
 //! whatever the caller needs on top (speculative margin, the spline between centres).
 //! Pairs closer than the index gap along the chain are skipped first, since a straight
-//! chain already "touches" itself up to ~4 bodies away (redmax-notes §11.2).
+//! chain already "touches" itself up to ~4 bodies away (adjacent discs of radius r
+//! spaced ℓ ≪ r overlap).
 //!
 //! At 100 bodies the pruned all-pairs loop is ~4 200 sphere tests, a few microseconds
 //! (see `benches/broad_phase.rs`), so no spatial hierarchy is needed.

@@ -2,7 +2,8 @@
 //!
 //! The narrow phase starts its Newton iteration from the closest points of the two
 //! chords c_k → c_{k+1}, which are already close to the spline's closest points for the
-//! gently bent body (a better start than the thesis' s = 0.5, see redmax-notes §11.4).
+//! gently bent body (a better start than the thesis' s = 0.5: from the middle, Newton can run to a
+//! maximum or a saddle of the distance, see `narrow_phase.rs`).
 
 use glam::DVec3;
 

@@ -2,8 +2,8 @@
 //!
 //! One crossing is seen by several neighbouring body pairs and segment pairs, and a
 //! closest point clamped to a segment end is usually the same point as the neighbouring
-//! segment's result. Duplicate rows would make the contact matrix rank-deficient
-//! (redmax-notes §11.5), so records are clustered by parameter proximity and only the
+//! segment's result. Duplicate rows would make the contact matrix rank-deficient,
+//! so records are clustered by parameter proximity and only the
 //! deepest one per cluster is kept: greedy non-maximum suppression in order of increasing
 //! gap. Records within the cluster radius of an already kept record, in both u_a and u_b,
 //! are dropped. Along a line contact (two strands lying side by side) this keeps one

@@ -13,7 +13,7 @@ const COINCIDENT_DISTANCE: f64 = 1e-12;
 /// One self contact between two points of the centreline tube.
 ///
 /// Point a is the anterior one (u_a < u_b), as the thigmotaxis rows and the first/last
-/// contact ordering require (physics.md D11). The solver builds the non-penetration row
+/// contact ordering require (docs/physics.md, "Thigmotaxis": first and last contact by anterior parameter). The solver builds the non-penetration row
 /// nᵀ(P(u_b) − P(u_a)) q̇ ≥ b from `normal` and the two weight sets, and the thigmotaxis
 /// rows from the tangents.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -34,7 +34,7 @@ fn may_touch(
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DetectorOptions {
     /// Contacts with u_b − u_a ≤ `index_gap` are ignored (default 8): neighbouring parts
-    /// of the chain always overlap (redmax-notes §11.2).
+    /// of the chain always overlap (see `broad_phase.rs`).
     pub index_gap: usize,
     /// Speculative margin (cm, ≥ 0, default 0.05): a contact is reported when its gap is
     /// below it, so the solver sees it one step before the tubes touch.

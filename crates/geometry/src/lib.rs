@@ -4,7 +4,7 @@
 //! The crate knows nothing about joints or masses. It takes body centres (cm, as
 //! [`glam::DVec3`]) and radii and returns contact records that carry everything the solver
 //! needs to build its rows: gaps, normals, tangents and the fixed weights of the real
-//! bodies whose blend is each contact point (physics.md §5, redmax-notes §6.3–6.4).
+//! bodies whose blend is each contact point (docs/physics.md, "Constraint rows").
 //!
 //! Pipeline of one step:
 //!

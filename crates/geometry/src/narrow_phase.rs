@@ -10,7 +10,7 @@
 //! F = (−g_a, g_b) where g is the gradient of the objective f = ½|Δ|², so the Newton step
 //! J δ = −F is the step H δ = −g with the Hessian H of f. Solving through f makes the
 //! method a minimisation, which is what keeps it away from the maxima and saddles that
-//! plain root finding on F can converge to (redmax-notes §11.4):
+//! plain root finding on F can converge to:
 //!
 //! 1. search from the chords' closest points and from the few deepest minima of f on a
 //!    coarse grid (edges included), keep the closest result, and search once more from a

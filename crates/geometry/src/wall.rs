@@ -1,8 +1,8 @@
 //! Contact between the bodies and the wall the head is attached to.
 //!
 //! The wall is the half-space boundary through p_w with unit normal n_w pointing into the
-//! water (the body side). Each body is tested as a sphere of radius r_k at its centre
-//! (redmax-notes §6.3), with gap d_k = n_w·(c_k − p_w) − r_k; only the centre velocity enters
+//! water (the body side). Each body is tested as a sphere of radius r_k at its centre,
+//! with gap d_k = n_w·(c_k − p_w) − r_k; only the centre velocity enters
 //! the row n_wᵀ R_k [0 I₃] J_k, so the record needs just the body, gap and normal.
 
 use glam::DVec3;
@@ -27,7 +27,7 @@ pub struct WallOptions {
     /// Bodies are reported when their gap is below this (cm, default 0.05).
     pub margin: f64,
     /// Bodies with a smaller index are never reported (default 0). The head and its
-    /// neighbours touch the wall by construction (redmax-notes §11.14): a caller that knows the
+    /// neighbours touch the wall by construction: a caller that knows the
     /// body's rest shape sets this from [`Wall::first_clear_body`], so the exclusion follows
     /// the geometry (radii, segment length) rather than a fixed count.
     pub first_body: usize,

@@ -38,7 +38,7 @@
 //!
 //! Cost per direction: O(n²) edge pairs (bounding boxes first) plus O(c³) for the
 //! determinant. For the 100-vertex hagfish-like trefoil (c ≤ 9) that is ≈ 7 µs, so a
-//! 50-direction vote takes ≈ 0.35 ms (`benches/knot_type.rs`); a random 100-vertex walk
+//! 64-direction vote (the default) takes ≈ 0.35 ms (`benches/knot_type.rs`); a random 100-vertex walk
 //! crammed into a 1 cm ball (c up to ≈ 270) takes ≈ 10 ms per direction.
 
 mod alexander;

@@ -1,6 +1,6 @@
 //! The long chains that the scaling benchmark (`benches/scaling.rs`) and the sparse-backend
 //! tests step: `bodies` ES103-like segments of the same length, so 200, 400 or 1000 bodies
-//! make a longer animal, not a finer one (issue #8).
+//! make a longer animal, not a finer one.
 
 use glam::DVec3;
 use hagfish_tree::{BodySpec, DofParams, JointKind, Model, ModelBuilder, Transform};

@@ -1,7 +1,7 @@
 //! The knotted core of a frame in body-relative units: the shortest sub-arc of the body
 //! centres whose closure still has the frame's knot type (`hagfish_knots`' extent), as arc
 //! lengths (cm), fractions of the body length L and a length in local diameters D — the
-//! units in which knots of different bodies compare (issue #14: a trefoil needs ≈ 16 D of
+//! units in which knots of different bodies compare (a trefoil needs ≈ 16 D of
 //! tube tied ideally).
 
 use glam::DVec3;

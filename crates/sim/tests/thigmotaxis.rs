@@ -1,4 +1,4 @@
-//! Thigmotaxic inverse dynamics, end to end at h = 0.01 s (issue #6): the scenarios
+//! Thigmotaxic inverse dynamics, end to end at h = 0.01 s: the scenarios
 //! `thesis_scripted.ron` (form → tighten → slide to the head), `loosen.ron` and `reverse.ron` run in
 //! full and their frames are checked against the thesis' claims.
 //!

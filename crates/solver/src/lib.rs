@@ -3,7 +3,7 @@
 //!
 //! # The problem
 //!
-//! One linearly implicit Euler step (physics.md §4–7) needs the new reduced velocity q̇ from
+//! One linearly implicit Euler step (docs/physics.md, "Time stepping" and "Constraint rows") needs the new reduced velocity q̇ from
 //!
 //! minimize ½ q̇ᵀM̃q̇ − q̇ᵀf̃ subject to the constraint rows,
 //!

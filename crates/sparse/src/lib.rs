@@ -1,4 +1,4 @@
-//! Sparse maximal-coordinate backend of the velocity step (issue #8, `docs/physics.md`
+//! Sparse maximal-coordinate backend of the velocity step (`docs/physics.md`
 //! "Sparse maximal-coordinate backend").
 //!
 //! The state stays in reduced coordinates `(q, q̇)` — positions are integrated as

@@ -1,4 +1,4 @@
-//! Stage 3, the linearly implicit Euler step (REDMAX; `docs/physics.md` D3 and §4).
+//! Stage 3, the linearly implicit Euler step (REDMAX; `docs/physics.md` D3, "Time stepping").
 //!
 //! Damping and the spring's linearisation go to the left-hand side:
 //! `M̃ = M + h Jᵀ C_m J + hD + h²K` (with the implicit point dampers `C_m`),

@@ -1,6 +1,6 @@
 //! Jacobians: body twists, `J̇q̇`, and point Jacobians, all read off the world axes `s_a`.
 //!
-//! - Body Jacobian (body coordinates, `docs/physics.md` §3): rows of body `k` are
+//! - Body Jacobian (body coordinates, `docs/physics.md`, "Kinematics and dynamics"): rows of body `k` are
 //!   `J_k[:, a] = Ad(E_wk⁻¹) s_a` for DOFs `a` on the path of `k`, zero elsewhere, so the body
 //!   twist is `φ_k = J_k q̇`.
 //! - `J̇q̇` of body `k` is `Ad(E_wk⁻¹) A_k`: differentiating `φ = Ad(E⁻¹) V` gives

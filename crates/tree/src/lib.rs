@@ -15,7 +15,7 @@
 //! [`step_unconstrained`] chains them.
 //!
 //! All motion vectors are world twists at the world origin ([`spatial`]); body-coordinate
-//! Jacobians as in `docs/physics.md` §3 are available for analysis and tests ([`jacobian`]).
+//! Jacobians as in `docs/physics.md`, "Kinematics and dynamics" are available for analysis and tests ([`jacobian`]).
 
 mod data;
 pub mod dynamics;

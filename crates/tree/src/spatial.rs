@@ -1,6 +1,6 @@
 //! Spatial algebra in world coordinates.
 //!
-//! Conventions (see `docs/physics.md` §1): a spatial motion vector is `(ω; v)`, angular part
+//! Conventions (see `docs/physics.md`, "Kinematics and dynamics"): a spatial motion vector is `(ω; v)`, angular part
 //! first. In this crate motion vectors are expressed in **world coordinates at the world
 //! origin** ("Plücker at O"): `v` is the velocity of the body-fixed point that currently
 //! coincides with the world origin, so the velocity of any point `x` is `v + ω × x`. Force

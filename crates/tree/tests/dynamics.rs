@@ -131,7 +131,7 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(256))]
 
     /// The velocity-product force from the world-frame Newton–Euler pass equals the
-    /// body-coordinate formula of `docs/physics.md` §4, computed independently from the body
+    /// body-coordinate formula of `docs/physics.md`, "Kinematics and dynamics", computed independently from the body
     /// Jacobian: `−C = Jᵀ(f_m − M_m J̇q̇)` with the gyroscopic wrench
     /// `f_m = ad(φ)ᵀ M φ = (−ω × Iω; −ω × m ν)`.
     #[test]

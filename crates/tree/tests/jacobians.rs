@@ -138,7 +138,7 @@ proptest! {
 
 #[test]
 fn universal_joint_motion_subspace_matches_closed_form() {
-    // physics.md §2: in the child frame, S = [(sin q₂, cos q₂, 0), (0, 0, 1)].
+    // crates/tree/src/joint.rs: in the child frame, S = [(sin q₂, cos q₂, 0), (0, 0, 1)].
     let spec = ChainSpec { bodies: vec![(1, 1.0, 0.3, 1.0, 0.0)] };
     let model = build_chain(&spec, DVec3::ZERO, 0.0, 0.0);
     let (q1, q2) = (0.4, -0.9);

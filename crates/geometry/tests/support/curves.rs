@@ -9,7 +9,7 @@ pub const BODY_LENGTH: f64 = 0.424;
 /// Number of bodies.
 pub const BODY_COUNT: usize = 100;
 
-/// Radii from the circumferences at 20/40/60/80 % of the length (physics.md D5),
+/// Radii from the circumferences at 20/40/60/80 % of the length (docs/physics.md, "Body"),
 /// piecewise linear in arc length and clamped at the ends.
 pub fn hagfish_radii(n: usize) -> Vec<f64> {
     let marks = [(0.2, 0.891), (0.4, 0.875), (0.6, 0.891), (0.8, 0.684)];

@@ -1,4 +1,4 @@
-//! Joint limits (`docs/physics.md` §5): per DOF with finite limits, the lower row
+//! Joint limits (`docs/physics.md`, "Constraint rows"): per DOF with finite limits, the lower row
 //! `e_kᵀ q̇ ≥ b(q_k − lo)` and the upper row `−e_kᵀ q̇ ≥ b(hi − q_k)`, added when the gap is
 //! below `max(margin, 2h|q̇_k|)`. A joint far from its limit can still be thrown past it within
 //! one step by an impact elsewhere; [`add_overshooting_limit_rows`] adds the rows of DOFs whose

@@ -1,4 +1,4 @@
-//! Self contact on the centreline (`docs/physics.md` §5): a spline point is a fixed blend of
+//! Self contact on the centreline (`docs/physics.md`, "Constraint rows"): a spline point is a fixed blend of
 //! body centres, `x(u) = Σ_m w_m(u) c_m`, so its velocity is `P(u) q̇` with
 //! `P(u) = Σ_m w_m R_m [0 I₃] J_m`. With the normal n from the anterior point a to the
 //! posterior point b, the row is `nᵀ(P(u_b) − P(u_a)) q̇ ≥ b(d)`: the gap may not close

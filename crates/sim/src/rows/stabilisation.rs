@@ -1,4 +1,4 @@
-//! Right-hand sides of unilateral rows from a gap (`docs/physics.md` §5).
+//! Right-hand sides of unilateral rows from a gap (`docs/physics.md`, "Constraint rows").
 
 /// The velocity bound of a unilateral row `ḋ ≥ b` for a gap `d` (d ≥ 0 feasible):
 /// speculative `b = −d/h` when `d ≥ 0` (the gap may close exactly within this step, so the

@@ -1,4 +1,4 @@
-//! Wall contact (`docs/physics.md` §5, D10): a body near the wall, seen as a sphere of radius
+//! Wall contact (`docs/physics.md` D10, "Constraint rows"): a body near the wall, seen as a sphere of radius
 //! r_k at its centre c_k, gets the row `n_wᵀ ċ_k ≥ b(d)` with `d = n_w·(c_k − p_w) − r_k`.
 //! Only the centre's velocity enters: the contact point is `c_k − r_k n_w` and
 //! `n_w·(ω × (−r_k n_w)) = 0`.
