@@ -15,6 +15,25 @@
 //! - [`Biometrics::to_model`] builds the chain along +X: alternating X-revolute /
 //!   YZ-universal joints, root anchored at the world origin, solid-cylinder inertias
 //!   ([`cylinder_inertia`]), gravity off.
+//!
+//! ```
+//! use hagfish_anatomy::Body;
+//!
+//! // A rod 10 cm long in 20 bodies; its joint springs come from B and C over 2ℓ.
+//! let text = r#"Rod(name: "demo", length_cm: 10.0, radius_cm: 0.05, body_count: 20,
+//!     density_g_per_cm3: 1.0, bending_stiffness_dyn_cm2: 100.0,
+//!     twist_stiffness_dyn_cm2: 66.7)"#;
+//! let body = Body::from_ron(text.as_bytes(), std::path::Path::new("demo.ron"))?;
+//! let model = body.to_model()?;
+//! assert_eq!(model.body_count(), 20);
+//! assert_eq!(model.dof_count(), 30); // 10 twist + 10 × 2 bend
+//! assert!((body.mass_g() - std::f64::consts::PI * 0.05 * 0.05 * 10.0).abs() < 1e-12);
+//! // A bad value is an error at its line and column, not a panic.
+//! let bad = text.replace("100.0", "-1.0");
+//! let bad = Body::from_ron(bad.as_bytes(), std::path::Path::new("b.ron"));
+//! assert!(bad.unwrap_err().to_string().contains("b.ron:2:"));
+//! # Ok::<(), hagfish_anatomy::AnatomyError>(())
+//! ```
 
 mod biometrics;
 mod body;

@@ -18,6 +18,33 @@
 //! Per-step functions reuse the buffers of their workspaces and write into caller-owned
 //! `Vec`s, so they do not allocate after the first call. Outputs are sorted over total
 //! orders, so results are deterministic. Units are CGS (cm).
+//!
+//! A hairpin: a tube of radius 0.52 cm folded back on itself with its centreline strands 1 cm
+//! apart, so the tubes overlap by 0.04 cm along the straight parts.
+//!
+//! ```
+//! use glam::DVec3;
+//! use hagfish_geometry::{Centreline, ContactDetector, DetectorOptions};
+//!
+//! let out = (0..20).map(|k| DVec3::new(0.5 * k as f64, 0.0, 0.0));
+//! let turn = (1..6).map(|k| {
+//!     let a = std::f64::consts::PI * k as f64 / 6.0;
+//!     DVec3::new(9.5 + 0.5 * a.sin(), 0.5 - 0.5 * a.cos(), 0.0)
+//! });
+//! let back = (0..20).map(|k| DVec3::new(9.5 - 0.5 * k as f64, 1.0, 0.0));
+//! let centres: Vec<DVec3> = out.chain(turn).chain(back).collect();
+//! let radii = vec![0.52; centres.len()];
+//! let centreline = Centreline::new(&centres, &radii)?;
+//! let mut detector = ContactDetector::new(DetectorOptions::default())?;
+//! let mut contacts = Vec::new();
+//! detector.detect(&centreline, &vec![0.5; centres.len()], &mut contacts)?;
+//! assert!(!contacts.is_empty());
+//! for contact in &contacts {
+//!     assert!((contact.gap + 0.04).abs() < 1e-3, "gap {}", contact.gap);
+//!     assert!(contact.normal.y.abs() > 0.99, "the strands touch across y");
+//! }
+//! # Ok::<(), hagfish_geometry::GeometryError>(())
+//! ```
 
 mod arc_length;
 mod broad_phase;

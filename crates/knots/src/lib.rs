@@ -40,6 +40,27 @@
 //! determinant. For the 100-vertex hagfish-like trefoil (c ≤ 9) that is ≈ 7 µs, so a
 //! 64-direction vote (the default) takes ≈ 0.35 ms (`benches/knot_type.rs`); a random 100-vertex walk
 //! crammed into a 1 cm ball (c up to ≈ 270) takes ≈ 10 ms per direction.
+//!
+//! ```
+//! use glam::DVec3;
+//! use hagfish_knots::{KnotOptions, analyse_knot};
+//!
+//! // A trefoil drawn as an open polyline: the (2,3) torus knot, cut open and its ends pulled
+//! // out along ±z.
+//! let mut points: Vec<DVec3> = (0..=120)
+//!     .map(|k| {
+//!         let t = 0.1 + (std::f64::consts::TAU - 0.2) * k as f64 / 120.0;
+//!         let r = 2.0 + (3.0 * t).cos();
+//!         DVec3::new(r * (2.0 * t).cos(), r * (2.0 * t).sin(), (3.0 * t).sin())
+//!     })
+//!     .collect();
+//! points.insert(0, points[0] - DVec3::new(0.0, 0.0, 10.0));
+//! points.push(points[points.len() - 1] + DVec3::new(0.0, 0.0, 10.0));
+//! let report = analyse_knot(&points, &KnotOptions::default())?;
+//! assert_eq!(report.knot.to_string(), "3_1");
+//! assert!(report.agreement > 0.9);
+//! # Ok::<(), hagfish_knots::KnotError>(())
+//! ```
 
 mod alexander;
 mod analysis;

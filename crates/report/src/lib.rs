@@ -17,6 +17,29 @@
 //! `scenario.ron` (body radii via its biometrics), `manifest.json` and `contacts.csv` are
 //! used when present. Every error ([`ReportError`]) names its file, and its line where
 //! there is one.
+//!
+//! Each output file is read on its own, e.g. the tension the body transmits to the wall per
+//! frame, from `internal.csv`:
+//!
+//! ```
+//! let dir = std::env::temp_dir().join(format!("hagfish-report-doc-{}", std::process::id()));
+//! std::fs::create_dir_all(&dir)?;
+//! let path = dir.join("internal.csv");
+//! std::fs::write(
+//!     &path,
+//!     "frame,time_s,joint,s_cm,tension_dyn,shear_y_dyn,shear_z_dyn,twist_dyn_cm,\
+//!      bend_y_dyn_cm,bend_z_dyn_cm\n0,0,0,0,1.5,0,0,0,0,0\n0,0,1,1,2.5,0,0,0,0,0\n\
+//!      1,0.1,0,0,-3,0,0,0,0,0\n1,0.1,1,1,4,0,0,0,0,0\n",
+//! )?;
+//! let tension = hagfish_report::Tension::read(&path)?;
+//! assert_eq!(tension.at_head(), vec![1.5, -3.0]);
+//! // A damaged file is an error naming the file and the line.
+//! std::fs::write(&path, "frame,time_s,joint,s_cm,tension_dyn\n0,0,x,0,1\n")?;
+//! let error = hagfish_report::Tension::read(&path).unwrap_err().to_string();
+//! assert!(error.contains("internal.csv") && error.contains('2'), "{error}");
+//! # std::fs::remove_dir_all(&dir)?;
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 mod animation;
 mod centreline;

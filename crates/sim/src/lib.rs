@@ -9,6 +9,28 @@
 //! load each joint transmits, [`JointLoad`]) → integration → the
 //! result's check (its kinematics and contacts, kept for the next step; [`StepAcceptance`]).
 //! CGS units throughout.
+//!
+//! Half a second of the shipped tie scenario, stepped by hand (what `hagfish run` does between
+//! its recorded frames):
+//!
+//! ```
+//! use hagfish_sim::LoadedScenario;
+//!
+//! let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/scenarios/tie.ron");
+//! let loaded = LoadedScenario::load(path)?;
+//! let (mut world, mut controller) = loaded.build()?;
+//! for _ in 0..50 {
+//!     let report = world.step(&mut controller)?;
+//!     assert!(report.max_self_penetration_relative < 0.1);
+//! }
+//! assert!((world.state().t - 0.5).abs() < 1e-9);
+//! assert_eq!(controller.phase_name(), "tie");
+//! let mut centres = Vec::new();
+//! world.body_centres(&mut centres);
+//! let head = glam::DVec3::new(0.5 * 42.4 / 100.0, 0.0, 0.0); // body 0's centre, ℓ/2 along +X
+//! assert!(centres[0].distance(head) < 1e-6, "the head stays at the wall");
+//! # Ok::<(), hagfish_sim::SimError>(())
+//! ```
 
 mod acceptance;
 mod backend;

@@ -10,6 +10,16 @@
 //! - [`tension`]: a straight rod pulled at the tail: the axial force at every joint.
 //! - [`loose_knot`]: a loose trefoil in a thin rod under tension: the loop radius
 //!   (`T R²/B → 1/2`) and the first integral of the Kirchhoff equations.
+//!
+//! The reference solutions are plain functions: the elastica of a cantilever under a tip
+//! load, which for a small load `α = PL²/B` deflects the tip by `αL/3` (Euler–Bernoulli):
+//!
+//! ```
+//! let (x, y) = hagfish_validation::elastica_tip(0.03);
+//! assert!((y - 0.01).abs() < 1e-5 && x < 1.0, "tip at ({x}, {y}) L");
+//! let (_, large) = hagfish_validation::elastica_tip(3.0);
+//! assert!(large < 1.0, "a large load deflects less than the linear α/3 = {large}");
+//! ```
 
 pub mod cantilever;
 mod check;
