@@ -17,7 +17,7 @@ pub fn cylinder_inertia(mass: f64, radius: f64, length: f64) -> DVec3 {
 }
 
 impl Biometrics {
-    /// Builds the model ([`build_chain`]): each DOF gets the stiffness of its joint type, the
+    /// Builds the model (the chain of `build_chain`): each DOF gets the stiffness of its joint type, the
     /// common damping, rest 0 and the table's limits in radians. Gravity is zero (neutral
     /// buoyancy, D4).
     pub fn to_model(&self) -> Result<Model, AnatomyError> {
@@ -32,7 +32,7 @@ impl Biometrics {
 }
 
 impl Rod {
-    /// Builds the model ([`build_chain`]) with the springs and dampers derived from the
+    /// Builds the model (the chain of `build_chain`) with the springs and dampers derived from the
     /// continuous stiffnesses ([`Rod::bend_spring_dyn_cm_per_rad`] and its siblings), no
     /// limits, gravity zero.
     pub fn to_model(&self) -> Result<Model, AnatomyError> {

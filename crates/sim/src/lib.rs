@@ -86,7 +86,9 @@ pub use recorder::{
     METRICS_HEADER, RecordedFile, Recorder,
 };
 pub use report::{StageTimings, StepReport};
-pub use run::{KnotSample, Progress, RunEnd, RunOptions, RunOutcome, RunSummary, run};
-pub use scenario::{LoadedScenario, Scenario};
+pub use run::{
+    DEFAULT_MAX_STEPS, KnotSample, Progress, RunEnd, RunOptions, RunOutcome, RunSummary, run,
+};
+pub use scenario::{LoadedScenario, MIN_TIME_STEP_S, Scenario};
 pub use step_data::StepData;
 pub use world::World;
