@@ -305,7 +305,8 @@ pub fn solve_and_resolve(
         let velocity = data.solver.velocity();
         let h = options.time_step;
         let rows = &mut data.rows;
-        let added = add_overshooting_limit_rows(model, state, velocity, h, options.push_out, rows);
+        let (margin, push_out) = (options.limit_margin, options.push_out);
+        let added = add_overshooting_limit_rows(model, state, velocity, h, margin, push_out, rows);
         match (refreshed || raised > 0, added) {
             (false, 0) => break,
             // Only f̃ or bounds changed: keep the factor of M̃ and the contact-space matrices.

@@ -20,9 +20,8 @@ pub fn add_limit_rows(
     rows: &mut Rows,
 ) {
     for (k, dof) in model.dofs().iter().enumerate() {
-        let active_within = margin.max(2.0 * time_step * state.qdot[k].abs());
         for (gap, sign) in [(state.q[k] - dof.lower, 1.0), (dof.upper - state.q[k], -1.0)] {
-            if gap < active_within {
+            if has_row(gap, state.qdot[k], time_step, margin) {
                 let rhs = unilateral_rhs(gap, time_step, push_out);
                 rows.push_zeroed(RowKind::Inequality, RowGroup::Limit, rhs)[k] = sign;
             }
@@ -30,14 +29,23 @@ pub fn add_limit_rows(
     }
 }
 
+/// Whether [`add_limit_rows`] gives a limit at `gap` (rad) a row: closer than `margin`, or
+/// than twice the distance the DOF's rate covers in a step.
+fn has_row(gap: f64, rate: f64, time_step: f64, margin: f64) -> bool {
+    gap < margin.max(2.0 * time_step * rate.abs())
+}
+
 /// Appends limit rows for the DOFs that the solved velocities `qdot_next` would carry past a
-/// limit in this step (`q_k + h q̇_k` outside `[lo, hi]`); returns how many were added. A DOF
-/// that already has a row for that limit cannot overshoot it, so no row is added twice.
+/// limit in this step (`q_k + h q̇_k` outside `[lo, hi]`) and that [`add_limit_rows`] (same
+/// `margin`) gave no row; returns how many were added. A limit that has a row keeps the one
+/// it has: a penetrated one may still be past its limit after the step (its row asks only
+/// for `push_out` of the way back), and another row would duplicate it.
 pub fn add_overshooting_limit_rows(
     model: &Model,
     state: &State,
     qdot_next: &[f64],
     time_step: f64,
+    margin: f64,
     push_out: f64,
     rows: &mut Rows,
 ) -> usize {
@@ -48,7 +56,7 @@ pub fn add_overshooting_limit_rows(
             (state.q[k] - dof.lower, next - dof.lower, 1.0),
             (dof.upper - state.q[k], dof.upper - next, -1.0),
         ] {
-            if next_gap < 0.0 {
+            if next_gap < 0.0 && !has_row(gap, state.qdot[k], time_step, margin) {
                 let rhs = unilateral_rhs(gap, time_step, push_out);
                 rows.push_zeroed(RowKind::Inequality, RowGroup::Limit, rhs)[k] = sign;
                 added += 1;
@@ -56,4 +64,63 @@ pub fn add_overshooting_limit_rows(
         }
     }
     added
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+    use hagfish_tree::{BodySpec, DofParams, JointKind, ModelBuilder, Transform};
+
+    /// One body on a revolute joint limited to ±0.1 rad.
+    fn hinge() -> Model {
+        let mut builder = ModelBuilder::new();
+        builder.add_body(BodySpec {
+            parent: None,
+            joint: JointKind::Revolute { axis: DVec3::Z },
+            joint_offset: Transform::IDENTITY,
+            body_offset: Transform::from_translation(DVec3::X),
+            mass: 1.0,
+            principal_inertia: DVec3::splat(0.1),
+            radius: 0.1,
+            length: 2.0,
+            dofs: vec![DofParams { lower: -0.1, upper: 0.1, ..DofParams::default() }],
+        });
+        builder.build().expect("a valid hinge")
+    }
+
+    #[test]
+    fn a_penetrated_limit_keeps_one_row_however_often_the_step_is_solved_again() {
+        let (model, h, margin, push_out) = (hinge(), 0.01, 0.01, 0.5);
+        let mut state = State::rest(&model);
+        state.q[0] = 0.12; // 0.02 rad past the upper limit
+        let mut rows = Rows::new(1);
+        add_limit_rows(&model, &state, h, margin, push_out, &mut rows);
+        assert_eq!(rows.len(), 1);
+        // The row −q̇ ≥ 0.5 · 0.02 / h met exactly leaves the joint 0.01 rad past its limit.
+        let solved = [-rows.rhs()[0]];
+        assert!(state.q[0] + h * solved[0] > 0.1);
+        for _ in 0..3 {
+            let added = add_overshooting_limit_rows(
+                &model, &state, &solved, h, margin, push_out, &mut rows,
+            );
+            assert_eq!(added, 0, "the penetrated limit already has its row");
+        }
+        assert_eq!(rows.len(), 1);
+    }
+
+    #[test]
+    fn a_joint_thrown_past_a_limit_it_had_no_row_for_gets_one() {
+        let (model, h, margin, push_out) = (hinge(), 0.01, 0.01, 0.5);
+        let state = State::rest(&model);
+        let mut rows = Rows::new(1);
+        add_limit_rows(&model, &state, h, margin, push_out, &mut rows);
+        assert!(rows.is_empty(), "far from both limits at rest");
+        let thrown = [20.0]; // 0.2 rad in one step
+        assert_eq!(
+            add_overshooting_limit_rows(&model, &state, &thrown, h, margin, push_out, &mut rows),
+            1
+        );
+        assert_eq!(rows.coefficients(0), Some(&[-1.0][..]), "the upper row");
+    }
 }
