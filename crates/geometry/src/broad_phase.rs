@@ -1,9 +1,16 @@
 //! Broad phase: body pairs whose bounding spheres overlap.
 //!
-//! Body i is bounded by a parry3d sphere at c_i of radius ρ_i = √(r_i² + (ℓ_i/2)²) + δ:
-//! √(r² + (ℓ/2)²) covers the disc-shaped body (a cylinder of radius r and length ℓ, whose
-//! rim lies that far from its centre), and the inflation δ absorbs
-//! whatever the caller needs on top (speculative margin, the spline between centres).
+//! Body i is bounded by a parry3d sphere at c_i of radius
+//! `ρ_i = max(√(r_i² + (ℓ_i/2)²) + δ, R_i + m/2)`: √(r² + (ℓ/2)²) covers the disc-shaped body
+//! (a cylinder of radius r and length ℓ, whose rim lies that far from its centre) and δ is
+//! the caller's inflation; `R_i + m/2` is derived, so that no contact within the speculative
+//! margin m can be missed whatever δ is. A contact point on the spline segment k (between
+//! c_k and c_{k+1}) lies within half the chord `|c_{k+1} − c_k|/2` of the nearer centre
+//! along the chord, plus the segment's deviation from its chord σ_k
+//! ([`crate::Segment::chord_deviation_bound`]); the tube there has radius at most
+//! `max(r_k, r_{k+1})`; two such points closer than their radii plus m have nearer centres
+//! within `R_i + R_j + m` (triangle inequality), with
+//! `R_i = max over the segments at c_i of (|c_{k+1} − c_k|/2 + σ_k + max(r_k, r_{k+1}))`.
 //! Pairs closer than the index gap along the chain are skipped first, since a straight
 //! chain already "touches" itself up to ~4 bodies away (adjacent discs of radius r
 //! spaced ℓ ≪ r overlap).
@@ -21,18 +28,17 @@ use crate::error::GeometryError;
 pub struct BroadPhaseOptions {
     /// Pairs (i, j) are reported only when j − i > `index_gap` (default 8).
     pub index_gap: usize,
-    /// Inflation δ added to every sphere radius (cm, ≥ 0, default 0.25).
-    ///
-    /// For spline contacts δ must cover what lies outside the body's own sphere: a spline
-    /// point is up to ℓ/2 (plus a little sag) from the nearer of its two centres and the
-    /// contact keeps a speculative margin m, so δ ≥ ℓ/2 + r − √(r² + (ℓ/2)²) + m/2 ≈ 0.21 cm
-    /// for the hagfish (ℓ = 0.424, r ≤ 0.9, m = 0.05 cm); 0.25 leaves room for the sag.
+    /// Inflation δ added to every body's own sphere (cm, ≥ 0, default 0.25): room the
+    /// caller wants on top. Contacts within `margin` are covered whatever δ is (module docs).
     pub inflation: f64,
+    /// The speculative margin m of the contacts the pairs are searched for (cm, ≥ 0,
+    /// default 0.05): the spheres reach at least m/2 beyond every spline point's tube.
+    pub margin: f64,
 }
 
 impl Default for BroadPhaseOptions {
     fn default() -> Self {
-        BroadPhaseOptions { index_gap: 8, inflation: 0.25 }
+        BroadPhaseOptions { index_gap: 8, inflation: 0.25, margin: 0.05 }
     }
 }
 
@@ -41,6 +47,8 @@ impl Default for BroadPhaseOptions {
 pub struct BroadPhase {
     options: BroadPhaseOptions,
     spheres: Vec<BoundingSphere>,
+    /// Per segment k: `|c_{k+1} − c_k|/2 + σ_k + max(r_k, r_{k+1})` (module docs).
+    reaches: Vec<f64>,
 }
 
 impl BroadPhase {
@@ -49,13 +57,15 @@ impl BroadPhase {
     /// # Errors
     /// [`GeometryError::InvalidOption`] if the inflation is negative or not finite.
     pub fn new(options: BroadPhaseOptions) -> Result<Self, GeometryError> {
-        GeometryError::require_option(
-            options.inflation.is_finite() && options.inflation >= 0.0,
-            "inflation",
-            "finite and non-negative",
-            options.inflation,
-        )?;
-        Ok(BroadPhase { options, spheres: Vec::new() })
+        for (name, value) in [("inflation", options.inflation), ("margin", options.margin)] {
+            GeometryError::require_option(
+                value.is_finite() && value >= 0.0,
+                name,
+                "finite and non-negative",
+                value,
+            )?;
+        }
+        Ok(BroadPhase { options, spheres: Vec::new(), reaches: Vec::new() })
     }
 
     /// The options this broad phase was built with.
@@ -84,16 +94,23 @@ impl BroadPhase {
         {
             return Err(GeometryError::InvalidBodyLength { index, value });
         }
-        let inflation = self.options.inflation;
+        let (inflation, half_margin) = (self.options.inflation, 0.5 * self.options.margin);
+        let (centres, radii) = (centreline.centres(), centreline.radii());
+        self.reaches.clear();
+        self.reaches.extend((0..centreline.segment_count()).map(|k| {
+            let chord = centres[k].distance(centres[k + 1]);
+            0.5 * chord + centreline.segment(k).chord_deviation_bound() + radii[k].max(radii[k + 1])
+        }));
+        let reaches = &self.reaches;
         self.spheres.clear();
-        self.spheres.extend(
-            centreline
-                .centres()
-                .iter()
-                .zip(centreline.radii())
-                .zip(body_lengths)
-                .map(|((&c, &r), &l)| BoundingSphere::new(c, r.hypot(0.5 * l)).loosened(inflation)),
-        );
+        self.spheres.extend(centres.iter().zip(radii).zip(body_lengths).enumerate().map(
+            |(i, ((&c, &r), &l))| {
+                let before = i.checked_sub(1).and_then(|k| reaches.get(k)).copied();
+                let reach = before.into_iter().chain(reaches.get(i).copied()).fold(r, f64::max);
+                let own = r.hypot(0.5 * l) + inflation;
+                BoundingSphere::new(c, own.max(reach + half_margin))
+            },
+        ));
         out.clear();
         let first_partner = self.options.index_gap.saturating_add(1);
         for (i, sphere) in self.spheres.iter().enumerate() {
@@ -161,12 +178,26 @@ mod tests {
             let radii: Vec<_> = (0..n).map(|k| radius * (1.0 + 0.1 * (k % 3) as f64)).collect();
             let lengths: Vec<_> = (0..n).map(|k| length * (1.0 + 0.2 * (k % 2) as f64)).collect();
             let line = Centreline::new(&centres, &radii).expect("valid");
-            let mut broad = BroadPhase::new(BroadPhaseOptions { index_gap, inflation })
-                .expect("valid");
+            let margin = 0.1;
+            let options = BroadPhaseOptions { index_gap, inflation, margin };
+            let mut broad = BroadPhase::new(options).expect("valid");
             let mut pairs = Vec::new();
             broad.find_pairs(&line, &lengths, &mut pairs).expect("valid");
-            let bound =
-                |k: usize| (radii[k].powi(2) + (0.5 * lengths[k]).powi(2)).sqrt() + inflation;
+            // Half a chord, the sag and the larger radius of segment k, the segments at c_k.
+            let segment_reach = |k: usize| {
+                0.5 * centres[k].distance(centres[k + 1])
+                    + line.segment(k).chord_deviation_bound()
+                    + radii[k].max(radii[k + 1])
+            };
+            let reach = |k: usize| {
+                let before = if k > 0 { segment_reach(k - 1) } else { 0.0 };
+                let after = if k + 1 < n { segment_reach(k) } else { 0.0 };
+                before.max(after) + 0.5 * margin
+            };
+            let bound = |k: usize| {
+                let own = (radii[k].powi(2) + (0.5 * lengths[k]).powi(2)).sqrt() + inflation;
+                own.max(reach(k))
+            };
             let expected: Vec<_> = (0..n)
                 .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
                 .filter(|&(i, j)| j - i > index_gap)

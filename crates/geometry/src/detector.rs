@@ -41,8 +41,8 @@ pub struct DetectorOptions {
     pub margin: f64,
     /// Records closer than this in both u_a and u_b are one contact (default 1.5).
     pub cluster_radius: f64,
-    /// Inflation of the broad-phase spheres (cm, default 0.25); see
-    /// [`BroadPhaseOptions::inflation`] for the lower bound that avoids missed contacts.
+    /// Inflation of the broad-phase spheres (cm, default 0.25): room on top of the derived
+    /// reach, which alone covers every contact within `margin` ([`BroadPhaseOptions`]).
     pub broad_phase_inflation: f64,
 }
 
@@ -137,6 +137,7 @@ impl ContactDetector {
         let broad_phase = BroadPhase::new(BroadPhaseOptions {
             index_gap: options.index_gap.saturating_sub(2),
             inflation: options.broad_phase_inflation,
+            margin: options.margin,
         })?;
         Ok(ContactDetector {
             options,
@@ -300,6 +301,37 @@ impl ContactDetector {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Two straight strands of a coarse chain (ℓ = 2 cm, r = 0.9 cm) crossing at right angles
+    /// 0.5 cm apart (tube to tube), the contact points at the middle of a segment on both:
+    /// their nearest centres are 2.70 cm apart, farther than the bodies' own spheres reach
+    /// (2 × 1.345 cm) without inflation. With a margin of 0.6 cm the contact is found all the
+    /// same: the spheres reach half a chord, the radius and half the margin.
+    #[test]
+    fn a_contact_within_the_margin_is_found_without_inflation() {
+        let strand_a = (0..10).map(|k| DVec3::new(-9.0 + 2.0 * k as f64, 0.0, 0.0));
+        let to_b = (1..7).map(|k| {
+            let t = k as f64 / 7.0;
+            DVec3::new(9.0 * (1.0 - t), -9.0 * t, 2.3 * t)
+                + DVec3::new(3.0, -3.0, 0.0) * (t * (1.0 - t) * 4.0)
+        });
+        let strand_b = (0..10).map(|k| DVec3::new(0.0, -9.0 + 2.0 * k as f64, 2.3));
+        let centres: Vec<DVec3> = strand_a.chain(to_b).chain(strand_b).collect();
+        let radii = vec![0.9; centres.len()];
+        let line = Centreline::new(&centres, &radii).expect("valid");
+        let options = DetectorOptions {
+            margin: 0.6,
+            broad_phase_inflation: 0.0,
+            ..DetectorOptions::default()
+        };
+        let mut detector = ContactDetector::new(options).expect("valid");
+        let mut contacts = Vec::new();
+        detector.detect(&line, &vec![2.0; centres.len()], &mut contacts).expect("detects");
+        let crossing = contacts.iter().find(|c| c.u_a < 10.0 && c.u_b > 15.0);
+        let crossing = crossing.expect("the crossing is a contact");
+        assert!((crossing.gap - 0.5).abs() < 1e-6, "gap {}", crossing.gap);
+        assert!((crossing.u_a - 4.5).abs() < 1e-6 && (crossing.u_b - 20.5).abs() < 1e-6);
+    }
     use glam::DVec3;
 
     /// Centres one `spacing` apart (by chord) along the curve (2(t² − 1), t(t² − 1), 0.25t),
