@@ -29,6 +29,7 @@ use faer::sparse::{SparseColMat, Triplet};
 use faer::{Conj, MatMut, Par, Side};
 use glam::DVec3;
 use hagfish_control::Passive;
+use hagfish_sim::rows::RowGroup;
 use hagfish_sim::{DynamicsBackend, StepOptions, World, pipeline, segment_chain};
 use hagfish_solver::FactoredMass;
 use hagfish_sparse::TreeFactor;
@@ -260,7 +261,8 @@ fn scaling(c: &mut Criterion) {
                 let report = *world.step(&mut Passive).expect("warm-up step");
                 println!(
                     "{name}/{backend:?}/{bodies}: path {:?}, rows per group {:?}",
-                    report.solve.path, report.solve.rows_per_group
+                    report.solve.path,
+                    RowGroup::values(&report.solve.rows_per_tag)
                 );
                 group.bench_function(format!("{name}/{backend:?}/{bodies}"), |b| {
                     b.iter_batched(

@@ -18,6 +18,7 @@ use std::time::{Duration, Instant};
 
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
 use hagfish_control::WaterDrag;
+use hagfish_sim::rows::RowGroup;
 use hagfish_sim::{DynamicsBackend, LoadedScenario, StepOptions, World, knotted_world};
 use hagfish_solver::{QpBackend, SolverOptions};
 use hagfish_tree::{Data, State, step_unconstrained};
@@ -72,7 +73,7 @@ fn knotted(c: &mut Criterion) {
         println!(
             "knotted state: {} self contacts, rows per group {:?}",
             bench_world.data().report.self_contacts,
-            bench_world.data().report.solve.rows_per_group
+            RowGroup::values(&bench_world.data().report.solve.rows_per_tag)
         );
         // Only the step is timed: `set_state` (which runs the kinematics once more) is set-up.
         c.bench_function(&format!("step/knotted/{name}"), |b| {

@@ -3,7 +3,9 @@
 //! the tree-structured factor of the maximal-coordinate system (`hagfish-sparse`, O(n)). Both
 //! give the same `q̇¹` for the same step up to rounding; the state stays reduced either way.
 
-use hagfish_solver::{Problem, SolverError};
+use faer::Mat;
+use hagfish_solver::{Mass, SolverError};
+use hagfish_sparse::TreeFactor;
 use hagfish_tree::Model;
 
 use crate::step_data::StepData;
@@ -21,15 +23,6 @@ pub enum DynamicsBackend {
     SparseMaximal,
 }
 
-/// Whether a solve may keep the factor and the contact-space matrices of the last one.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Reuse {
-    /// M̃ or the rows changed: factor (sparse backend) and solve afresh.
-    Nothing,
-    /// Only f̃ changed since the last solve.
-    MassAndRows,
-}
-
 /// Stage 4's effective mass for the backend: the dense `M̃` (CRBA) or the maximal system's
 /// blocks `Ĩ_i = I_i + h C_i`, `K̃ = hD + h²K` and the axes.
 pub(crate) fn assemble_effective_mass(model: &Model, data: &mut StepData, h: f64) {
@@ -39,28 +32,19 @@ pub(crate) fn assemble_effective_mass(model: &Model, data: &mut StepData, h: f64
     }
 }
 
-/// Stage 6's solve with the backend's `M̃`: the dense matrix (factored by the solver; when only
-/// f̃ changed, not validated again), or the tree factor (factored here, O(n), unless only f̃
-/// changed) as a [`hagfish_solver::MassOperator`].
-pub(crate) fn solve(data: &mut StepData, reuse: Reuse) -> Result<(), SolverError> {
-    let StepData { tree, tree_factor, rows, solver, report, .. } = data;
-    let problem = match tree_factor {
-        None if reuse == Reuse::MassAndRows => Problem::with_validated_mass_and_rows(
-            tree.effective_mass.as_ref(),
-            &tree.effective_momentum,
-            rows,
-        )?,
-        None => Problem::new(tree.effective_mass.as_ref(), &tree.effective_momentum, rows)?,
+/// Stage 6's `M̃` for the solver: the dense matrix `dense` (factored by the solver), or the
+/// tree factor, factored here (O(n)) unless it already is for this step's `M̃`.
+pub(crate) fn mass<'a>(
+    dense: &'a Mat<f64>,
+    tree_factor: &'a mut Option<TreeFactor>,
+) -> Result<Mass<'a>, SolverError> {
+    match tree_factor {
+        None => Ok(Mass::Dense(dense.as_ref())),
         Some(factor) => {
-            if reuse == Reuse::Nothing || !factor.is_factored() {
+            if !factor.is_factored() {
                 factor.factor()?;
             }
-            Problem::with_operator(&*factor, &tree.effective_momentum, rows)?
+            Ok(Mass::Operator(&*factor))
         }
-    };
-    report.solve = *match reuse {
-        Reuse::Nothing => solver.solve(&problem)?,
-        Reuse::MassAndRows => solver.solve_with_new_force(&problem)?,
-    };
-    Ok(())
+    }
 }

@@ -15,16 +15,18 @@
 //!
 //! the normal speed that, to first order in the correction, lifts `g⁺` to `g_target`; the step is
 //! then solved again with the same M̃ and rows (a predictor–corrector on the bounds, as the
-//! joint-limit rows added for overshooting joints). The pipeline predicts after the first solve
-//! of a step only and restores the bounds if the raised ones leave no solution
-//! (`pipeline::solve_and_resolve`).
+//! joint-limit rows added for overshooting joints). The raised bounds are the step's own copy
+//! of the right-hand sides; the rows keep the first-order ones. The pipeline predicts after the
+//! first solve of a step only and solves with the rows' own bounds if the raised ones leave no
+//! solution (`pipeline::solve_and_resolve`).
 
 use glam::DVec3;
-use hagfish_geometry::{Centreline, PAIRS_PER_BODY, SelfContact, closest_points_near};
-use hagfish_solver::{RowGroup, Rows};
+use hagfish_geometry::{Centreline, SelfContact, closest_points_near};
+use hagfish_solver::Rows;
 use hagfish_tree::{Data, Model, State};
 
 use crate::options::StepOptions;
+use crate::rows::RowGroup;
 use crate::rows::unilateral_rhs;
 
 /// cos of the largest angle between a contact's normal and the line between the predicted
@@ -39,8 +41,6 @@ const MAX_CORRECTION: f64 = 0.02;
 /// Scratch of the contact predictor: the predicted positions, their kinematics and centreline.
 #[derive(Debug)]
 pub(crate) struct ContactPredictor {
-    /// (row, bound before raising it) of the last [`ContactPredictor::tighten_contact_rows`].
-    raised: Vec<(usize, f64)>,
     q: Vec<f64>,
     kinematics: Data,
     centres: Vec<DVec3>,
@@ -53,7 +53,6 @@ impl ContactPredictor {
     /// the starting value of the predicted one.
     pub(crate) fn new(model: &Model, centreline: &Centreline) -> Self {
         Self {
-            raised: Vec::with_capacity(PAIRS_PER_BODY * model.body_count()),
             q: vec![0.0; model.dof_count()],
             kinematics: Data::new(model),
             centres: vec![DVec3::ZERO; model.body_count()],
@@ -62,34 +61,36 @@ impl ContactPredictor {
         }
     }
 
-    /// Raises the bounds of the self-contact rows in `rows` (one per contact of `contacts`, in
-    /// order, group [`RowGroup::Contact`]) whose gap after the step with velocity `qdot` would
-    /// fall more than the tolerance of [`StepOptions::contact_prediction`] below the row's target
-    /// (module docs; nothing when that option is `None`). Returns how many bounds were raised.
-    pub(crate) fn tighten_contact_rows(
+    /// Raises, in `bounds` (one per row of `rows`), the bound of each self-contact row (source
+    /// [`RowGroup::Contact`], id its contact in `contacts`) whose gap after the step with
+    /// velocity `qdot` would fall more than the tolerance of
+    /// [`StepOptions::contact_prediction`] below the row's target (module docs; nothing when
+    /// that option is `None`). Returns how many bounds were raised.
+    #[allow(clippy::too_many_arguments)] // the stage's inputs, each read once
+    pub(crate) fn tighten_contact_bounds(
         &mut self,
         model: &Model,
         options: &StepOptions,
         state: &State,
         qdot: &[f64],
         contacts: &[SelfContact],
-        rows: &mut Rows,
+        rows: &Rows,
+        bounds: &mut [f64],
     ) -> usize {
-        self.raised.clear();
         let Some(tolerance) = options.contact_prediction else { return 0 };
         let (time_step, push_out) = (options.time_step, options.push_out);
-        let Some(first_row) = rows.groups().iter().position(|g| *g == RowGroup::Contact) else {
-            return 0;
-        };
-        debug_assert_eq!(
-            rows.groups().iter().filter(|g| **g == RowGroup::Contact).count(),
-            contacts.len()
-        );
-        if !self.predict_centreline(model, state, qdot, time_step) {
+        let contact_tag = RowGroup::Contact.tag();
+        if !rows.sources().iter().any(|s| s.tag == contact_tag)
+            || !self.predict_centreline(model, state, qdot, time_step)
+        {
             return 0;
         }
-        for (i, contact) in contacts.iter().enumerate() {
-            let row = first_row + i;
+        let mut raised_count = 0;
+        for (row, source) in rows.sources().iter().enumerate() {
+            let contact = match contacts.get(source.id) {
+                Some(contact) if source.tag == contact_tag => contact,
+                _ => continue,
+            };
             let gap_after = self.gap_after(contact);
             let target = contact.gap + time_step * unilateral_rhs(contact.gap, time_step, push_out);
             if gap_after >= target - tolerance {
@@ -97,22 +98,13 @@ impl ContactPredictor {
             }
             let Some(coefficients) = rows.coefficients(row) else { continue };
             let speed: f64 = coefficients.iter().zip(qdot).map(|(c, v)| c * v).sum();
-            let bound = &mut rows.rhs_mut()[row];
             let raised = speed + (target - gap_after).min(MAX_CORRECTION) / time_step;
-            if raised > *bound {
-                self.raised.push((row, *bound));
-                *bound = raised;
+            if raised > bounds[row] {
+                bounds[row] = raised;
+                raised_count += 1;
             }
         }
-        self.raised.len()
-    }
-
-    /// Puts back the bounds that the last [`ContactPredictor::tighten_contact_rows`] raised.
-    pub(crate) fn restore_bounds(&mut self, rows: &mut Rows) {
-        for &(row, bound) in &self.raised {
-            rows.rhs_mut()[row] = bound;
-        }
-        self.raised.clear();
+        raised_count
     }
 
     /// The gap of `contact` on the predicted centreline: at the closest points near its

@@ -2,8 +2,8 @@
 //! (Figure 6.2): joint j pairs the twist joint 2j (axis X) with the bend joint 2j + 1 (axes Y
 //! and Z), so the ES103 body has joints 0…49 from head to tail, each with X, Y and Z.
 
+use crate::rows::RowGroup;
 use glam::DVec3;
-use hagfish_solver::RowGroup;
 use hagfish_tree::{JointKind, Model};
 
 use crate::step_data::StepData;
@@ -72,7 +72,7 @@ impl GroupForces {
     pub fn add_impulses(&mut self, data: &StepData, dofs: usize) {
         for (values, group) in self.values.iter_mut().zip(RECORDED_GROUPS) {
             values.resize(dofs, 0.0);
-            for (value, impulse) in values.iter_mut().zip(data.solver.group_impulse(group)) {
+            for (value, impulse) in values.iter_mut().zip(data.solver.tag_impulse(group.tag())) {
                 *value += impulse;
             }
         }

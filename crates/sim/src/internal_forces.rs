@@ -9,9 +9,9 @@
 //! moment that the distal part (the subtree) exerts on the proximal part, in the frame of
 //! body j (x along the body): the rod's internal force n and moment m at the joint.
 
+use crate::rows::RowGroup;
 use glam::DVec3;
 use hagfish_geometry::SplineWeights;
-use hagfish_solver::RowGroup;
 use hagfish_tree::{Model, Spatial, State};
 
 use crate::options::StepOptions;
@@ -102,8 +102,8 @@ pub fn internal_forces(model: &Model, options: &StepOptions, state: &State, data
 }
 
 /// Sums the forces of the self-contact, wall and thigmotaxis rows on the body centres into
-/// `data.internal.external`. Rows of each group come in the order of their sources (the
-/// contacts; the requests whose contact exists), as `build_rows` appends them.
+/// `data.internal.external`, each row's object found by its source id (a wall or self
+/// contact, a thigmotaxis request and its contact).
 fn collect_row_wrenches(data: &mut StepData, h: f64) {
     let external = &mut data.internal.external;
     external.fill(Spatial::ZERO);
@@ -113,35 +113,31 @@ fn collect_row_wrenches(data: &mut StepData, h: f64) {
             external[body] += Spatial::point_force(centres[body], direction * (sign * w * force));
         }
     };
-    let mut walls = data.wall_contacts.iter();
-    let mut contacts = data.self_contacts.iter();
-    let mut requests = data
-        .actuation
-        .thigmo
-        .iter()
-        .filter_map(|r| data.self_contacts.get(r.contact).map(|c| thigmo_strands(r, c)));
+    let (contacts, requests) = (&data.self_contacts, &data.actuation.thigmo);
     let multipliers = data.solver.multipliers();
-    for (group, &lambda) in data.rows.groups().iter().zip(multipliers) {
+    for (source, &lambda) in data.rows.sources().iter().zip(multipliers) {
         let force = lambda / h;
-        match group {
-            RowGroup::Wall => {
-                if let Some(c) = walls.next() {
+        match RowGroup::of(source.tag) {
+            Some(RowGroup::Wall) => {
+                if let Some(c) = data.wall_contacts.get(source.id) {
                     push(&SplineWeights::single(c.body), 1.0, c.normal, force);
                 }
             }
-            RowGroup::Contact => {
-                if let Some(c) = contacts.next() {
+            Some(RowGroup::Contact) => {
+                if let Some(c) = contacts.get(source.id) {
                     push(&c.weights_b, 1.0, c.normal, force);
                     push(&c.weights_a, -1.0, c.normal, force);
                 }
             }
-            RowGroup::Thigmo => {
-                if let Some((this, other, tangent)) = requests.next() {
+            Some(RowGroup::Thigmo) => {
+                let request = requests.get(source.id);
+                let strands = request.and_then(|r| contacts.get(r.contact).map(|c| (r, c)));
+                if let Some((this, other, tangent)) = strands.map(|(r, c)| thigmo_strands(r, c)) {
                     push(this, 1.0, tangent, force);
                     push(other, -1.0, tangent, force);
                 }
             }
-            RowGroup::Head | RowGroup::Limit => {}
+            Some(RowGroup::Head | RowGroup::Limit) | None => {}
         }
     }
 }

@@ -1,9 +1,9 @@
 //! The step, as a sequence of named stages (`docs/architecture.md`):
 //!
 //! ```text
-//! kinematics → detect_contacts → control → dynamics → build_rows → solve_velocities
-//!   → [predict_contact_gaps | refresh_velocity_products | add_overshooting_limit_rows
-//!      → solve_velocities]* → internal_forces → integrate → check_result
+//! kinematics → detect_contacts → control → dynamics → build_rows
+//!   → solve_and_resolve: solve → [predict contact gaps | refresh velocity products
+//!      | add overshooting limit rows → solve]* → internal_forces → integrate → check_result
 //! ```
 //!
 //! `check_result` runs the kinematics and contact detection of the new state, judges it
@@ -20,14 +20,14 @@ use hagfish_solver::SolveStatus;
 use hagfish_tree::{Model, State};
 
 use crate::acceptance::EndOfStep;
-use crate::backend::{self, Reuse};
+use crate::backend;
 use crate::error::SimError;
 pub use crate::internal_forces::internal_forces;
 use crate::options::StepOptions;
 use crate::report::{StageTimings, StepReport};
 use crate::rows::{
     add_head_rows, add_limit_rows, add_overshooting_limit_rows, add_self_contact_rows,
-    add_thigmo_rows, add_wall_rows,
+    add_thigmo_rows, add_wall_rows, overshoots_limit,
 };
 use crate::step_data::StepData;
 
@@ -122,29 +122,34 @@ pub fn build_rows(model: &Model, options: &StepOptions, state: &State, data: &mu
     );
 }
 
-/// Stage 6: `min ½q̇ᵀM̃q̇ − q̇ᵀf̃` subject to the rows; the path (Cholesky, KKT, QP) follows
-/// from the rows present; `M̃` is the options' backend's.
+/// Stage 6, one solve: `min ½q̇ᵀM̃q̇ − q̇ᵀf̃` subject to the rows; the path (Cholesky, KKT, QP)
+/// follows from the rows present; `M̃` is the options' backend's. The step runs it with its
+/// re-solves ([`solve_and_resolve`]).
 pub fn solve_velocities(data: &mut StepData) -> Result<(), hagfish_solver::SolverError> {
-    backend::solve(data, Reuse::Nothing)
+    let StepData { tree, tree_factor, rows, solver, report, .. } = data;
+    let mass = backend::mass(&tree.effective_mass, tree_factor)?;
+    report.solve = *solver.factor(mass, rows)?.solve(&tree.effective_momentum, rows.rhs())?;
+    Ok(())
 }
 
-/// Optional stage 6b: re-evaluates the velocity-product (Coriolis, centrifugal, gyroscopic)
-/// force at the velocity just solved for and re-forms `f̃ = M q̇⁰ + h f_r` (the momentum `M q̇⁰`
-/// and `M̃` are kept), so that the next solve treats it implicitly (a fixed-point iteration).
-/// Applied forces are kept; positions are unchanged, so the rows stay valid, and so are the
-/// frames and axes of stage 1 in `data`: only the twists and velocity-product accelerations
-/// are formed again.
-pub fn refresh_velocity_products(
+/// Part of stage 6: re-evaluates the velocity-product (Coriolis, centrifugal, gyroscopic)
+/// force at the velocity `solved` just solved for and re-forms `f̃ = M q̇⁰ + h f_r` in `tree`
+/// (the momentum `M q̇⁰` and `M̃` are kept), so that the next solve treats it implicitly (a
+/// fixed-point iteration). Applied forces are kept; positions are unchanged, so the rows stay
+/// valid, and so are the frames and axes of stage 1: only the twists and velocity-product
+/// accelerations are formed again (at `guess`, a copy of `solved`).
+fn refresh_velocity_products(
     model: &Model,
     options: &StepOptions,
     state: &State,
-    data: &mut StepData,
+    solved: &[f64],
+    guess: &mut [f64],
+    tree: &mut hagfish_tree::Data,
 ) {
-    let guess = data.solver.velocity();
-    data.velocity_guess.copy_from_slice(guess);
-    hagfish_tree::velocity_kinematics(model, &data.velocity_guess, &mut data.tree);
-    hagfish_tree::generalized_force(model, &state.q, &mut data.tree);
-    hagfish_tree::assemble_effective_momentum(&mut data.tree, options.time_step);
+    guess.copy_from_slice(solved);
+    hagfish_tree::velocity_kinematics(model, guess, tree);
+    hagfish_tree::generalized_force(model, &state.q, tree);
+    hagfish_tree::assemble_effective_momentum(tree, options.time_step);
 }
 
 /// Runs one whole step and advances `state` (see the module docs for the stages). On error the
@@ -259,66 +264,99 @@ fn max_or_nan(values: impl Iterator<Item = f64>) -> f64 {
     values.fold(0.0, |worst, v| if v.is_nan() || worst.is_nan() { f64::NAN } else { worst.max(v) })
 }
 
-/// Optional stage 6c: predicts every self-contact gap at the end of the step, `q + h q̇`, and
-/// raises the bound of each row whose gap would end below its target (`contact_prediction.rs`;
-/// off when [`StepOptions::contact_prediction`] is `None`). Returns how many bounds were raised;
-/// only right-hand sides change, so the next solve keeps M̃'s factor and the contact-space
-/// matrices.
-pub fn predict_contact_gaps(
-    model: &Model,
-    options: &StepOptions,
-    state: &State,
-    data: &mut StepData,
-) -> usize {
-    let raised = data.predictor.tighten_contact_rows(
-        model,
-        options,
-        state,
-        data.solver.velocity(),
-        &data.self_contacts,
-        &mut data.rows,
-    );
-    data.report.predicted_contact_rows += raised;
-    raised
-}
-
 /// Stage 6 with its re-solves: solve; then, while something changed (a velocity-product
 /// refresh is due, a contact gap is predicted to end below its target — checked after the
 /// first solve only —, or a joint would overshoot a limit without a row), solve again, at most
-/// `MAX_RESOLVES` (4) more times. If raised contact bounds leave the last solve without a
-/// solution, the bounds are restored and the step solved once more.
+/// `MAX_RESOLVES` (4) more times. Re-solves where only f̃ or the bounds changed keep the
+/// factor of M̃ and the contact-space matrices (one [`hagfish_solver::Factored`] handle);
+/// limit rows added for overshooting joints start a new one. If raised contact bounds leave
+/// the last solve without a solution, the step is solved once more with the first-order
+/// bounds (the rows' own right-hand sides, which the prediction never changes).
 pub fn solve_and_resolve(
     model: &Model,
     options: &StepOptions,
     state: &State,
     data: &mut StepData,
 ) -> Result<(), hagfish_solver::SolverError> {
-    solve_velocities(data)?;
-    for round in 0..MAX_RESOLVES {
-        let refreshed = round < options.velocity_product_iterations;
-        // After the first solve only: repeated, the prediction can feed on its own faster
-        // velocities (docs/physics.md).
-        let raised = if round == 0 { predict_contact_gaps(model, options, state, data) } else { 0 };
-        if refreshed {
-            refresh_velocity_products(model, options, state, data);
+    // M̃ leaves the tree's data while a factor borrows it, so that the velocity-product
+    // refresh can write the rest of that data between solves (two buffer swaps, no copy).
+    std::mem::swap(&mut data.tree.effective_mass, &mut data.effective_mass);
+    let solved = solve_with_resolves(model, options, state, data);
+    std::mem::swap(&mut data.tree.effective_mass, &mut data.effective_mass);
+    solved
+}
+
+/// [`solve_and_resolve`] with M̃ in `data.effective_mass`.
+fn solve_with_resolves(
+    model: &Model,
+    options: &StepOptions,
+    state: &State,
+    data: &mut StepData,
+) -> Result<(), hagfish_solver::SolverError> {
+    let StepData {
+        tree,
+        effective_mass,
+        tree_factor,
+        rows,
+        bounds,
+        solver,
+        predictor,
+        velocity_guess,
+        self_contacts,
+        report,
+        ..
+    } = data;
+    let (h, margin, push_out) = (options.time_step, options.limit_margin, options.push_out);
+    bounds.clear();
+    bounds.extend_from_slice(rows.rhs());
+    let mut round = 0;
+    loop {
+        let mass = backend::mass(effective_mass, tree_factor)?;
+        let mut factored = solver.factor(mass, rows)?;
+        report.solve = *factored.solve(&tree.effective_momentum, bounds)?;
+        let mut overshooting = false;
+        while round < MAX_RESOLVES {
+            let refreshed = round < options.velocity_product_iterations;
+            let velocity = factored.workspace().velocity();
+            // After the first solve only: repeated, the prediction can feed on its own faster
+            // velocities (docs/physics.md).
+            let raised = if round == 0 {
+                predictor.tighten_contact_bounds(
+                    model,
+                    options,
+                    state,
+                    velocity,
+                    self_contacts,
+                    factored.rows(),
+                    bounds,
+                )
+            } else {
+                0
+            };
+            report.predicted_contact_rows += raised;
+            if refreshed {
+                refresh_velocity_products(model, options, state, velocity, velocity_guess, tree);
+            }
+            round += 1;
+            overshooting = overshoots_limit(model, state, velocity, h, margin);
+            if overshooting || !(refreshed || raised > 0) {
+                break;
+            }
+            // Only f̃ or bounds changed: the factor of M̃ and the contact-space matrices stay.
+            report.solve = *factored.solve(&tree.effective_momentum, bounds)?;
         }
-        let velocity = data.solver.velocity();
-        let h = options.time_step;
-        let rows = &mut data.rows;
-        let (margin, push_out) = (options.limit_margin, options.push_out);
-        let added = add_overshooting_limit_rows(model, state, velocity, h, margin, push_out, rows);
-        match (refreshed || raised > 0, added) {
-            (false, 0) => break,
-            // Only f̃ or bounds changed: keep the factor of M̃ and the contact-space matrices.
-            (true, 0) => backend::solve(data, Reuse::MassAndRows)?,
-            _ => solve_velocities(data)?,
+        if !overshooting {
+            break;
         }
+        let first_new = rows.len();
+        add_overshooting_limit_rows(model, state, solver.velocity(), h, margin, push_out, rows);
+        bounds.extend_from_slice(&rows.rhs()[first_new..]);
     }
-    if data.report.predicted_contact_rows > 0 && !data.report.solve.status.is_solved() {
+    if report.predicted_contact_rows > 0 && !report.solve.status.is_solved() {
         // The raised bounds left no solution: solve with the first-order bounds instead.
-        data.predictor.restore_bounds(&mut data.rows);
-        data.report.predicted_contact_rows = 0;
-        solve_velocities(data)?;
+        report.predicted_contact_rows = 0;
+        let mass = backend::mass(effective_mass, tree_factor)?;
+        report.solve = *solver.factor(mass, rows)?.solve(&tree.effective_momentum, rows.rhs())?;
     }
     Ok(())
 }

@@ -424,7 +424,7 @@ impl FrameSink for Recorder {
         }
         self.q.append(&frame.state.q)?;
         self.qdot.append(&frame.state.qdot)?;
-        let thigmo = RECORDED_GROUPS.iter().position(|g| *g == hagfish_solver::RowGroup::Thigmo);
+        let thigmo = RECORDED_GROUPS.iter().position(|g| *g == crate::rows::RowGroup::Thigmo);
         self.thigmo.append(thigmo.map_or(&[][..], |g| &frame.forces.values[g]))?;
         let loads: Vec<f64> = frame.internal.iter().flat_map(load_values).collect();
         self.internal_npy.append(&loads)

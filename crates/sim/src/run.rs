@@ -5,10 +5,10 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
+use crate::rows::RowGroup;
 use glam::DVec3;
 use hagfish_control::{KnotObservation, KnotSpan, PhasedController};
 use hagfish_knots::{KnotAnalyser, KnotOptions, KnotReport};
-use hagfish_solver::RowGroup;
 use hagfish_tree::State;
 
 use crate::checkpoint::{CHECKPOINT_FILE, CHECKPOINT_FORMAT, Checkpoint, ExactF64s};

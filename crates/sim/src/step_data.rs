@@ -1,12 +1,13 @@
 //! Everything a step derives or needs as scratch, allocated once per world.
 
+use faer::Mat;
 use glam::DVec3;
 use hagfish_control::Actuation;
 use hagfish_geometry::{
     Centreline, ContactDetector, DetectionReport, PAIRS_PER_BODY, SelfContact, Wall, WallContact,
     WallOptions,
 };
-use hagfish_solver::{RowGroup, Rows, SolverWorkspace};
+use hagfish_solver::{Rows, SolverWorkspace};
 use hagfish_sparse::TreeFactor;
 use hagfish_tree::{Data, Model, State, position_kinematics};
 
@@ -17,6 +18,7 @@ use crate::internal_forces::InternalForces;
 use crate::memory::check_memory;
 use crate::options::StepOptions;
 use crate::report::StepReport;
+use crate::rows::RowGroup;
 
 /// Rows (and solver buffers) reserved per DOF on the dense backend: 2n rows cover the head,
 /// every limit and more than twice the self contacts of the tightest knots measured (≈ 45), so
@@ -67,6 +69,12 @@ pub struct StepData {
     pub(crate) radii: Vec<f64>,
     pub(crate) lengths: Vec<f64>,
     pub(crate) velocity_guess: Vec<f64>,
+    /// The dense `M̃` while stage 6 solves with it (`solve_and_resolve` swaps it out of `tree`
+    /// and back); an empty matrix otherwise.
+    pub(crate) effective_mass: Mat<f64>,
+    /// The right-hand sides of stage 6's solves: the rows' own, raised where the contact
+    /// prediction asks for more.
+    pub(crate) bounds: Vec<f64>,
     pub(crate) predictor: ContactPredictor,
     pub(crate) next: NextContacts,
 }
@@ -156,6 +164,8 @@ impl StepData {
             radii,
             lengths,
             velocity_guess: vec![0.0; model.dof_count()],
+            effective_mass: Mat::zeros(0, 0),
+            bounds: Vec::with_capacity(reserve),
             predictor,
             next,
         })
@@ -173,7 +183,7 @@ impl StepData {
     /// The generalized force of a row group over the last step, `C_gᵀλ_g / h` (dyn·cm per
     /// rotational DOF), written into `out` (length n).
     pub fn group_force(&self, group: RowGroup, time_step: f64, out: &mut [f64]) {
-        for (f, impulse) in out.iter_mut().zip(self.solver.group_impulse(group)) {
+        for (f, impulse) in out.iter_mut().zip(self.solver.tag_impulse(group.tag())) {
             *f = impulse / time_step;
         }
     }

@@ -7,8 +7,9 @@ mod common;
 use common::SweepingTailForce;
 use glam::DVec3;
 use hagfish_control::{Actuation, ControlContext, Controller, Passive, PointForce};
+use hagfish_sim::rows::RowGroup;
 use hagfish_sim::{StepOptions, World};
-use hagfish_solver::{RowGroup, SolvePath};
+use hagfish_solver::SolvePath;
 use hagfish_tree::{BodySpec, Data, DofParams, JointKind, Model, ModelBuilder, State, Transform};
 
 fn hagfish() -> Model {
@@ -40,8 +41,8 @@ fn head_limits_and_wall_hold_under_a_sweeping_tail_force() {
     let head_rest = world.data().tree.body_frames[0].transform_point(head_point);
     for _ in 0..1000 {
         let report = *world.step(&mut force).expect("step succeeds");
-        limit_rows = limit_rows.max(report.solve.rows_per_group[RowGroup::Limit.index()]);
-        wall_rows = wall_rows.max(report.solve.rows_per_group[RowGroup::Wall.index()]);
+        limit_rows = limit_rows.max(report.solve.rows_per_tag[RowGroup::Limit.tag()]);
+        wall_rows = wall_rows.max(report.solve.rows_per_tag[RowGroup::Wall.tag()]);
         qp_steps += usize::from(report.solve.path == SolvePath::Qp);
         let frames = &world.data().tree.body_frames;
         head_error = head_error.max((frames[0].transform_point(head_point) - head_rest).length());
@@ -107,8 +108,9 @@ fn upper_limit_row_stops_the_joint_and_pushes_back() {
     for _ in 0..20 {
         world.step(&mut push).expect("step");
         let data = world.data();
-        let limit_rows: Vec<usize> =
-            (0..data.rows.len()).filter(|&i| data.rows.groups()[i] == RowGroup::Limit).collect();
+        let limit_rows: Vec<usize> = (0..data.rows.len())
+            .filter(|&i| data.rows.sources()[i].tag == RowGroup::Limit.tag())
+            .collect();
         assert_eq!(limit_rows.len(), 1, "exactly the upper row of joint 1");
         let lambda = data.solver.multipliers()[limit_rows[0]];
         assert!(lambda > 0.0, "λ = {lambda}");
@@ -128,8 +130,9 @@ fn lower_limit_row_stops_the_joint() {
     let mut world = World::new(model, options_without_contacts(), state).expect("world");
     world.step(&mut Passive).expect("step");
     let data = world.data();
-    let row =
-        (0..data.rows.len()).find(|&i| data.rows.groups()[i] == RowGroup::Limit).expect("row");
+    let row = (0..data.rows.len())
+        .find(|&i| data.rows.sources()[i].tag == RowGroup::Limit.tag())
+        .expect("row");
     assert_eq!(data.rows.coefficients(row).expect("row")[1], 1.0);
     assert!(data.solver.multipliers()[row] > 0.0);
     assert!(
@@ -157,7 +160,9 @@ fn wall_row_stops_a_body_pushed_into_the_wall() {
     for _ in 0..100 {
         world.step(&mut push).expect("step");
         let data = world.data();
-        for i in (0..data.rows.len()).filter(|&i| data.rows.groups()[i] == RowGroup::Wall) {
+        for i in
+            (0..data.rows.len()).filter(|&i| data.rows.sources()[i].tag == RowGroup::Wall.tag())
+        {
             let lambda = data.solver.multipliers()[i];
             assert!(lambda >= 0.0);
             saw_wall |= lambda > 0.0;

@@ -10,8 +10,9 @@ mod common;
 
 use common::SweepingTailForce;
 use hagfish_control::{Controller, WaterDrag};
+use hagfish_sim::rows::RowGroup;
 use hagfish_sim::{DynamicsBackend, LoadedScenario, StepOptions, World};
-use hagfish_solver::{RowGroup, SolvePath};
+use hagfish_solver::SolvePath;
 use hagfish_tree::{Model, State};
 
 fn relative_error(a: &[f64], b: &[f64]) -> f64 {
@@ -50,12 +51,13 @@ fn compare_one_step(
         worlds.push(world);
     }
     let (dense, sparse) = (worlds[0].data(), worlds[1].data());
-    let (path, rows) = (dense.report.solve.path, dense.report.solve.rows_per_group);
+    let (path, rows) =
+        (dense.report.solve.path, RowGroup::values(&dense.report.solve.rows_per_tag));
     assert_eq!(path, sparse.report.solve.path, "same solve path");
     let (qdot, lambda) = (&worlds[1].state().qdot, sparse.solver.multipliers());
     let velocity_error = relative_error(qdot, &worlds[0].state().qdot);
     assert!(velocity_error < tolerance, "q̇¹ differs by {velocity_error:e} (relative)");
-    let sparse_rows = sparse.report.solve.rows_per_group;
+    let sparse_rows = RowGroup::values(&sparse.report.solve.rows_per_tag);
     if rows == sparse_rows {
         if !lambda.is_empty() {
             // λ is as sensitive to rounding as W = C M̃⁻¹Cᵀ is ill-conditioned, and cond(W) ≤
@@ -73,7 +75,7 @@ fn compare_one_step(
         // A joint whose first-solve velocity lands on its limit to rounding gets an
         // overshoot row on one backend only; such a row is inactive (q̇¹ agrees above).
         for group in [RowGroup::Head, RowGroup::Wall, RowGroup::Contact, RowGroup::Thigmo] {
-            assert_eq!(rows[group.index()], sparse_rows[group.index()], "{group:?} rows");
+            assert_eq!(rows[group as usize], sparse_rows[group as usize], "{group:?} rows");
         }
     }
     // Backward error of the sparse answer in the dense system: the dense M̃; f̃, rows and λ of
@@ -108,7 +110,7 @@ fn sparse_steps_like_dense_with_head_limit_wall_and_contact_rows() {
     let mut make = || -> Box<dyn Controller> { Box::new(SweepingTailForce(20.0)) };
     let (path, rows) = compare_one_step(&model, &options, &state, 1e-9, &mut make);
     assert_eq!(path, SolvePath::Kkt, "a free bent chain has only the head rows");
-    assert!(rows[RowGroup::Head.index()] > 0);
+    assert!(rows[RowGroup::Head as usize] > 0);
 
     // Drive the dense world for 10 s and compare a step from every 50th state.
     let mut world = World::new(model.clone(), options.clone(), state).expect("world");
@@ -118,9 +120,9 @@ fn sparse_steps_like_dense_with_head_limit_wall_and_contact_rows() {
         world.step(&mut force).expect("dense step");
         if step % 50 == 0 {
             let (_, rows) = compare_one_step(&model, &options, world.state(), 1e-9, &mut make);
-            limit_steps += usize::from(rows[RowGroup::Limit.index()] > 0);
-            wall_steps += usize::from(rows[RowGroup::Wall.index()] > 0);
-            contact_steps += usize::from(rows[RowGroup::Contact.index()] > 0);
+            limit_steps += usize::from(rows[RowGroup::Limit as usize] > 0);
+            wall_steps += usize::from(rows[RowGroup::Wall as usize] > 0);
+            contact_steps += usize::from(rows[RowGroup::Contact as usize] > 0);
         }
     }
     assert!(limit_steps > 0, "some compared step has limit rows");
@@ -138,7 +140,7 @@ fn sparse_steps_like_dense_in_the_knotted_state() {
     let (path, rows) = compare_one_step(&model, &options, world.state(), 1e-9, &mut make);
     println!("knotted benchmark state: rows per group {rows:?}");
     assert_eq!(path, SolvePath::Qp);
-    assert!(rows[RowGroup::Contact.index()] > 20, "knotted: self contacts, got {rows:?}");
+    assert!(rows[RowGroup::Contact as usize] > 20, "knotted: self contacts, got {rows:?}");
 }
 
 #[test]
@@ -188,7 +190,7 @@ fn a_thousand_body_chain_steps_stably_on_the_sparse_backend() {
     for _ in 0..200 {
         let report = *world.step(&mut drag).expect("sparse step");
         assert!(report.solve.status.is_solved());
-        head_rows = head_rows.max(report.solve.rows_per_group[RowGroup::Head.index()]);
+        head_rows = head_rows.max(report.solve.rows_per_tag[RowGroup::Head.tag()]);
         let state = world.state();
         assert!(state.q.iter().chain(&state.qdot).all(|v| v.is_finite()));
         fastest = fastest.max(state.qdot.iter().fold(0.0f64, |m, v| m.max(v.abs())));

@@ -16,8 +16,8 @@ use hagfish_control::{
     Actuation, ControlContext, Controller, KnotSpan, SlidingTargets, ThigmoParameters,
 };
 use hagfish_knots::KnotType;
+use hagfish_sim::rows::RowGroup;
 use hagfish_sim::{Frame, FrameSink, LoadedScenario, RunOptions, RunSummary, SimError};
-use hagfish_solver::RowGroup;
 use hagfish_tree::{Data, Model, position_kinematics};
 
 /// Relative changes of the time step: the scenario as written, then seven rounding-level
@@ -291,8 +291,8 @@ fn thigmo_rows_reach_their_speeds_with_nonnegative_multipliers() {
         let data = world.data();
         let (qdot, lambda) = (data.solver.velocity(), data.solver.multipliers());
         let mut thigmo_rows = 0;
-        for (i, group) in data.rows.groups().iter().enumerate() {
-            if *group != RowGroup::Thigmo {
+        for (i, source) in data.rows.sources().iter().enumerate() {
+            if source.tag != RowGroup::Thigmo.tag() {
                 continue;
             }
             thigmo_rows += 1;

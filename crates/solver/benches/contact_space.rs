@@ -14,8 +14,8 @@ use common::{Rng, chain_mass, random_row};
 use criterion::{Criterion, criterion_group, criterion_main};
 use faer::Mat;
 use hagfish_solver::{
-    Problem, QpBackend, RowGroup, RowKind, Rows, SolveStatus, SolverOptions, SolverWorkspace,
-    WarmStart,
+    Problem, QpBackend, RowKind, RowSource, RowTag, Rows, SolveStatus, SolverOptions,
+    SolverWorkspace, WarmStart,
 };
 
 const DOFS: usize = 150;
@@ -35,7 +35,7 @@ fn hagfish_step() -> (Mat<f64>, Vec<f64>, Rows) {
         (0..DOFS).map(|i| (0..DOFS).map(|j| mass[(i, j)] * free[j]).sum()).collect();
     let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
     let mut rows = Rows::with_capacity(DOFS, INEQUALITIES + 1);
-    rows.push_zeroed(RowKind::Equality, RowGroup::Head, target[0])[0] = 1.0;
+    rows.push_zeroed(RowKind::Equality, RowSource::new(RowTag::new(0), 0), target[0])[0] = 1.0;
     for k in 0..INEQUALITIES {
         let mut row = random_row(&mut rng, DOFS);
         if k < PUSHING && dot(&row, &free) > dot(&row, &target) {
@@ -47,8 +47,8 @@ fn hagfish_step() -> (Mat<f64>, Vec<f64>, Rows) {
         } else {
             at_free.min(at_target) - (0.1 + 0.9 * rng.uniform()) * dot(&row, &row).sqrt()
         };
-        let group = [RowGroup::Limit, RowGroup::Wall, RowGroup::Contact][k % 3];
-        if rows.push(RowKind::Inequality, group, rhs, &row).is_err() {
+        let source = RowSource::new(RowTag::new(1), k);
+        if rows.push(RowKind::Inequality, source, rhs, &row).is_err() {
             unreachable!("rows have n entries");
         }
     }
@@ -67,7 +67,7 @@ fn bench(c: &mut Criterion) {
     // One solve up front to report the shape of the answer.
     let mut probe = workspace(QpBackend::ContactSpace, WarmStart::Cold);
     if let Ok(report) = probe.solve(&problem) {
-        let active: usize = report.active_per_group.iter().sum();
+        let active: usize = report.active_per_tag.iter().map(|(_, n)| n).sum();
         println!(
             "n = {DOFS}, m = {}, active rows = {active}, {:?} in {} iterations, residual {:e}",
             rows.len(),

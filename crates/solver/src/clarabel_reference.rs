@@ -81,7 +81,7 @@ pub(crate) fn solve(
             aj.push(j);
             av.push(sign * c * scale[j]);
         }
-        b.push(sign * rows.rhs()[row]);
+        b.push(sign * problem.rhs()[row]);
         if let RowKind::SoftInequality { .. } = rows.kinds()[row] {
             let sigma = n + slack_rows.len();
             ai.push(constraint);
@@ -171,14 +171,14 @@ mod tests {
 
     use super::*;
     use crate::error::SolverError;
-    use crate::rows::{RowGroup, Rows};
+    use crate::rows::{RowSource, RowTag, Rows};
 
     #[test]
     fn a_pushing_row_gets_a_positive_multiplier() -> Result<(), SolverError> {
         // f̃ = −1 pushes toward negative velocity; the row q̇ ≥ 0 stops it: q̇ = 0, λ = 1.
         let mass = Mat::<f64>::identity(1, 1);
         let mut rows = Rows::new(1);
-        rows.push(RowKind::Inequality, RowGroup::Wall, 0.0, &[1.0])?;
+        rows.push(RowKind::Inequality, RowSource::new(RowTag::new(2), 0), 0.0, &[1.0])?;
         let problem = Problem::new(mass.as_ref(), &[-1.0], &rows)?;
         let (mut qdot, mut lambda) = ([9.0], [9.0]);
         let outcome = solve(&problem, &mut qdot, &mut lambda);
@@ -192,8 +192,8 @@ mod tests {
         // M̃ = 2, f̃ = 1, q̇ = 3 held: 2·3 = 1 + λ → λ = 5.
         let mass = Mat::<f64>::from_fn(1, 1, |_, _| 2.0);
         let mut rows = Rows::new(1);
-        rows.push(RowKind::Equality, RowGroup::Head, 3.0, &[1.0])?;
-        rows.push(RowKind::Inequality, RowGroup::Limit, -10.0, &[1.0])?;
+        rows.push(RowKind::Equality, RowSource::new(RowTag::new(0), 0), 3.0, &[1.0])?;
+        rows.push(RowKind::Inequality, RowSource::new(RowTag::new(1), 0), -10.0, &[1.0])?;
         let problem = Problem::new(mass.as_ref(), &[1.0], &rows)?;
         let (mut qdot, mut lambda) = ([0.0], [0.0; 2]);
         solve(&problem, &mut qdot, &mut lambda);

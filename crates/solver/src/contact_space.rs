@@ -139,7 +139,7 @@ impl ContactSpace {
     /// [`build`](Self::build).
     pub(crate) fn update_force(&mut self, factor: &dyn FactoredMass, problem: &Problem<'_>) {
         self.b.clear();
-        self.b.extend_from_slice(problem.rows().rhs());
+        self.b.extend_from_slice(problem.rhs());
         self.z.clear();
         self.z.extend_from_slice(problem.force());
         factor.solve_lower(column_mut(&mut self.z));
@@ -213,7 +213,7 @@ mod tests {
     use super::*;
     use crate::mass_factor::MassFactor;
     use crate::mass_factor::tests::{random_spd, relative_gap, stream};
-    use crate::rows::{RowGroup, RowKind, Rows};
+    use crate::rows::{RowKind, RowSource, RowTag, Rows};
 
     /// faer's lower Cholesky factor M̃ = LLᵀ: a factor that does not keep trailing zeros (the
     /// default path of [`FactoredMass::solve_lower_supported`]).
@@ -241,7 +241,8 @@ mod tests {
         let mut rows = Rows::new(n);
         for _ in 0..m {
             let end = ((next() + 1.0) * 0.5 * (n + 1) as f64) as usize % (n + 1);
-            let row = rows.push_zeroed(RowKind::Inequality, RowGroup::Contact, next());
+            let row =
+                rows.push_zeroed(RowKind::Inequality, RowSource::new(RowTag::new(3), 0), next());
             row[..end].iter_mut().for_each(|c| *c = next());
         }
         let problem = Problem::new(mass.as_ref(), &force, &rows).map_err(|e| e.to_string())?;

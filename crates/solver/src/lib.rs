@@ -13,8 +13,10 @@
 //!
 //! # Conventions
 //!
-//! - Row i: dense cᵢ ∈ ℝⁿ, right-hand side bᵢ, a [`RowKind`], a [`RowGroup`]
-//!   (`Head, Limit, Wall, Contact, Thigmo`; per-group arrays are `[T; RowGroup::COUNT]`).
+//! - Row i: dense cᵢ ∈ ℝⁿ, right-hand side bᵢ, a [`RowKind`] and a [`RowSource`]: the
+//!   caller's [`RowTag`] (what the row models, an opaque id the caller maps; reports count
+//!   rows and sum impulses per tag in [`PerTag`] arrays) and the caller's id of the object
+//!   that produced the row (which contact, which DOF). The solver interprets neither.
 //!   `Equality`: cᵢᵀq̇ = bᵢ. `Inequality`: cᵢᵀq̇ ≥ bᵢ. `SoftInequality { weight }`:
 //!   cᵢᵀq̇ + σᵢ ≥ bᵢ, σᵢ ≥ 0, cost weight·σᵢ — an exact penalty, equal to the hard solution
 //!   whenever that is feasible with λᵢ < weight; in the dual the box 0 ≤ λᵢ ≤ weight, and
@@ -44,16 +46,20 @@
 //!
 //! ```
 //! use faer::Mat;
-//! use hagfish_solver::{Problem, RowGroup, RowKind, Rows, SolveStatus, SolverWorkspace};
+//! use hagfish_solver::{
+//!     Problem, RowKind, RowSource, RowTag, Rows, SolveStatus, SolverWorkspace,
+//! };
 //!
-//! // One DOF pushed into a wall: f̃ = −1, row q̇ ≥ 0.
+//! // One DOF pushed into a wall: f̃ = −1, row q̇ ≥ 0, tagged with the caller's own kind.
+//! const WALL: RowTag = RowTag::new(0);
 //! let mass = Mat::<f64>::identity(1, 1);
 //! let mut rows = Rows::new(1);
-//! rows.push(RowKind::Inequality, RowGroup::Wall, 0.0, &[1.0])?;
+//! rows.push(RowKind::Inequality, RowSource::new(WALL, 0), 0.0, &[1.0])?;
 //! let problem = Problem::new(mass.as_ref(), &[-1.0], &rows)?;
 //! let mut workspace = SolverWorkspace::default();
 //! let report = workspace.solve(&problem)?;
 //! assert_eq!(report.status, SolveStatus::Solved);
+//! assert_eq!(report.active_per_tag[WALL], 1);
 //! assert!(workspace.velocity()[0].abs() < 1e-12);
 //! assert!(workspace.multipliers()[0] > 0.0);
 //! # Ok::<(), hagfish_solver::SolverError>(())
@@ -80,5 +86,5 @@ pub use mass_operator::{FactoredMass, Mass, MassOperator};
 pub use options::{QpBackend, SolverOptions, WarmStart};
 pub use problem::Problem;
 pub use report::{Residuals, SlackUsage, SolvePath, SolveReport, SolveStatus};
-pub use rows::{RowGroup, RowKind, Rows};
-pub use workspace::SolverWorkspace;
+pub use rows::{PerTag, RowKind, RowSource, RowTag, Rows};
+pub use workspace::{Factored, SolverWorkspace};

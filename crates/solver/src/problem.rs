@@ -22,12 +22,14 @@ use crate::rows::{RowKind, Rows};
 /// Relative tolerance of the symmetry check: |M̃ᵢⱼ − M̃ⱼᵢ| ≤ tol·(|M̃ᵢⱼ| + |M̃ⱼᵢ|) + tol·max|M̃ₖₖ|.
 const SYMMETRY_TOLERANCE: f64 = 1e-12;
 
-/// Borrowed, validated inputs of one velocity solve: M̃, f̃ and the rows.
+/// Borrowed, validated inputs of one velocity solve: M̃, f̃, the rows and their right-hand
+/// sides b (the rows' own, or new ones given to a [`Factored`](crate::Factored) solve).
 #[derive(Debug, Clone, Copy)]
 pub struct Problem<'a> {
     mass: Mass<'a>,
     force: &'a [f64],
     rows: &'a Rows,
+    rhs: &'a [f64],
 }
 
 impl<'a> Problem<'a> {
@@ -38,28 +40,7 @@ impl<'a> Problem<'a> {
         force: &'a [f64],
         rows: &'a Rows,
     ) -> Result<Self, SolverError> {
-        let problem = Self::with_validated_mass_and_rows(mass, force, rows)?;
-        check_mass(mass)?;
-        check_rows(rows)?;
-        Ok(problem)
-    }
-
-    /// The problem with a new f̃ for an M̃ and rows that a [`Problem::new`] has already
-    /// validated and that have not changed since (the velocity-product re-solve of a step):
-    /// checks only the sizes and f̃, saving the O(n²) check of M̃.
-    pub fn with_validated_mass_and_rows(
-        mass: MatRef<'a, f64>,
-        force: &'a [f64],
-        rows: &'a Rows,
-    ) -> Result<Self, SolverError> {
-        let n = force.len();
-        check_size("mass matrix rows", n, mass.nrows())?;
-        check_size("mass matrix columns", n, mass.ncols())?;
-        check_size("row coefficients", n, rows.dofs())?;
-        for (i, &value) in force.iter().enumerate() {
-            check_finite("force", i, 0, value)?;
-        }
-        Ok(Self { mass: Mass::Dense(mass), force, rows })
+        Self::with_mass(Mass::Dense(mass), rows)?.with_force_and_rhs(force, rows.rhs())
     }
 
     /// Validates and wraps an effective mass given as an operator with its own factor
@@ -71,14 +52,44 @@ impl<'a> Problem<'a> {
         force: &'a [f64],
         rows: &'a Rows,
     ) -> Result<Self, SolverError> {
-        let n = force.len();
-        check_size("mass operator", n, mass.dofs())?;
-        check_size("row coefficients", n, rows.dofs())?;
+        Self::with_mass(Mass::Operator(mass), rows)?.with_force_and_rhs(force, rows.rhs())
+    }
+
+    /// Validates M̃ (sizes, finiteness, symmetry of a dense one) and the rows' coefficients and
+    /// soft weights; f̃ and b are still empty (see [`Problem::with_force_and_rhs`]).
+    pub(crate) fn with_mass(mass: Mass<'a>, rows: &'a Rows) -> Result<Self, SolverError> {
+        let n = rows.dofs();
+        match mass {
+            Mass::Dense(matrix) => {
+                check_size("mass matrix rows", n, matrix.nrows())?;
+                check_size("mass matrix columns", n, matrix.ncols())?;
+                check_mass(matrix)?;
+            }
+            Mass::Operator(operator) => check_size("mass operator", n, operator.dofs())?,
+        }
+        check_rows(rows)?;
+        Ok(Self { mass, force: &[], rows, rhs: &[] })
+    }
+
+    /// The same M̃ and rows with f̃ = `force` (length n) and b = `rhs` (one per row), both
+    /// checked (sizes, finiteness).
+    pub(crate) fn with_force_and_rhs<'b>(
+        self,
+        force: &'b [f64],
+        rhs: &'b [f64],
+    ) -> Result<Problem<'b>, SolverError>
+    where
+        'a: 'b,
+    {
+        check_size("force", self.rows.dofs(), force.len())?;
+        check_size("row rhs", self.rows.len(), rhs.len())?;
         for (i, &value) in force.iter().enumerate() {
             check_finite("force", i, 0, value)?;
         }
-        check_rows(rows)?;
-        Ok(Self { mass: Mass::Operator(mass), force, rows })
+        for (i, &value) in rhs.iter().enumerate() {
+            check_finite("row rhs", i, 0, value)?;
+        }
+        Ok(Problem { mass: self.mass, force, rows: self.rows, rhs })
     }
 
     /// M̃: a dense matrix or an operator.
@@ -102,9 +113,15 @@ impl<'a> Problem<'a> {
         self.force
     }
 
-    /// The constraint rows.
+    /// The constraint rows (their coefficients, kinds and sources; the right-hand sides in
+    /// use are [`Problem::rhs`]).
     pub fn rows(&self) -> &'a Rows {
         self.rows
+    }
+
+    /// The right-hand sides b in use, one per row.
+    pub fn rhs(&self) -> &'a [f64] {
+        self.rhs
     }
 
     /// Number of DOFs n.
@@ -208,13 +225,13 @@ fn first_mass_error(mass: MatRef<'_, f64>, max_diagonal: f64) -> Result<(), Solv
     Ok(())
 }
 
-/// Finite coefficients and right-hand sides, valid soft weights. The coefficients are checked
-/// in one branch-free pass; only when it fails are they searched for the first offending entry.
+/// Finite coefficients, valid soft weights (the right-hand sides are checked with f̃). The
+/// coefficients are checked in one branch-free pass; only when it fails are they searched for
+/// the first offending entry.
 fn check_rows(rows: &Rows) -> Result<(), SolverError> {
     let finite = (0..rows.len()).all(|i| all_finite(rows.row(i)));
     let transposed = rows.transposed();
-    for (i, (&rhs, &kind)) in rows.rhs().iter().zip(rows.kinds()).enumerate() {
-        check_finite("row rhs", i, 0, rhs)?;
+    for (i, &kind) in rows.kinds().iter().enumerate() {
         if let RowKind::SoftInequality { weight } = kind
             && !(weight.is_finite() && weight > 0.0)
         {
@@ -234,13 +251,13 @@ mod tests {
     use faer::Mat;
 
     use super::*;
-    use crate::rows::RowGroup;
+    use crate::rows::{RowSource, RowTag};
 
     #[test]
     fn accepts_a_well_formed_problem() -> Result<(), SolverError> {
         let mass = Mat::<f64>::identity(2, 2);
         let mut rows = Rows::new(2);
-        rows.push(RowKind::Inequality, RowGroup::Wall, 0.0, &[1.0, 0.0])?;
+        rows.push(RowKind::Inequality, RowSource::new(RowTag::new(2), 0), 0.0, &[1.0, 0.0])?;
         let problem = Problem::new(mass.as_ref(), &[1.0, 2.0], &rows)?;
         assert_eq!(problem.dofs(), 2);
         assert_eq!(problem.rows().len(), 1);
@@ -252,6 +269,13 @@ mod tests {
         let mass = Mat::<f64>::identity(2, 2);
         let rows = Rows::new(2);
         let err = Problem::new(mass.as_ref(), &[1.0, 2.0, 3.0], &rows).err();
+        // n is the rows' number of DOFs; M̃ and f̃ are measured against it.
+        assert!(matches!(
+            err,
+            Some(SolverError::DimensionMismatch { what: "force", expected: 2, found: 3 })
+        ));
+        let rows3 = Rows::new(3);
+        let err = Problem::new(mass.as_ref(), &[1.0, 2.0], &rows3).err();
         assert!(matches!(
             err,
             Some(SolverError::DimensionMismatch {
@@ -259,12 +283,6 @@ mod tests {
                 expected: 3,
                 found: 2
             })
-        ));
-        let rows3 = Rows::new(3);
-        let err = Problem::new(mass.as_ref(), &[1.0, 2.0], &rows3).err();
-        assert!(matches!(
-            err,
-            Some(SolverError::DimensionMismatch { what: "row coefficients", .. })
         ));
     }
 
@@ -297,7 +315,7 @@ mod tests {
         ));
         let mass = Mat::<f64>::identity(2, 2);
         let mut rows = Rows::new(2);
-        rows.push(RowKind::Inequality, RowGroup::Contact, 0.0, &[1.0, f64::NAN])?;
+        rows.push(RowKind::Inequality, RowSource::new(RowTag::new(3), 0), 0.0, &[1.0, f64::NAN])?;
         let err = Problem::new(mass.as_ref(), &[0.0, 0.0], &rows).err();
         assert!(matches!(
             err,
@@ -327,7 +345,7 @@ mod tests {
         let mass = Mat::<f64>::identity(2, 2);
         let mut rows = Rows::new(2);
         let soft = RowKind::SoftInequality { weight: -1.0 };
-        rows.push(soft, RowGroup::Thigmo, 1.0, &[1.0, 0.0])?;
+        rows.push(soft, RowSource::new(RowTag::new(4), 0), 1.0, &[1.0, 0.0])?;
         let err = Problem::new(mass.as_ref(), &[0.0, 0.0], &rows).err();
         assert!(matches!(err, Some(SolverError::InvalidWeight { row: 0, .. })));
         Ok(())

@@ -6,7 +6,7 @@
 //! M̃q̇ = f̃ + Cᵀλ, Gq̇ = b_G, Cq̇ ≥ b_C, λ_C ≥ 0, λᵢ(cᵢᵀq̇ − bᵢ) = 0.
 
 use crate::options::QpBackend;
-use crate::rows::RowGroup;
+use crate::rows::PerTag;
 
 /// Which system was solved; chosen by the rows present.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -92,10 +92,10 @@ pub struct SolveReport {
     pub refinement_steps: usize,
     /// True when the active-set method started from the previous multipliers.
     pub warm_started: bool,
-    /// Number of rows per group, indexed by [`RowGroup::index`].
-    pub rows_per_group: [usize; RowGroup::COUNT],
-    /// Rows with a non-negligible multiplier (|λᵢ| > acceptance·(1 + ‖λ‖∞)) per group.
-    pub active_per_group: [usize; RowGroup::COUNT],
+    /// Number of rows per [`RowTag`](crate::RowTag).
+    pub rows_per_tag: PerTag<usize>,
+    /// Rows with a non-negligible multiplier (|λᵢ| > acceptance·(1 + ‖λ‖∞)) per tag.
+    pub active_per_tag: PerTag<usize>,
     /// KKT residuals at the answer.
     pub residuals: Residuals,
     /// Slack used by the soft rows.

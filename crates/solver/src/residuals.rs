@@ -12,7 +12,7 @@ use faer::{Accum, Par};
 use crate::linalg::{column, column_mut, dot_and_magnitude, norm_max};
 use crate::problem::Problem;
 use crate::report::{Residuals, SlackUsage};
-use crate::rows::{RowGroup, RowKind};
+use crate::rows::{PerTag, RowKind};
 
 /// vᵢ = cᵢᵀq̇ − bᵢ and its scale sᵢ = 1 + |bᵢ| + Σⱼ|cᵢⱼq̇ⱼ|, summed over the entries
 /// `..support` only: cᵢ must vanish from `support` on (n always does; the contact space
@@ -25,9 +25,8 @@ pub(crate) fn row_residual(
     qdot: &[f64],
     support: usize,
 ) -> (f64, f64) {
-    let rows = problem.rows();
-    let coefficients = rows.row(row);
-    let rhs = rows.rhs()[row];
+    let coefficients = problem.rows().row(row);
+    let rhs = problem.rhs()[row];
     let (product, magnitude) = dot_and_magnitude(coefficients, &qdot[..support]);
     (product - rhs, 1.0 + rhs.abs() + magnitude)
 }
@@ -103,7 +102,7 @@ impl Stationarity {
 pub(crate) struct Evaluation {
     pub(crate) residuals: Residuals,
     pub(crate) slack: SlackUsage,
-    pub(crate) active_per_group: [usize; RowGroup::COUNT],
+    pub(crate) active_per_tag: PerTag<usize>,
 }
 
 /// Evaluates an answer (q̇, λ) from λ, its stationarity residual (as
@@ -127,8 +126,8 @@ pub(crate) fn evaluate(
     let lambda_scale = 1.0 + norm_max(lambda);
     let rows = problem.rows();
     let mut worst = out.residuals.stationarity_relative;
-    let each_row = rows.kinds().iter().zip(rows.groups()).zip(row_residuals).zip(lambda);
-    for (((&kind, &group), &(v, s)), &l) in each_row {
+    let each_row = rows.kinds().iter().zip(rows.sources()).zip(row_residuals).zip(lambda);
+    for (((&kind, &source), &(v, s)), &l) in each_row {
         let (primal, dual, complementarity) = match kind {
             RowKind::Equality => (v.abs(), 0.0, 0.0),
             RowKind::Inequality => ((-v).max(0.0), (-l).max(0.0), (l * v).abs()),
@@ -151,7 +150,7 @@ pub(crate) fn evaluate(
             .max(dual / lambda_scale)
             .max(complementarity / (s * lambda_scale));
         if l.abs() > acceptance * lambda_scale {
-            out.active_per_group[group.index()] += 1;
+            out.active_per_tag[source.tag] += 1;
         }
     }
     out.residuals.worst_relative = worst;
@@ -166,7 +165,7 @@ mod tests {
     use super::*;
     use crate::error::SolverError;
     use crate::mass_factor::tests::stream;
-    use crate::rows::Rows;
+    use crate::rows::{RowSource, RowTag, Rows};
 
     proptest! {
         /// Summing a row over its support only gives its full residual and scale bit for bit.
@@ -177,7 +176,7 @@ mod tests {
             let (mut next, end) = (stream(seed), end.min(n));
             let qdot: Vec<f64> = (0..n).map(|_| 1e3 * next()).collect();
             let mut rows = Rows::new(n);
-            let row = rows.push_zeroed(RowKind::Inequality, RowGroup::Contact, next());
+            let row = rows.push_zeroed(RowKind::Inequality, RowSource::new(RowTag::new(3), 0), next());
             row[..end].iter_mut().for_each(|c| *c = next());
             let mass = Mat::<f64>::identity(n, n);
             let problem = Problem::new(mass.as_ref(), &qdot, &rows).map_err(|e| {
@@ -195,9 +194,9 @@ mod tests {
         // M̃ = I₂, f̃ = (−1, 0); rows: q̇₀ ≥ 0 (wall), q̇₁ + σ ≥ 2 (soft, weight 1).
         let mass = Mat::<f64>::identity(2, 2);
         let mut rows = Rows::new(2);
-        rows.push(RowKind::Inequality, RowGroup::Wall, 0.0, &[1.0, 0.0])?;
+        rows.push(RowKind::Inequality, RowSource::new(RowTag::new(2), 0), 0.0, &[1.0, 0.0])?;
         let soft = RowKind::SoftInequality { weight: 1.0 };
-        rows.push(soft, RowGroup::Thigmo, 2.0, &[0.0, 1.0])?;
+        rows.push(soft, RowSource::new(RowTag::new(4), 0), 2.0, &[0.0, 1.0])?;
         let problem = Problem::new(mass.as_ref(), &[-1.0, 0.0], &rows)?;
         // Exact answer: q̇ = (0, 1), λ = (1, 1), slack 1 on the soft row.
         let (mut a, mut b, mut rows) = ([0.0; 2], [0.0; 2], Vec::new());
@@ -209,7 +208,9 @@ mod tests {
         let exact = evaluate(&[0.0, 1.0], &[1.0, 1.0]);
         assert_eq!(exact.residuals.worst_relative, 0.0);
         assert_eq!(exact.slack, SlackUsage { count: 1, max: 1.0 });
-        assert_eq!(exact.active_per_group, [0, 0, 1, 0, 1]);
+        let active = exact.active_per_tag;
+        assert_eq!((active[RowTag::new(2)], active[RowTag::new(4)]), (1, 1));
+        assert_eq!(active.iter().map(|(_, n)| n).sum::<usize>(), 2);
         // Penetrating the wall (stationarity still exact).
         let wrong = evaluate(&[-0.5, 1.0], &[0.5, 1.0]);
         assert_eq!(wrong.residuals.primal, 0.5);

@@ -1,7 +1,7 @@
 //! Constraint rows: the generic container that the body-model row builders fill.
 //!
 //! Row i is a dense n-vector cᵢ over the reduced velocities q̇, a right-hand side bᵢ, a
-//! [`RowKind`] and a [`RowGroup`]:
+//! [`RowKind`] and a [`RowSource`] (the caller's [`RowTag`] and id, never interpreted here):
 //!
 //! | kind | constraint | multiplier λᵢ |
 //! |---|---|---|
@@ -46,32 +46,72 @@ impl RowKind {
     }
 }
 
-/// What a row models. Results (row counts, generalized impulses) are reported per group as
-/// `[T; RowGroup::COUNT]` arrays indexed by [`RowGroup::index`].
+/// The caller's label for what a row models (a joint limit, a wall, a contact, …): an opaque
+/// id below [`RowTag::COUNT`] that the caller maps to its own meaning. The solver never
+/// interprets it; reports count rows ([`PerTag`]) and sum impulses
+/// ([`SolverWorkspace::tag_impulse`](crate::SolverWorkspace::tag_impulse)) per tag.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum RowGroup {
-    /// Head fixation (bilateral rows on the root DOFs).
-    Head,
-    /// Joint limits.
-    Limit,
-    /// Wall contact.
-    Wall,
-    /// Self contact on the centreline.
-    Contact,
-    /// Thigmotaxic velocity targets.
-    Thigmo,
+pub struct RowTag(u8);
+
+impl RowTag {
+    /// Number of distinct tags, the length of every [`PerTag`] array.
+    pub const COUNT: usize = 16;
+
+    /// The tag `id`, `id` < [`RowTag::COUNT`].
+    ///
+    /// # Panics
+    /// When `id` ≥ [`RowTag::COUNT`]; in a `const` item that is a compile error, so define
+    /// tags as constants (`const WALL: RowTag = RowTag::new(2);`).
+    pub const fn new(id: u8) -> Self {
+        assert!((id as usize) < Self::COUNT, "a row tag is below RowTag::COUNT");
+        Self(id)
+    }
+
+    /// Position of the tag in per-tag arrays (its id).
+    pub const fn index(self) -> usize {
+        self.0 as usize
+    }
 }
 
-impl RowGroup {
-    /// Number of groups, the length of every per-group array.
-    pub const COUNT: usize = 5;
-    /// All groups in index order.
-    pub const ALL: [RowGroup; RowGroup::COUNT] =
-        [RowGroup::Head, RowGroup::Limit, RowGroup::Wall, RowGroup::Contact, RowGroup::Thigmo];
+/// Where a row comes from: the caller's [`RowTag`] and the caller's id of the object that
+/// produced it (which contact, which DOF), so that a row and its multiplier can be traced back
+/// to their source without relying on row order (MuJoCo's `efc_type`/`efc_id`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct RowSource {
+    /// What the row models.
+    pub tag: RowTag,
+    /// The caller's index of the object the row constrains (a contact, a DOF, a body).
+    pub id: usize,
+}
 
-    /// Position of the group in per-group arrays (`ALL[g.index()] == g`).
-    pub const fn index(self) -> usize {
-        self as usize
+impl RowSource {
+    /// The source `id` of kind `tag`.
+    pub const fn new(tag: RowTag, id: usize) -> Self {
+        Self { tag, id }
+    }
+}
+
+/// One value per [`RowTag`] (row counts, active rows), indexed by the tag.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct PerTag<T>([T; RowTag::COUNT]);
+
+impl<T> PerTag<T> {
+    /// The values in tag order, with their tags.
+    pub fn iter(&self) -> impl Iterator<Item = (RowTag, &T)> {
+        (0..).map(RowTag).zip(&self.0)
+    }
+}
+
+impl<T> core::ops::Index<RowTag> for PerTag<T> {
+    type Output = T;
+    fn index(&self, tag: RowTag) -> &T {
+        &self.0[tag.index()]
+    }
+}
+
+impl<T> core::ops::IndexMut<RowTag> for PerTag<T> {
+    fn index_mut(&mut self, tag: RowTag) -> &mut T {
+        &mut self.0[tag.index()]
     }
 }
 
@@ -82,7 +122,7 @@ pub struct Rows {
     coefficients: Mat<f64>,
     rhs: Vec<f64>,
     kinds: Vec<RowKind>,
-    groups: Vec<RowGroup>,
+    sources: Vec<RowSource>,
 }
 
 impl Rows {
@@ -97,7 +137,7 @@ impl Rows {
             coefficients: Mat::zeros(dofs, capacity),
             rhs: Vec::with_capacity(capacity),
             kinds: Vec::with_capacity(capacity),
-            groups: Vec::with_capacity(capacity),
+            sources: Vec::with_capacity(capacity),
         }
     }
 
@@ -120,7 +160,7 @@ impl Rows {
     pub fn clear(&mut self) {
         self.rhs.clear();
         self.kinds.clear();
-        self.groups.clear();
+        self.sources.clear();
     }
 
     /// Removes all rows and switches to `dofs` velocities (reallocates only if n changes).
@@ -136,7 +176,7 @@ impl Rows {
     pub fn push(
         &mut self,
         kind: RowKind,
-        group: RowGroup,
+        source: RowSource,
         rhs: f64,
         coefficients: &[f64],
     ) -> Result<usize, SolverError> {
@@ -147,20 +187,20 @@ impl Rows {
                 found: coefficients.len(),
             });
         }
-        self.push_zeroed(kind, group, rhs).copy_from_slice(coefficients);
+        self.push_zeroed(kind, source, rhs).copy_from_slice(coefficients);
         Ok(self.len() - 1)
     }
 
     /// Appends a row with zero coefficients and returns them for the builder to fill in place
     /// (sparse rows such as a joint limit eₖ set one entry; no temporary vector needed).
-    pub fn push_zeroed(&mut self, kind: RowKind, group: RowGroup, rhs: f64) -> &mut [f64] {
+    pub fn push_zeroed(&mut self, kind: RowKind, source: RowSource, rhs: f64) -> &mut [f64] {
         let index = self.len();
         if index == self.coefficients.ncols() {
             self.grow();
         }
         self.rhs.push(rhs);
         self.kinds.push(kind);
-        self.groups.push(group);
+        self.sources.push(source);
         let column = self.coefficients.col_as_slice_mut(index);
         column.fill(0.0);
         column
@@ -192,9 +232,9 @@ impl Rows {
         &self.kinds
     }
 
-    /// Row groups (one per row).
-    pub fn groups(&self) -> &[RowGroup] {
-        &self.groups
+    /// Row sources (one per row): the caller's tag and id of each row.
+    pub fn sources(&self) -> &[RowSource] {
+        &self.sources
     }
 
     /// Cᵀ as an n × m view: column i is cᵢ.
@@ -202,11 +242,11 @@ impl Rows {
         self.coefficients.as_ref().subcols(0, self.len())
     }
 
-    /// Number of rows in each group, indexed by [`RowGroup::index`].
-    pub fn count_per_group(&self) -> [usize; RowGroup::COUNT] {
-        let mut counts = [0; RowGroup::COUNT];
-        for group in &self.groups {
-            counts[group.index()] += 1;
+    /// Number of rows with each tag.
+    pub fn count_per_tag(&self) -> PerTag<usize> {
+        let mut counts = PerTag::default();
+        for source in &self.sources {
+            counts[source.tag] += 1;
         }
         counts
     }
@@ -230,18 +270,23 @@ impl Rows {
 mod tests {
     use super::*;
 
+    const FIXED: RowTag = RowTag::new(0);
+    const BOUND: RowTag = RowTag::new(1);
+
     #[test]
     fn push_stores_rows_as_columns_of_c_transpose() -> Result<(), SolverError> {
         let mut rows = Rows::new(3);
-        rows.push(RowKind::Equality, RowGroup::Head, 1.0, &[1.0, 0.0, 0.0])?;
-        let limit = rows.push_zeroed(RowKind::Inequality, RowGroup::Limit, -2.0);
+        rows.push(RowKind::Equality, RowSource::new(FIXED, 7), 1.0, &[1.0, 0.0, 0.0])?;
+        let limit = rows.push_zeroed(RowKind::Inequality, RowSource::new(BOUND, 2), -2.0);
         limit[2] = -1.0;
         assert_eq!(rows.len(), 2);
         assert_eq!(rows.coefficients(1), Some(&[0.0, 0.0, -1.0][..]));
         assert_eq!(rows.coefficients(2), None);
         assert_eq!(rows.transposed()[(2, 1)], -1.0);
         assert_eq!(rows.rhs(), &[1.0, -2.0]);
-        assert_eq!(rows.count_per_group(), [1, 1, 0, 0, 0]);
+        assert_eq!(rows.sources()[0], RowSource::new(FIXED, 7));
+        let counts = rows.count_per_tag();
+        assert_eq!((counts[FIXED], counts[BOUND], counts[RowTag::new(5)]), (1, 1, 0));
         assert!(rows.has_inequalities());
         Ok(())
     }
@@ -249,7 +294,7 @@ mod tests {
     #[test]
     fn wrong_length_is_a_dimension_error() {
         let mut rows = Rows::new(3);
-        let result = rows.push(RowKind::Inequality, RowGroup::Wall, 0.0, &[1.0]);
+        let result = rows.push(RowKind::Inequality, RowSource::new(BOUND, 0), 0.0, &[1.0]);
         assert!(matches!(
             result,
             Err(SolverError::DimensionMismatch { expected: 3, found: 1, .. })
@@ -262,13 +307,13 @@ mod tests {
         let mut rows = Rows::new(2);
         for i in 0..20 {
             let value = f64::from(i);
-            rows.push(RowKind::Inequality, RowGroup::Contact, value, &[value, -value])?;
+            rows.push(RowKind::Inequality, RowSource::new(BOUND, 0), value, &[value, -value])?;
         }
         assert_eq!(rows.coefficients(13), Some(&[13.0, -13.0][..]));
         let capacity = rows.coefficients.ncols();
         rows.clear();
-        assert!(rows.is_empty() && !rows.has_inequalities());
-        rows.push_zeroed(RowKind::Equality, RowGroup::Head, 0.0);
+        assert!(rows.is_empty() && !rows.has_inequalities() && rows.sources().is_empty());
+        rows.push_zeroed(RowKind::Equality, RowSource::new(FIXED, 0), 0.0);
         assert_eq!(rows.coefficients.ncols(), capacity);
         assert_eq!(rows.coefficients(0), Some(&[0.0, 0.0][..]));
         rows.reset(4);
@@ -277,9 +322,18 @@ mod tests {
     }
 
     #[test]
-    fn group_indices_match_all() {
-        for (i, group) in RowGroup::ALL.iter().enumerate() {
-            assert_eq!(group.index(), i);
-        }
+    fn per_tag_values_are_indexed_by_their_tag() {
+        let mut values = PerTag::default();
+        values[RowTag::new(15)] = 3;
+        let tags: Vec<_> = values.iter().filter(|(_, v)| **v > 0).map(|(t, _)| t).collect();
+        assert_eq!(tags, [RowTag::new(15)]);
+        assert_eq!(values.iter().count(), RowTag::COUNT);
+    }
+
+    #[test]
+    #[should_panic(expected = "below RowTag::COUNT")]
+    fn a_tag_beyond_the_count_is_refused() {
+        let id = u8::try_from(RowTag::COUNT).unwrap_or(u8::MAX);
+        let _ = RowTag::new(id);
     }
 }

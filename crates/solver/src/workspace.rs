@@ -16,8 +16,8 @@
 //! when no inequality is active, and the KKT path with no rows is the unconstrained path, by
 //! construction.
 //!
-//! Output: q̇ (n), λ (m, in row order) and per-group generalized impulses C_gᵀλ_g (n each,
-//! g·cm²/s per rotational DOF). **Impulses, not forces**: the generalized force of a group
+//! Output: q̇ (n), λ (m, in row order) and per-tag generalized impulses C_gᵀλ_g (n each,
+//! g·cm²/s per rotational DOF). **Impulses, not forces**: the generalized force of a tag
 //! over the step is C_gᵀλ_g / h (dyn·cm per rotational DOF), which the caller forms with its h.
 //!
 //! M̃ comes as a dense matrix, factored here by Cholesky, or as an operator with its own
@@ -41,7 +41,7 @@ use crate::problem::Problem;
 use crate::refine::{FactoredSystem, Refined, Refinement};
 use crate::report::{SolvePath, SolveReport, SolveStatus};
 use crate::residuals::{Evaluation, Stationarity, evaluate, row_residuals};
-use crate::rows::RowGroup;
+use crate::rows::{RowTag, Rows};
 
 /// How often a refined answer may send a violated bound row back to the active-set method.
 const VERIFICATION_PASSES: usize = 4;
@@ -92,7 +92,7 @@ impl SolverWorkspace {
             refinement: Refinement::default(),
             velocity: Vec::new(),
             multipliers: Vec::new(),
-            impulses: Mat::zeros(0, RowGroup::COUNT),
+            impulses: Mat::zeros(0, RowTag::COUNT),
             residual: Vec::new(),
             work: Vec::new(),
             row_residuals: Vec::new(),
@@ -127,27 +127,22 @@ impl SolverWorkspace {
 
     /// Solves `problem`: minimise ½q̇ᵀM̃q̇ − q̇ᵀf̃ subject to its rows. The answer stays in the
     /// workspace (see [`velocity`](Self::velocity), [`multipliers`](Self::multipliers),
-    /// [`group_impulse`](Self::group_impulse)); how it went is the returned report. Errors
+    /// [`tag_impulse`](Self::tag_impulse)); how it went is the returned report. Errors
     /// only when M̃ is not positive definite (everything else was validated by `Problem`).
     pub fn solve(&mut self, problem: &Problem<'_>) -> Result<&SolveReport, SolverError> {
         self.solve_with(problem, Reuse::Nothing)
     }
 
-    /// Solves `problem` when only f̃ and the right-hand sides b changed since the last solve:
-    /// same M̃ (values) and the same row coefficients. The Cholesky factor of M̃ and the contact-space matrices Y = L⁻¹Cᵀ and W = YᵀY are
-    /// kept; only L⁻¹f̃ and the dual's linear term are recomputed, and the active set starts
-    /// from the last multipliers. Used to re-evaluate the velocity-product force at the new
-    /// velocity, or after tightening contact bounds. When the last solve was not on the
-    /// contact-space path or the sizes differ, this is a full [`solve`](Self::solve). The caller
-    /// guarantees that M̃ and the row coefficients are unchanged.
-    pub fn solve_with_new_force(
-        &mut self,
-        problem: &Problem<'_>,
-    ) -> Result<&SolveReport, SolverError> {
-        let same_shape = self.contact_space_ready
-            && problem.rows().len() == self.dual.rows()
-            && problem.dofs() == self.dual.dofs();
-        self.solve_with(problem, if same_shape { Reuse::MassAndRows } else { Reuse::Nothing })
+    /// Validates M̃ (`mass`) and the rows' coefficients once and returns a handle that solves
+    /// them with any f̃ and right-hand sides b, keeping the factor of M̃ and the contact-space
+    /// matrices Y = L⁻¹Cᵀ, W = YᵀY between its solves (see [`Factored`]).
+    pub fn factor<'a>(
+        &'a mut self,
+        mass: Mass<'a>,
+        rows: &'a Rows,
+    ) -> Result<Factored<'a>, SolverError> {
+        let problem = Problem::with_mass(mass, rows)?;
+        Ok(Factored { workspace: self, problem, solved: false })
     }
 
     fn solve_with(
@@ -155,6 +150,10 @@ impl SolverWorkspace {
         problem: &Problem<'_>,
         reuse: Reuse,
     ) -> Result<&SolveReport, SolverError> {
+        let same_shape = self.contact_space_ready
+            && problem.rows().len() == self.dual.rows()
+            && problem.dofs() == self.dual.dofs();
+        let reuse = if same_shape { reuse } else { Reuse::Nothing };
         let rows = problem.rows();
         let (n, m) = (problem.dofs(), rows.len());
         let path = match (m, rows.has_inequalities()) {
@@ -203,8 +202,8 @@ impl SolverWorkspace {
             iterations,
             refinement_steps: refined.steps,
             warm_started,
-            rows_per_group: rows.count_per_group(),
-            active_per_group: evaluation.active_per_group,
+            rows_per_tag: rows.count_per_tag(),
+            active_per_tag: evaluation.active_per_tag,
             residuals: evaluation.residuals,
             slack: evaluation.slack,
         };
@@ -229,10 +228,10 @@ impl SolverWorkspace {
         self.multipliers.extend_from_slice(lambda);
     }
 
-    /// C_gᵀλ_g of the last solve (n): the generalized impulse of `group`'s rows; divide by h
-    /// for the generalized force (dyn·cm per rotational DOF).
-    pub fn group_impulse(&self, group: RowGroup) -> &[f64] {
-        self.impulses.col_as_slice(group.index())
+    /// C_gᵀλ_g of the last solve (n): the generalized impulse of the rows tagged `tag`;
+    /// divide by h for the generalized force (dyn·cm per rotational DOF).
+    pub fn tag_impulse(&self, tag: RowTag) -> &[f64] {
+        self.impulses.col_as_slice(tag.index())
     }
 
     /// Report of the last solve.
@@ -329,14 +328,76 @@ impl SolverWorkspace {
         }
     }
 
-    /// impulse_g = Σ_{i in g} λᵢcᵢ for every group.
+    /// impulse_g = Σ_{i tagged g} λᵢcᵢ for every tag g.
     fn collect_impulses(&mut self, problem: &Problem<'_>) {
         let rows = problem.rows();
-        self.impulses.resize_with(problem.dofs(), RowGroup::COUNT, |_, _| 0.0);
+        self.impulses.resize_with(problem.dofs(), RowTag::COUNT, |_, _| 0.0);
         self.impulses.fill(0.0);
-        for (i, group) in rows.groups().iter().enumerate() {
-            axpy(self.multipliers[i], rows.row(i), self.impulses.col_as_slice_mut(group.index()));
+        for (i, source) in rows.sources().iter().enumerate() {
+            let impulse = self.impulses.col_as_slice_mut(source.tag.index());
+            axpy(self.multipliers[i], rows.row(i), impulse);
         }
+    }
+}
+
+/// One M̃ and one set of row coefficients, validated, solved with any f̃ and right-hand sides
+/// b: the first [`solve`](Self::solve) factors M̃ and forms Y = L⁻¹Cᵀ and W = YᵀY, later ones
+/// keep them and recompute only L⁻¹f̃ and the dual's linear term, starting the active set from
+/// the last multipliers (a velocity-product refresh or tightened bounds within one step).
+///
+/// The handle borrows the workspace, M̃ and the rows for as long as it lives, so a factor
+/// cannot be used with another M̃, other rows or changed coefficients: the compiler refuses.
+///
+/// ```compile_fail,E0502
+/// # use faer::Mat;
+/// # use hagfish_solver::{Mass, RowKind, RowSource, RowTag, Rows, SolverWorkspace};
+/// let mass = Mat::<f64>::identity(1, 1);
+/// let mut rows = Rows::new(1);
+/// let mut workspace = SolverWorkspace::default();
+/// let mut factored = workspace.factor(Mass::Dense(mass.as_ref()), &rows)?;
+/// rows.push(RowKind::Inequality, RowSource::new(RowTag::new(0), 0), 0.0, &[1.0])?;
+/// factored.solve(&[-1.0], &[0.0])?; // stale: the rows changed after the factor
+/// # Ok::<(), hagfish_solver::SolverError>(())
+/// ```
+///
+/// ```compile_fail,E0502
+/// # use faer::Mat;
+/// # use hagfish_solver::{Mass, Rows, SolverWorkspace};
+/// let mut mass = Mat::<f64>::identity(1, 1);
+/// let rows = Rows::new(1);
+/// let mut workspace = SolverWorkspace::default();
+/// let mut factored = workspace.factor(Mass::Dense(mass.as_ref()), &rows)?;
+/// mass[(0, 0)] = 2.0;
+/// factored.solve(&[-1.0], &[])?; // stale: M̃ changed after the factor
+/// # Ok::<(), hagfish_solver::SolverError>(())
+/// ```
+#[derive(Debug)]
+pub struct Factored<'a> {
+    workspace: &'a mut SolverWorkspace,
+    /// M̃ and the rows, validated; f̃ and b empty.
+    problem: Problem<'a>,
+    /// True after the first solve (which factors).
+    solved: bool,
+}
+
+impl Factored<'_> {
+    /// Solves with f̃ = `force` (length n) and b = `rhs` (one per row, in row order); errors
+    /// on a size mismatch or a non-finite value, or when M̃ is not positive definite.
+    pub fn solve(&mut self, force: &[f64], rhs: &[f64]) -> Result<&SolveReport, SolverError> {
+        let problem = self.problem.with_force_and_rhs(force, rhs)?;
+        let reuse = if self.solved { Reuse::MassAndRows } else { Reuse::Nothing };
+        self.solved = true;
+        self.workspace.solve_with(&problem, reuse)
+    }
+
+    /// The workspace, for the answer of the last solve (velocity, multipliers, impulses).
+    pub fn workspace(&self) -> &SolverWorkspace {
+        self.workspace
+    }
+
+    /// The rows this handle solves.
+    pub fn rows(&self) -> &Rows {
+        self.problem.rows()
     }
 }
 
@@ -346,7 +407,7 @@ mod tests {
 
     use super::*;
     use crate::mass_factor::tests::{random_spd, stream};
-    use crate::rows::{RowKind, Rows};
+    use crate::rows::{RowKind, RowSource, Rows};
 
     /// The report's residuals (whose stationarity comes from the refinement's last
     /// measurement) equal a fresh evaluation of the answer, with and without refinement.
@@ -356,7 +417,8 @@ mod tests {
         let force: Vec<f64> = (0..n).map(|_| 10.0 * next()).collect();
         let mut rows = Rows::new(n);
         for _ in 0..m {
-            let row = rows.push_zeroed(RowKind::Inequality, RowGroup::Contact, next());
+            let row =
+                rows.push_zeroed(RowKind::Inequality, RowSource::new(RowTag::new(0), 0), next());
             row.iter_mut().for_each(|c| *c = next());
         }
         let problem = Problem::new(mass.as_ref(), &force, &rows).expect("valid problem");

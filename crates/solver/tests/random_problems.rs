@@ -11,8 +11,8 @@ mod common;
 use common::{Rng, Scenario, Shape, random_mass, random_row, scenario};
 use faer::Mat;
 use hagfish_solver::{
-    Problem, QpBackend, RowGroup, RowKind, Rows, SolvePath, SolveReport, SolveStatus, SolverError,
-    SolverOptions, SolverWorkspace,
+    Mass, Problem, QpBackend, RowKind, RowSource, RowTag, Rows, SolvePath, SolveReport,
+    SolveStatus, SolverError, SolverOptions, SolverWorkspace,
 };
 use proptest::prelude::*;
 use proptest::test_runner::TestCaseError;
@@ -245,7 +245,7 @@ fn qp_equals_kkt(dofs: usize, equalities: usize, inactive: usize, seed: u64) -> 
             RowKind::SoftInequality { weight: 10.0 }
         };
         let rhs = dot(&row, &kkt_qdot) - margin;
-        s.rows.push(kind, RowGroup::Contact, rhs, &row).map_err(fail)?;
+        s.rows.push(kind, RowSource::new(RowTag::new(3), 0), rhs, &row).map_err(fail)?;
     }
     let (qp, qp_qdot, qp_lambda) = solve(&s, QpBackend::ContactSpace)?;
     prop_assert_eq!((qp.status, qp.path), (SolveStatus::Solved, SolvePath::Qp));
@@ -270,7 +270,8 @@ fn kkt_without_rows(dofs: usize, seed: u64) -> Outcome {
 
     let mut rows = Rows::new(dofs);
     let row = random_row(&mut rng, dofs);
-    rows.push(RowKind::Equality, RowGroup::Head, dot(&row, &free), &row).map_err(fail)?;
+    rows.push(RowKind::Equality, RowSource::new(RowTag::new(0), 0), dot(&row, &free), &row)
+        .map_err(fail)?;
     let s = Scenario { rows, ..s };
     let (report, qdot, lambda) = solve(&s, QpBackend::ContactSpace)?;
     prop_assert_eq!((report.status, report.path), (SolveStatus::Solved, SolvePath::Kkt));
@@ -296,8 +297,8 @@ fn warm_start(shape: Shape, seed: u64) -> Outcome {
     let mut moved = Rows::new(shape.dofs);
     for i in 0..s.rows.len() {
         let c = s.rows.coefficients(i).unwrap_or_default();
-        let (kind, group) = (s.rows.kinds()[i], s.rows.groups()[i]);
-        moved.push(kind, group, s.rows.rhs()[i] + dot(c, &shift), c).map_err(fail)?;
+        let (kind, source) = (s.rows.kinds()[i], s.rows.sources()[i]);
+        moved.push(kind, source, s.rows.rhs()[i] + dot(c, &shift), c).map_err(fail)?;
     }
     s.rows = moved;
     let (next, warm_qdot, _) = solve_in(&mut warm, &s)?;
@@ -373,18 +374,22 @@ proptest! {
     }
 }
 
-/// A second solve after only f̃ changed, reusing the factor of M̃ and the contact-space
-/// matrices, gives the same answer as a fresh solve of the changed problem.
+/// A second solve of a [`hagfish_solver::Factored`] handle after f̃ changed, reusing the factor
+/// of M̃ and the contact-space matrices, gives the same answer as a fresh solve of the changed
+/// problem.
 fn new_force_resolve_matches_fresh_solve(shape: Shape, seed: u64) -> Outcome {
     let mut s = generate(shape, seed);
     let mut rng = common::Rng::new(seed ^ 0x5eed);
-    let mut reused = workspace(QpBackend::ContactSpace);
-    solve_in(&mut reused, &s)?;
-    for f in s.force.iter_mut() {
+    let mut force = s.force.clone();
+    for f in force.iter_mut() {
         *f *= 1.0 + 0.2 * (rng.uniform() - 0.5);
     }
-    let problem = Problem::new(s.mass.as_ref(), &s.force, &s.rows).map_err(fail)?;
-    let report = *reused.solve_with_new_force(&problem).map_err(fail)?;
+    let mut reused = workspace(QpBackend::ContactSpace);
+    let mut factored = reused.factor(Mass::Dense(s.mass.as_ref()), &s.rows).map_err(fail)?;
+    factored.solve(&s.force, s.rows.rhs()).map_err(fail)?;
+    let report = *factored.solve(&force, s.rows.rhs()).map_err(fail)?;
+    prop_assert!(report.path != SolvePath::Qp || report.warm_started);
+    s.force = force;
     let (fresh_report, fresh, _) = solve(&s, QpBackend::ContactSpace)?;
     prop_assert_eq!(report.status, fresh_report.status);
     let difference: Vec<f64> = reused.velocity().iter().zip(&fresh).map(|(a, b)| a - b).collect();

@@ -5,9 +5,16 @@
 
 use faer::{Mat, mat};
 use hagfish_solver::{
-    Problem, QpBackend, RowGroup, RowKind, Rows, SolvePath, SolveReport, SolveStatus, SolverError,
-    SolverOptions, SolverWorkspace,
+    Problem, QpBackend, RowKind, RowSource, RowTag, Rows, SolvePath, SolveReport, SolveStatus,
+    SolverError, SolverOptions, SolverWorkspace,
 };
+
+/// The tests' own row kinds (the solver interprets none of them).
+const FIXED: RowTag = RowTag::new(0);
+const LIMIT: RowTag = RowTag::new(1);
+const WALL: RowTag = RowTag::new(2);
+const CONTACT: RowTag = RowTag::new(3);
+const TARGET: RowTag = RowTag::new(4);
 
 const BACKENDS: [QpBackend; 2] = [QpBackend::ContactSpace, QpBackend::Clarabel];
 
@@ -30,7 +37,7 @@ fn solve(
 fn body_pushed_into_the_wall_stops_with_positive_multiplier() -> Result<(), SolverError> {
     let mass = mat![[0.5]];
     let mut rows = Rows::new(1);
-    rows.push(RowKind::Inequality, RowGroup::Wall, 0.0, &[1.0])?;
+    rows.push(RowKind::Inequality, RowSource::new(WALL, 0), 0.0, &[1.0])?;
     for backend in BACKENDS {
         let (report, qdot, lambda, ws) = solve(&mass, &[-2.0], &rows, backend)?;
         assert!(report.status.is_solved(), "{backend:?}: {report:?}");
@@ -39,9 +46,10 @@ fn body_pushed_into_the_wall_stops_with_positive_multiplier() -> Result<(), Solv
             qdot[0].abs() < 1e-8 && (lambda[0] - 2.0).abs() < 1e-7,
             "{backend:?}: {qdot:?} {lambda:?}"
         );
-        assert!((ws.group_impulse(RowGroup::Wall)[0] - 2.0).abs() < 1e-7);
-        assert_eq!(ws.group_impulse(RowGroup::Contact), &[0.0]);
-        assert_eq!(report.active_per_group, [0, 0, 1, 0, 0]);
+        assert!((ws.tag_impulse(WALL)[0] - 2.0).abs() < 1e-7);
+        assert_eq!(ws.tag_impulse(CONTACT), &[0.0]);
+        assert_eq!(report.active_per_tag.iter().map(|(_, n)| n).sum::<usize>(), 1);
+        assert_eq!(report.active_per_tag[WALL], 1);
     }
     Ok(())
 }
@@ -52,7 +60,7 @@ fn body_pushed_into_the_wall_stops_with_positive_multiplier() -> Result<(), Solv
 fn upper_limit_row_is_hit_and_pushes_back() -> Result<(), SolverError> {
     let mass = Mat::<f64>::identity(2, 2);
     let mut rows = Rows::new(2);
-    rows.push_zeroed(RowKind::Inequality, RowGroup::Limit, -0.5)[0] = -1.0;
+    rows.push_zeroed(RowKind::Inequality, RowSource::new(LIMIT, 0), -0.5)[0] = -1.0;
     for backend in BACKENDS {
         let (report, qdot, lambda, ws) = solve(&mass, &[3.0, 1.0], &rows, backend)?;
         assert!(report.status.is_solved(), "{backend:?}: {report:?}");
@@ -61,7 +69,7 @@ fn upper_limit_row_is_hit_and_pushes_back() -> Result<(), SolverError> {
             "{backend:?}: {qdot:?}"
         );
         assert!((lambda[0] - 2.5).abs() < 1e-7, "{backend:?}: {lambda:?}");
-        let impulse = ws.group_impulse(RowGroup::Limit);
+        let impulse = ws.tag_impulse(LIMIT);
         assert!((impulse[0] + 2.5).abs() < 1e-7 && impulse[1] == 0.0);
     }
     Ok(())
@@ -77,8 +85,8 @@ fn conflicting_soft_rows_solve_with_reported_slack() -> Result<(), SolverError> 
     let mass = mat![[1.0]];
     let soft = RowKind::SoftInequality { weight: 10.0 };
     let mut rows = Rows::new(1);
-    rows.push(soft, RowGroup::Thigmo, 1.0, &[1.0])?;
-    rows.push(soft, RowGroup::Thigmo, 0.0, &[-1.0])?;
+    rows.push(soft, RowSource::new(TARGET, 0), 1.0, &[1.0])?;
+    rows.push(soft, RowSource::new(TARGET, 0), 0.0, &[-1.0])?;
     for (backend, tolerance) in [(QpBackend::ContactSpace, 1e-12), (QpBackend::Clarabel, 1e-5)] {
         let (report, qdot, lambda, _) = solve(&mass, &[0.0], &rows, backend)?;
         assert!(report.status.is_solved(), "{backend:?}: {report:?}");
@@ -99,8 +107,8 @@ fn conflicting_soft_rows_solve_with_reported_slack() -> Result<(), SolverError> 
 fn infeasible_hard_rows_report_infeasible() -> Result<(), SolverError> {
     let mass = mat![[1.0]];
     let mut rows = Rows::new(1);
-    rows.push(RowKind::Inequality, RowGroup::Limit, 1.0, &[1.0])?;
-    rows.push(RowKind::Inequality, RowGroup::Wall, 0.0, &[-1.0])?;
+    rows.push(RowKind::Inequality, RowSource::new(LIMIT, 0), 1.0, &[1.0])?;
+    rows.push(RowKind::Inequality, RowSource::new(WALL, 0), 0.0, &[-1.0])?;
     for backend in BACKENDS {
         let (report, qdot, lambda, _) = solve(&mass, &[0.3], &rows, backend)?;
         assert_eq!(report.status, SolveStatus::Infeasible, "{backend:?}: {report:?}");
@@ -116,8 +124,8 @@ fn zero_rows_are_ignored_or_infeasible() -> Result<(), SolverError> {
     let mass = Mat::<f64>::identity(2, 2);
     for (rhs, expected) in [(-1.0, SolveStatus::Solved), (1.0, SolveStatus::Infeasible)] {
         let mut rows = Rows::new(2);
-        rows.push(RowKind::Inequality, RowGroup::Contact, 0.0, &[1.0, 0.0])?;
-        rows.push_zeroed(RowKind::Inequality, RowGroup::Contact, rhs);
+        rows.push(RowKind::Inequality, RowSource::new(CONTACT, 0), 0.0, &[1.0, 0.0])?;
+        rows.push_zeroed(RowKind::Inequality, RowSource::new(CONTACT, 0), rhs);
         for backend in BACKENDS {
             let (report, qdot, lambda, _) = solve(&mass, &[1.0, -1.0], &rows, backend)?;
             assert_eq!(report.status, expected, "{backend:?} b = {rhs}: {report:?}");
@@ -132,8 +140,8 @@ fn zero_rows_are_ignored_or_infeasible() -> Result<(), SolverError> {
 fn contradicting_equalities_report_infeasible() -> Result<(), SolverError> {
     let mass = Mat::<f64>::identity(2, 2);
     let mut rows = Rows::new(2);
-    rows.push(RowKind::Equality, RowGroup::Head, 1.0, &[1.0, 0.0])?;
-    rows.push(RowKind::Equality, RowGroup::Head, 2.0, &[1.0, 0.0])?;
+    rows.push(RowKind::Equality, RowSource::new(FIXED, 0), 1.0, &[1.0, 0.0])?;
+    rows.push(RowKind::Equality, RowSource::new(FIXED, 0), 2.0, &[1.0, 0.0])?;
     let (report, _, _, _) = solve(&mass, &[0.0, 0.0], &rows, QpBackend::ContactSpace)?;
     assert_eq!((report.path, report.status), (SolvePath::Kkt, SolveStatus::Infeasible));
     Ok(())
@@ -144,14 +152,14 @@ fn contradicting_equalities_report_infeasible() -> Result<(), SolverError> {
 fn equality_multiplier_follows_the_crate_sign() -> Result<(), SolverError> {
     let mass = mat![[2.0]];
     let mut rows = Rows::new(1);
-    rows.push(RowKind::Equality, RowGroup::Head, 1.0, &[1.0])?;
+    rows.push(RowKind::Equality, RowSource::new(FIXED, 0), 1.0, &[1.0])?;
     let (report, qdot, lambda, ws) = solve(&mass, &[-1.0], &rows, QpBackend::ContactSpace)?;
     assert_eq!(
         (report.path, report.status, report.iterations),
         (SolvePath::Kkt, SolveStatus::Solved, 1)
     );
     assert!((qdot[0] - 1.0).abs() < 1e-14 && (lambda[0] - 3.0).abs() < 1e-14);
-    assert_eq!(ws.group_impulse(RowGroup::Head), lambda.as_slice());
+    assert_eq!(ws.tag_impulse(FIXED), lambda.as_slice());
     Ok(())
 }
 

@@ -6,7 +6,7 @@
 use faer::MatMut;
 use glam::{DMat3, DVec3};
 use hagfish_solver::{
-    FactoredMass, Problem, QpBackend, RowGroup, RowKind, Rows, SolverError, SolverOptions,
+    FactoredMass, Problem, QpBackend, RowKind, RowSource, RowTag, Rows, SolverError, SolverOptions,
     SolverWorkspace,
 };
 use hagfish_sparse::{SparseError, TreeFactor};
@@ -198,12 +198,13 @@ fn random_rows(n: usize, count: usize, seed: u64) -> Rows {
     let mut rows = Rows::new(n);
     let mut unit = vec![0.0; n];
     unit[0] = 1.0;
-    rows.push(RowKind::Equality, RowGroup::Head, feasible[0], &unit).expect("row");
+    rows.push(RowKind::Equality, RowSource::new(RowTag::new(0), 0), feasible[0], &unit)
+        .expect("row");
     for i in 0..count {
         let row = values(seed + 11 * i as u64 + 5, n, 1.0);
         let slack = 0.5 + 0.5 * ((seed + i as u64) as f64 * 1.37).sin();
         let rhs = row.iter().zip(&feasible).map(|(c, q)| c * q).sum::<f64>() - slack;
-        rows.push(RowKind::Inequality, RowGroup::Contact, rhs, &row).expect("row");
+        rows.push(RowKind::Inequality, RowSource::new(RowTag::new(1), 0), rhs, &row).expect("row");
     }
     rows
 }

@@ -2,7 +2,9 @@
 //! DOF of each root joint (anchored to the world), holding the head at its target pose with
 //! Baumgarte correction of drift.
 
-use hagfish_solver::{RowGroup, RowKind, Rows};
+use hagfish_solver::{RowKind, Rows};
+
+use super::RowGroup;
 use hagfish_tree::{Model, State};
 
 /// Appends one equality row per root-joint DOF, targets `q* = q_rest`.
@@ -18,7 +20,7 @@ pub fn add_head_rows(
             let error = state.q[k] - model.dofs()[k].rest;
             let row = rows.push_zeroed(
                 RowKind::Equality,
-                RowGroup::Head,
+                RowGroup::Head.source(k),
                 -correction * error / time_step,
             );
             row[k] = 1.0;

@@ -5,9 +5,10 @@
 //! solved velocity would cross a limit, for the pipeline to solve again. (REDMAX's MATLAB upper row has the opposite sign, which allows
 //! further violation; the test `upper_limit_row_stops_the_joint` pins ours.)
 
-use hagfish_solver::{RowGroup, RowKind, Rows};
+use hagfish_solver::{RowKind, Rows};
 use hagfish_tree::{Model, State};
 
+use super::RowGroup;
 use super::stabilisation::unilateral_rhs;
 
 /// Appends the active lower and upper limit rows.
@@ -23,7 +24,7 @@ pub fn add_limit_rows(
         for (gap, sign) in [(state.q[k] - dof.lower, 1.0), (dof.upper - state.q[k], -1.0)] {
             if has_row(gap, state.qdot[k], time_step, margin) {
                 let rhs = unilateral_rhs(gap, time_step, push_out);
-                rows.push_zeroed(RowKind::Inequality, RowGroup::Limit, rhs)[k] = sign;
+                rows.push_zeroed(RowKind::Inequality, RowGroup::Limit.source(k), rhs)[k] = sign;
             }
         }
     }
@@ -50,20 +51,46 @@ pub fn add_overshooting_limit_rows(
     rows: &mut Rows,
 ) -> usize {
     let mut added = 0;
-    for (k, dof) in model.dofs().iter().enumerate() {
-        let next = state.q[k] + time_step * qdot_next[k];
-        for (gap, next_gap, sign) in [
-            (state.q[k] - dof.lower, next - dof.lower, 1.0),
-            (dof.upper - state.q[k], dof.upper - next, -1.0),
-        ] {
-            if next_gap < 0.0 && !has_row(gap, state.qdot[k], time_step, margin) {
-                let rhs = unilateral_rhs(gap, time_step, push_out);
-                rows.push_zeroed(RowKind::Inequality, RowGroup::Limit, rhs)[k] = sign;
-                added += 1;
-            }
-        }
+    for (k, gap, sign) in overshooting_limits(model, state, qdot_next, time_step, margin) {
+        let rhs = unilateral_rhs(gap, time_step, push_out);
+        rows.push_zeroed(RowKind::Inequality, RowGroup::Limit.source(k), rhs)[k] = sign;
+        added += 1;
     }
     added
+}
+
+/// True when [`add_overshooting_limit_rows`] would add a row (same arguments).
+pub fn overshoots_limit(
+    model: &Model,
+    state: &State,
+    qdot_next: &[f64],
+    time_step: f64,
+    margin: f64,
+) -> bool {
+    overshooting_limits(model, state, qdot_next, time_step, margin).next().is_some()
+}
+
+/// (DOF, gap, sign) of every limit that `qdot_next` carries past within the step and that
+/// [`add_limit_rows`] gave no row, lower limit before upper.
+fn overshooting_limits<'a>(
+    model: &'a Model,
+    state: &'a State,
+    qdot_next: &'a [f64],
+    time_step: f64,
+    margin: f64,
+) -> impl Iterator<Item = (usize, f64, f64)> + 'a {
+    model.dofs().iter().enumerate().flat_map(move |(k, dof)| {
+        let next = state.q[k] + time_step * qdot_next[k];
+        [
+            (state.q[k] - dof.lower, next - dof.lower, 1.0),
+            (dof.upper - state.q[k], dof.upper - next, -1.0),
+        ]
+        .into_iter()
+        .filter(move |&(gap, next_gap, _)| {
+            next_gap < 0.0 && !has_row(gap, state.qdot[k], time_step, margin)
+        })
+        .map(move |(gap, _, sign)| (k, gap, sign))
+    })
 }
 
 #[cfg(test)]

@@ -2,6 +2,7 @@
 //! solver's convention (`cᵀq̇ = b` or `cᵀq̇ ≥ b`, multipliers pushing along +c) straight into
 //! the solver's [`hagfish_solver::Rows`] container, so building rows does not allocate.
 
+mod group;
 mod head;
 mod limits;
 mod self_contact;
@@ -9,8 +10,9 @@ mod stabilisation;
 mod thigmo;
 mod wall;
 
+pub use group::RowGroup;
 pub use head::add_head_rows;
-pub use limits::{add_limit_rows, add_overshooting_limit_rows};
+pub use limits::{add_limit_rows, add_overshooting_limit_rows, overshoots_limit};
 pub use self_contact::{add_self_contact_rows, add_spline_point_row};
 pub use stabilisation::unilateral_rhs;
 pub use thigmo::add_thigmo_rows;

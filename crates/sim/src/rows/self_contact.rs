@@ -6,13 +6,14 @@
 
 use glam::DVec3;
 use hagfish_geometry::{SelfContact, SplineWeights};
-use hagfish_solver::{RowGroup, RowKind, Rows};
+use hagfish_solver::{RowKind, Rows};
 use hagfish_tree::jacobian::add_point_rows;
 use hagfish_tree::{Data, Model};
 
+use super::RowGroup;
 use super::stabilisation::unilateral_rhs;
 
-/// Appends one row per self contact (both spline points blended in one walk to the root).
+/// Appends one row per self contact, id its index in `contacts` (both spline points blended in one walk to the root).
 pub fn add_self_contact_rows(
     model: &Model,
     data: &Data,
@@ -21,9 +22,9 @@ pub fn add_self_contact_rows(
     push_out: f64,
     rows: &mut Rows,
 ) {
-    for contact in contacts {
+    for (i, contact) in contacts.iter().enumerate() {
         let rhs = unilateral_rhs(contact.gap, time_step, push_out);
-        let row = rows.push_zeroed(RowKind::Inequality, RowGroup::Contact, rhs);
+        let row = rows.push_zeroed(RowKind::Inequality, RowGroup::Contact.source(i), rhs);
         let mut points = [(0, DVec3::ZERO, 0.0); 2 * SplineWeights::CAPACITY];
         let mut count = 0;
         for (weights, sign) in [(&contact.weights_b, 1.0), (&contact.weights_a, -1.0)] {

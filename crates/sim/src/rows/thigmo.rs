@@ -10,12 +10,14 @@
 use glam::DVec3;
 use hagfish_control::{Strand, ThigmoRequest};
 use hagfish_geometry::{SelfContact, SplineWeights};
-use hagfish_solver::{RowGroup, RowKind, Rows};
+use hagfish_solver::{RowKind, Rows};
 use hagfish_tree::{Data, Model};
 
+use super::RowGroup;
 use super::self_contact::add_spline_point_row;
 
-/// Appends one soft row per request (requests naming a missing contact are skipped).
+/// Appends one soft row per request, id its index in `requests` (requests naming a missing
+/// contact are skipped).
 pub fn add_thigmo_rows(
     model: &Model,
     data: &Data,
@@ -24,12 +26,12 @@ pub fn add_thigmo_rows(
     time_step: f64,
     rows: &mut Rows,
 ) {
-    for request in requests {
+    for (i, request) in requests.iter().enumerate() {
         let Some(contact) = contacts.get(request.contact) else { continue };
         let weight = request.max_force * time_step;
         let row = rows.push_zeroed(
             RowKind::SoftInequality { weight },
-            RowGroup::Thigmo,
+            RowGroup::Thigmo.source(i),
             request.speed.abs(),
         );
         let (this, other, tangent) = thigmo_strands(request, contact);

@@ -4,13 +4,14 @@
 //! `n_w·(ω × (−r_k n_w)) = 0`.
 
 use hagfish_geometry::WallContact;
-use hagfish_solver::{RowGroup, RowKind, Rows};
+use hagfish_solver::{RowKind, Rows};
 use hagfish_tree::jacobian::add_point_row;
 use hagfish_tree::{Data, Model};
 
+use super::RowGroup;
 use super::stabilisation::unilateral_rhs;
 
-/// Appends one row per wall contact.
+/// Appends one row per wall contact, id its index in `contacts`.
 pub fn add_wall_rows(
     model: &Model,
     data: &Data,
@@ -19,9 +20,9 @@ pub fn add_wall_rows(
     push_out: f64,
     rows: &mut Rows,
 ) {
-    for contact in contacts {
+    for (i, contact) in contacts.iter().enumerate() {
         let rhs = unilateral_rhs(contact.gap, time_step, push_out);
-        let row = rows.push_zeroed(RowKind::Inequality, RowGroup::Wall, rhs);
+        let row = rows.push_zeroed(RowKind::Inequality, RowGroup::Wall.source(i), rhs);
         let centre = data.body_centre(contact.body);
         add_point_row(model, data, contact.body, centre, contact.normal, 1.0, row);
     }

@@ -8,7 +8,7 @@
 #![allow(dead_code)] // each test binary uses a different subset
 
 use faer::Mat;
-use hagfish_solver::{RowGroup, RowKind, Rows};
+use hagfish_solver::{RowKind, RowSource, RowTag, Rows};
 
 /// SplitMix64: a tiny deterministic generator (proptest draws the seed).
 pub struct Rng(u64);
@@ -136,11 +136,14 @@ pub fn scenario(rng: &mut Rng, mass: Mat<f64>, shape: Shape) -> Scenario {
         .chain(std::iter::repeat_n(1, shape.inequalities))
         .chain(std::iter::repeat_n(2, shape.soft));
     for code in kinds {
-        let (kind, group) = match code {
-            0 => (RowKind::Equality, RowGroup::Head),
-            1 => (RowKind::Inequality, RowGroup::ALL[1 + rng.below(3)]),
-            _ => (RowKind::SoftInequality { weight: rng.log_uniform(0.1, 1e3) }, RowGroup::Thigmo),
+        // Tag = the kind code (plus one of three for inequalities), id = the row's position.
+        let (kind, tag) = match code {
+            0 => (RowKind::Equality, 0),
+            1 => (RowKind::Inequality, 1 + rng.below(3)),
+            _ => (RowKind::SoftInequality { weight: rng.log_uniform(0.1, 1e3) }, 4),
         };
+        let tag = RowTag::new(u8::try_from(tag).unwrap_or(0));
+        let source = RowSource::new(tag, rows.len());
         let same_kind: Vec<usize> = (0..rows.len()).filter(|&i| rows.kinds()[i] == kind).collect();
         let (row, rhs) = if !same_kind.is_empty() && rng.uniform() < shape.duplicates {
             let original = same_kind[rng.below(same_kind.len())];
@@ -163,7 +166,7 @@ pub fn scenario(rng: &mut Rng, mass: Mat<f64>, shape: Shape) -> Scenario {
             };
             (row, rhs)
         };
-        let pushed = rows.push(kind, group, rhs, &row);
+        let pushed = rows.push(kind, source, rhs, &row);
         assert!(pushed.is_ok(), "generator built a row of the wrong length");
     }
     Scenario { mass, force, rows, target }
