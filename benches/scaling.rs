@@ -28,9 +28,10 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::{SparseColMat, Triplet};
 use faer::{Conj, MatMut, Par, Side};
 use glam::DVec3;
+use hagfish_bench_support::segment_chain;
 use hagfish_control::Passive;
 use hagfish_sim::rows::RowGroup;
-use hagfish_sim::{DynamicsBackend, StepOptions, World, pipeline, segment_chain};
+use hagfish_sim::{DynamicsBackend, StepOptions, World, pipeline};
 use hagfish_solver::FactoredMass;
 use hagfish_sparse::TreeFactor;
 use hagfish_tree::{Data, Model, Spatial, State};

@@ -5,7 +5,7 @@
 //!   state.
 //! - `step/knotted/<backend>`: one whole pipeline step (kinematics, contact detection,
 //!   drag, dynamics, rows, constraint solve with its re-solves, integration) in the knotted
-//!   benchmark state (`hagfish_sim::knotted_world`: `data/scenarios/form.ron` at t = 23.13 s,
+//!   benchmark state (`hagfish_bench_support::knotted_world`: `data/scenarios/form.ron` at t = 23.13 s,
 //!   41 self contacts), with the contact-space QP (default) and with clarabel (reference);
 //!   `step/knotted/ContactSpace/SparseMaximal`, the same step on the sparse
 //!   maximal-coordinate backend (`StepOptions::backend`); and
@@ -17,9 +17,10 @@ use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
+use hagfish_bench_support::knotted_world;
 use hagfish_control::WaterDrag;
 use hagfish_sim::rows::RowGroup;
-use hagfish_sim::{DynamicsBackend, LoadedScenario, StepOptions, World, knotted_world};
+use hagfish_sim::{DynamicsBackend, LoadedScenario, StepOptions, World};
 use hagfish_solver::{QpBackend, SolverOptions};
 use hagfish_tree::{Data, State, step_unconstrained};
 

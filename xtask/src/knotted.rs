@@ -1,4 +1,4 @@
-//! `cargo xtask knotted`: the knotted benchmark state (`hagfish_sim::knotted_world`), exported
+//! `cargo xtask knotted`: the knotted benchmark state (`hagfish_bench_support::knotted_world`), exported
 //! for the peer comparison (`bench/peers/`) and timed step by step.
 //!
 //! - `--export PATH`: writes the model (bodies, joints, DOF parameters) and the state (t, q,
@@ -13,10 +13,9 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 
+use hagfish_bench_support::{KNOTTED_SCENARIO, KNOTTED_TIME_S, knotted_world};
 use hagfish_control::Passive;
-use hagfish_sim::{
-    DynamicsBackend, KNOTTED_SCENARIO, KNOTTED_TIME_S, StepOptions, World, knotted_world,
-};
+use hagfish_sim::{DynamicsBackend, StepOptions, World};
 use hagfish_tree::{JointKind, Model, State};
 
 /// What to do with the knotted state.

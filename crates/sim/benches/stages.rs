@@ -1,5 +1,5 @@
 //! Per-stage benchmarks of one step in the knotted benchmark state (`form.ron` at
-//! t = 23.13 s, 41 self contacts; see `hagfish_sim::knotted_world`), with water drag as the
+//! t = 23.13 s, 41 self contacts; see `hagfish_bench_support::knotted_world`), with water drag as the
 //! controller (as `benches/step.rs`):
 //!
 //! kinematics, effective mass M̃ (CRBA), Cholesky factor of M̃, dynamics (M̃, momentum,
@@ -13,9 +13,10 @@
 use std::time::{Duration, Instant};
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use hagfish_bench_support::knotted_world;
 use hagfish_control::WaterDrag;
 use hagfish_geometry::ContactDetector;
-use hagfish_sim::{StepData, knotted_world, pipeline};
+use hagfish_sim::{StepData, pipeline};
 
 fn stages(c: &mut Criterion) {
     let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");

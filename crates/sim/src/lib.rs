@@ -34,8 +34,6 @@
 
 mod acceptance;
 mod backend;
-mod benchmark_chain;
-mod benchmark_state;
 mod checkpoint;
 mod contact_prediction;
 mod error;
@@ -47,7 +45,7 @@ mod initial_shape;
 mod internal_forces;
 mod knot_core;
 mod memory;
-mod npy;
+pub mod npy;
 mod options;
 mod output_file;
 mod overrides;
@@ -65,18 +63,15 @@ mod world;
 
 pub use acceptance::{EndOfStep, Rejection, StepAcceptance};
 pub use backend::DynamicsBackend;
-pub use benchmark_chain::segment_chain;
-pub use benchmark_state::{KNOTTED_SCENARIO, KNOTTED_TIME_S, knotted_world};
 pub use checkpoint::{CHECKPOINT_FILE, CHECKPOINT_FORMAT, Checkpoint, ExactF64s};
 pub use error::SimError;
 pub use force_field::{ForceFieldLog, ForceFieldStats};
 pub use forces::{DofLabel, GroupForces, RECORDED_GROUPS, dof_labels};
-pub use hash::{fnv1a64, state_hash};
+pub use hash::state_hash;
 pub use initial_shape::{InitialShape, OpenTorusKnot};
 pub use internal_forces::{InternalForces, JointLoad};
 pub use knot_core::KnotCore;
 pub use memory::{available_memory, check_memory, step_memory_estimate};
-pub use npy::{NpyArray, read_npy};
 pub use options::StepOptions;
 pub use output_file::replace_file;
 pub use overrides::{Override, apply_overrides};

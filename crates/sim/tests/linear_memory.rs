@@ -6,8 +6,9 @@
 
 use std::alloc::System;
 
+use hagfish_bench_support::segment_chain;
 use hagfish_control::Passive;
-use hagfish_sim::{DynamicsBackend, StepOptions, World, segment_chain};
+use hagfish_sim::{DynamicsBackend, StepOptions, World};
 use hagfish_tree::State;
 use stats_alloc::{INSTRUMENTED_SYSTEM, Region, StatsAlloc};
 

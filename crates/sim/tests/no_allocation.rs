@@ -8,8 +8,9 @@
 
 use std::alloc::System;
 
+use hagfish_bench_support::knotted_world;
 use hagfish_control::PhasedController;
-use hagfish_sim::{DynamicsBackend, LoadedScenario, StepOptions, World, knotted_world};
+use hagfish_sim::{DynamicsBackend, LoadedScenario, StepOptions, World};
 use stats_alloc::{INSTRUMENTED_SYSTEM, Region, StatsAlloc};
 
 #[global_allocator]

@@ -133,7 +133,7 @@ fn sparse_steps_like_dense_with_head_limit_wall_and_contact_rows() {
 #[test]
 fn sparse_steps_like_dense_in_the_knotted_state() {
     let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
-    let (world, _) = hagfish_sim::knotted_world(root.as_ref()).expect("knotted state");
+    let (world, _) = hagfish_bench_support::knotted_world(root.as_ref()).expect("knotted state");
     let model = world.model().clone();
     let options = world.options().clone();
     let mut make = || -> Box<dyn Controller> { Box::new(WaterDrag::default()) };
@@ -173,7 +173,7 @@ fn the_sparse_backend_ties_the_trefoil_of_form_ron() {
 
 #[test]
 fn a_thousand_body_chain_steps_stably_on_the_sparse_backend() {
-    let model = hagfish_sim::segment_chain(1000).expect("chain");
+    let model = hagfish_bench_support::segment_chain(1000).expect("chain");
     let options = StepOptions {
         backend: DynamicsBackend::SparseMaximal,
         wall: None,

@@ -3,15 +3,13 @@
 //! make a longer animal, not a finer one.
 
 use glam::DVec3;
-use hagfish_tree::{BodySpec, DofParams, JointKind, Model, ModelBuilder, Transform};
-
-use crate::error::SimError;
+use hagfish_tree::{BodySpec, DofParams, JointKind, Model, ModelBuilder, Transform, TreeError};
 
 /// A chain of `bodies` segments along +X, each ℓ = 0.424 cm long, of mass 0.8 g and radius
 /// 0.85 cm (solid cylinder: `I = (m r²/2, m(3r² + ℓ²)/12, m(3r² + ℓ²)/12)`), joints
 /// alternating X-revolute (twist, ±48°) and YZ-universal (bend, ±45°), stiffness
 /// 1 dyn·cm/rad, damping 0.1 dyn·cm·s/rad, root joint at the origin: 1.5 DOFs per body.
-pub fn segment_chain(bodies: usize) -> Result<Model, SimError> {
+pub fn segment_chain(bodies: usize) -> Result<Model, TreeError> {
     let mut builder = ModelBuilder::new();
     let (length, mass, radius) = (0.424, 0.8, 0.85);
     let transverse = mass * (3.0 * radius * radius + length * length) / 12.0;
@@ -41,7 +39,7 @@ pub fn segment_chain(bodies: usize) -> Result<Model, SimError> {
             dofs: vec![dof; joint.dof_count()],
         });
     }
-    Ok(builder.build()?)
+    builder.build()
 }
 
 #[cfg(test)]
@@ -49,7 +47,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_chain_has_one_and_a_half_dofs_per_body_and_limits() -> Result<(), SimError> {
+    fn a_chain_has_one_and_a_half_dofs_per_body_and_limits() -> Result<(), TreeError> {
         let model = segment_chain(10)?;
         assert_eq!(model.body_count(), 10);
         assert_eq!(model.dof_count(), 15);

@@ -7,10 +7,7 @@
 use std::path::Path;
 
 use hagfish_control::PhasedController;
-
-use crate::error::SimError;
-use crate::scenario::LoadedScenario;
-use crate::world::World;
+use hagfish_sim::{LoadedScenario, SimError, World};
 
 /// The scenario of the knotted benchmark state, relative to the workspace root.
 pub const KNOTTED_SCENARIO: &str = "data/scenarios/form.ron";

@@ -1,0 +1,15 @@
+//! Scaffolding of the hagfish workspace's benchmarks and tests, kept out of the simulator's
+//! public API: the knotted benchmark state (a scenario file found relative to the workspace
+//! root) and uniform long chains for the scaling benchmarks.
+//!
+//! ```
+//! let chain = hagfish_bench_support::segment_chain(20)?;
+//! assert_eq!((chain.body_count(), chain.dof_count()), (20, 30));
+//! # Ok::<(), hagfish_tree::TreeError>(())
+//! ```
+
+mod knotted_state;
+mod segment_chain;
+
+pub use knotted_state::{KNOTTED_SCENARIO, KNOTTED_TIME_S, knotted_world};
+pub use segment_chain::segment_chain;
