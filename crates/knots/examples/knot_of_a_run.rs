@@ -40,8 +40,11 @@ fn main() -> Result<(), Box<dyn Error>> {
     Ok(())
 }
 
-/// The body centres of every frame of `path`, with the frame's time, in file order.
-fn frames(path: &str) -> Result<Vec<(f64, Vec<DVec3>)>, Box<dyn Error>> {
+/// A recorded frame: its time (s) and the body centres (cm), head first.
+type Frame = (f64, Vec<DVec3>);
+
+/// Every frame of `path`, in file order.
+fn frames(path: &str) -> Result<Vec<Frame>, Box<dyn Error>> {
     let mut frames: Vec<(u64, f64, Vec<DVec3>)> = Vec::new();
     for (number, line) in BufReader::new(File::open(path)?).lines().enumerate().skip(1) {
         let line = line?;
