@@ -57,14 +57,10 @@ impl BroadPhase {
     /// # Errors
     /// [`GeometryError::InvalidOption`] if the inflation is negative or not finite.
     pub fn new(options: BroadPhaseOptions) -> Result<Self, GeometryError> {
-        for (name, value) in [("inflation", options.inflation), ("margin", options.margin)] {
-            GeometryError::require_option(
-                value.is_finite() && value >= 0.0,
-                name,
-                "finite and non-negative",
-                value,
-            )?;
-        }
+        GeometryError::require_non_negative(&[
+            ("inflation", options.inflation),
+            ("margin", options.margin),
+        ])?;
         Ok(BroadPhase { options, spheres: Vec::new(), reaches: Vec::new() })
     }
 

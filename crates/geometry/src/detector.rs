@@ -124,16 +124,10 @@ impl ContactDetector {
     /// [`GeometryError::InvalidOption`] if the margin, cluster radius or inflation is
     /// negative or not finite.
     pub fn new(options: DetectorOptions) -> Result<Self, GeometryError> {
-        for (name, value) in
-            [("margin", options.margin), ("cluster_radius", options.cluster_radius)]
-        {
-            GeometryError::require_option(
-                value.is_finite() && value >= 0.0,
-                name,
-                "finite and non-negative",
-                value,
-            )?;
-        }
+        GeometryError::require_non_negative(&[
+            ("margin", options.margin),
+            ("cluster_radius", options.cluster_radius),
+        ])?;
         let broad_phase = BroadPhase::new(BroadPhaseOptions {
             index_gap: options.index_gap.saturating_sub(2),
             inflation: options.broad_phase_inflation,

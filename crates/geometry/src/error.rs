@@ -72,6 +72,18 @@ impl GeometryError {
         if valid { Ok(()) } else { Err(GeometryError::InvalidOption { name, requirement, value }) }
     }
 
+    /// [`GeometryError::require_option`] for options that must be finite and ≥ 0, given as
+    /// (name, value) pairs: the first that is not is the error.
+    pub(crate) fn require_non_negative(
+        options: &[(&'static str, f64)],
+    ) -> Result<(), GeometryError> {
+        for &(name, value) in options {
+            let valid = value.is_finite() && value >= 0.0;
+            Self::require_option(valid, name, "finite and non-negative", value)?;
+        }
+        Ok(())
+    }
+
     /// Checks that a per-body slice named `what` has `expected` entries.
     pub(crate) fn require_length(
         what: &'static str,
