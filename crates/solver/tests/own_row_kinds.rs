@@ -106,3 +106,23 @@ fn an_asymmetric_mass_is_refused_when_factored() -> Result<(), SolverError> {
     assert!(matches!(refused, Err(SolverError::NotSymmetric { row: 0, col: 1, .. })));
     Ok(())
 }
+
+#[test]
+fn a_failed_first_solve_leaves_no_factor_to_reuse() -> Result<(), SolverError> {
+    let rows = rows()?;
+    let mut workspace = SolverWorkspace::default();
+    let spd = Mat::<f64>::identity(2, 2);
+    workspace.factor(Mass::Dense(spd.as_ref()), &rows)?.solve(&[1.0, -1.0], rows.rhs())?;
+    // Same sizes, but M̃ is indefinite: every solve of its handle must fail, none may reuse the
+    // factor of the previous M̃ (a failed factorisation marks the workspace's factor invalid).
+    let indefinite = Mat::<f64>::identity(2, 2) * -1.0;
+    let mut factored = workspace.factor(Mass::Dense(indefinite.as_ref()), &rows)?;
+    for attempt in 0..2 {
+        let outcome = factored.solve(&[1.0, -1.0], rows.rhs());
+        assert!(
+            matches!(outcome, Err(SolverError::NotPositiveDefinite { .. })),
+            "attempt {attempt}"
+        );
+    }
+    Ok(())
+}
