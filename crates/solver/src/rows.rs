@@ -216,15 +216,10 @@ impl Rows {
         self.coefficients.col_as_slice(index)
     }
 
-    /// Right-hand sides b (one per row).
+    /// Right-hand sides b (one per row), as pushed; to solve the same rows with other bounds,
+    /// pass them to [`Factored::solve`](crate::Factored::solve).
     pub fn rhs(&self) -> &[f64] {
         &self.rhs
-    }
-
-    /// Right-hand sides b, to change a bound between solves (e.g. a contact row tightened after
-    /// predicting the end-of-step gap); the coefficients stay.
-    pub fn rhs_mut(&mut self) -> &mut [f64] {
-        &mut self.rhs
     }
 
     /// Row kinds (one per row).

@@ -403,7 +403,7 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 32 * RELEASE_FACTOR, ..ProptestConfig::default() })]
 
     #[test]
-    fn contact_space_resolve_with_new_force_matches_fresh_solve((shape, seed) in shapes()) {
+    fn factored_resolve_with_new_force_matches_fresh_solve((shape, seed) in shapes()) {
         new_force_resolve_matches_fresh_solve(shape, seed)?;
     }
 }
