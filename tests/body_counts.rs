@@ -11,7 +11,7 @@ use common::{ROOT, code_and_stderr, csv_rows, fresh_dir, manifest, run_hagfish};
 /// `thesis.ron` cut to `duration_s`, on ES103 made of `bodies` bodies, written into `dir`.
 fn thesis_with_bodies(dir: &Path, bodies: usize, duration_s: f64) -> PathBuf {
     let body = std::fs::read_to_string(format!("{ROOT}/data/hagfish/es103.ron")).expect("es103");
-    let body = body.replace("body_count: 100,", &format!("body_count: {bodies},"));
+    let body = body.replace(" body_count: 100,", &format!(" body_count: {bodies},"));
     let body_path = dir.join(format!("es103_{bodies}.ron"));
     std::fs::write(&body_path, body).expect("write body");
     let scenario =

@@ -45,7 +45,7 @@ fn a_body_file_replaces_the_scenarios_body() {
     let dir = fresh_dir("overrides_body");
     let es103 = std::fs::read_to_string(format!("{ROOT}/data/hagfish/es103.ron")).expect("es103");
     let body = dir.join("fifty.ron");
-    std::fs::write(&body, es103.replace("body_count: 100,", "body_count: 50,")).expect("write");
+    std::fs::write(&body, es103.replace(" body_count: 100,", " body_count: 50,")).expect("write");
     let out = dir.join("run");
     let output = run_form(&out, &["--body", body.to_str().expect("UTF-8 path")]);
     assert!(output.status.success(), "{}", code_and_stderr(&output).1);

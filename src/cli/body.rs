@@ -1,5 +1,6 @@
 //! `hagfish body FILE`: loads a body file (hagfish biometrics or a rod) and prints the derived
-//! chain (D5–D8): a header with the totals (for a rod also the derived joint springs) and one
+//! chain (D5–D8): a header with the totals and the joint springs (derived from a rod's
+//! stiffnesses, or a hagfish's scaled to its body count, D16) and one
 //! row per body (index, s/L of its centre, radius, mass, joint type, limits per DOF in
 //! degrees).
 
@@ -36,14 +37,23 @@ pub fn run(args: &BodyArgs, out: &mut impl Write) -> Result<(), CliError> {
         table.segment_length_cm
     )?;
     writeln!(out, "mass      {} g (sum over bodies {:.9} g)", body.mass_g(), table.total_mass_g())?;
-    if let Body::Rod(rod) = &body {
-        writeln!(
+    match &body {
+        Body::Rod(rod) => writeln!(
             out,
             "springs   bend {:.6} dyn*cm/rad = B/(2l), twist {:.6} dyn*cm/rad = C/(2l), damping {:.6} dyn*cm*s/rad",
             rod.bend_spring_dyn_cm_per_rad(),
             rod.twist_spring_dyn_cm_per_rad(),
             rod.joint_damping_dyn_cm_s_per_rad()
-        )?;
+        )?,
+        Body::Hagfish(fish) => writeln!(
+            out,
+            "springs   bend {:.6} dyn*cm/rad, twist {:.6} dyn*cm/rad, damping {:.6} dyn*cm*s/rad (the file's values x N/N_ref = {}/{})",
+            fish.joint_bending_stiffness(),
+            fish.joint_twist_stiffness(),
+            fish.joint_damping(),
+            fish.body_count,
+            fish.reference_body_count
+        )?,
     }
     writeln!(
         out,

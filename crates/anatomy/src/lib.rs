@@ -46,7 +46,9 @@ mod rod;
 mod table;
 mod validate;
 
-pub use biometrics::{Biometrics, MAX_BODY_COUNT, TailTaper};
+pub use biometrics::{
+    Biometrics, MAX_BODY_COUNT, MAX_JOINT_LIMIT_DEG, THESIS_BODY_COUNT, TailTaper,
+};
 pub use body::Body;
 pub use error::{AnatomyError, Field, Origin};
 pub use load::DataFile;

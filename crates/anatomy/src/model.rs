@@ -17,16 +17,17 @@ pub fn cylinder_inertia(mass: f64, radius: f64, length: f64) -> DVec3 {
 }
 
 impl Biometrics {
-    /// Builds the model (the chain of `build_chain`): each DOF gets the stiffness of its joint type, the
-    /// common damping, rest 0 and the table's limits in radians. Gravity is zero (neutral
-    /// buoyancy, D4).
+    /// Builds the model (the chain of `build_chain`): each DOF gets the stiffness of its joint
+    /// type and the common damping, both scaled to this body count
+    /// ([`Biometrics::joint_bending_stiffness`] and its siblings, D16), rest 0 and the table's
+    /// limits in radians. Gravity is zero (neutral buoyancy, D4).
     pub fn to_model(&self) -> Result<Model, AnatomyError> {
         build_chain(&self.body_table()?, |row| {
             let stiffness = match row.joint {
-                JointKind::Revolute { .. } => self.twist_stiffness_dyn_cm_per_rad,
-                _ => self.bending_stiffness_dyn_cm_per_rad,
+                JointKind::Revolute { .. } => self.joint_twist_stiffness(),
+                _ => self.joint_bending_stiffness(),
             };
-            (stiffness, self.damping_dyn_cm_s_per_rad)
+            (stiffness, self.joint_damping())
         })
     }
 }

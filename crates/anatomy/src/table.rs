@@ -85,7 +85,8 @@ impl Biometrics {
     /// Validates and derives the per-body table: `ℓ = L/N`; body `i` centred at
     /// `u = (i + ½)/N` with radius `r(u)` ([`Biometrics::radius_at`]); `ρ = M / Σ π r_i² ℓ`
     /// and `m_i = ρ π r_i² ℓ`, so Σ m_i = M; limits from [`joint_kind`], the twist limit and
-    /// [`Biometrics::bending_limit_deg_at`] at the joint, `u = i/N`.
+    /// [`Biometrics::bending_limit_deg_at`] at the joint, `u = i/N`, scaled to this body count
+    /// by [`Biometrics::joint_limit_deg`] (D16).
     pub fn body_table(&self) -> Result<BodyTable, AnatomyError> {
         self.validate()?;
         let n = self.body_count as f64;
@@ -103,10 +104,10 @@ impl Biometrics {
             .map(|(index, &r)| {
                 let joint_fraction = index as f64 / n;
                 let joint = joint_kind(index);
-                let limit = match joint {
+                let limit = self.joint_limit_deg(match joint {
                     JointKind::Revolute { .. } => self.twist_limit_deg,
                     _ => self.bending_limit_deg_at(joint_fraction),
-                };
+                });
                 BodyRow {
                     index,
                     centre_fraction: (index as f64 + 0.5) / n,

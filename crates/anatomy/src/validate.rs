@@ -97,11 +97,11 @@ impl Checker<'_> {
         }
     }
 
-    fn body_count(&self, n: usize) -> Result<(), AnatomyError> {
+    fn body_count(&self, name: &'static str, n: usize) -> Result<(), AnatomyError> {
         if (2..=MAX_BODY_COUNT).contains(&n) {
             return Ok(());
         }
-        let field = Field::whole("body_count");
+        let field = Field::whole(name);
         Err(AnatomyError::OutOfRange {
             at: (self.locate)(&field),
             field,
@@ -115,7 +115,7 @@ impl Biometrics {
     /// Checks that every value is physically meaningful: L, M, circumferences and the taper's
     /// tip radius finite and > 0; mark fractions strictly increasing in (0, 1); bending and
     /// twist limits in (0°, 180°); stiffness and damping finite and ≥ 0; one circumference
-    /// and one bending limit per mark; 2 ≤ N ≤ [`MAX_BODY_COUNT`]. Errors carry
+    /// and one bending limit per mark; 2 ≤ N, N_ref ≤ [`MAX_BODY_COUNT`]. Errors carry
     /// [`Origin::InMemory`]; [`Biometrics::from_ron`] reports file positions instead.
     pub fn validate(&self) -> Result<(), AnatomyError> {
         self.validate_with(&|_| Origin::InMemory)
@@ -141,7 +141,8 @@ impl Biometrics {
         ] {
             check.value(Field::whole(name), value, Bound::NonNegative)?;
         }
-        check.body_count(self.body_count)?;
+        check.body_count("body_count", self.body_count)?;
+        check.body_count("reference_body_count", self.reference_body_count)?;
         if let Some(taper) = &self.tail_taper {
             check.value(
                 Field::whole("tail_taper.tip_radius_cm"),

@@ -185,7 +185,13 @@ fn array_length_mismatch_is_rejected() {
 
 #[test]
 fn too_few_bodies_and_bad_taper_are_rejected() {
-    assert_out_of_range("body_count: 100", "body_count: 1", "body_count", "1,");
+    assert_out_of_range(" body_count: 100", " body_count: 1", "body_count", "1,");
+    assert_out_of_range(
+        "reference_body_count: 100",
+        "reference_body_count: 0",
+        "reference_body_count",
+        "0,",
+    );
     assert_out_of_range(
         "tail_taper: None",
         "tail_taper: Some(TailTaper(tip_radius_cm: -0.3))",

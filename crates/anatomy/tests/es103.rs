@@ -151,3 +151,56 @@ fn tail_taper_reaches_tip_radius_and_keeps_mass() -> Result<(), hagfish_anatomy:
     assert!(table.density_g_per_cm3 > es103().body_table()?.density_g_per_cm3);
     Ok(())
 }
+
+/// The tip compliance of a chain clamped at the head and bent in one plane by a small tip
+/// force: `δ/P = Σ (L − x_j)² / k_j` over the bending DOFs about z at joints x_j (cm/dyn).
+fn tip_compliance(model: &hagfish_tree::Model, length: f64) -> f64 {
+    let ell = length / model.body_count() as f64;
+    model
+        .joints()
+        .iter()
+        .enumerate()
+        .filter(|(_, joint)| joint.kind == JointKind::UniversalYz)
+        .map(|(i, joint)| {
+            let bend_z = &model.dofs()[joint.dofs().end - 1];
+            (length - i as f64 * ell).powi(2) / bend_z.stiffness
+        })
+        .sum()
+}
+
+/// The sum of the bending limits (deg) of the joints in the stretch 0.4–0.6 L: the largest
+/// bend the chain allows there.
+fn bend_allowed_over_a_fifth(fish: &Biometrics) -> Result<f64, hagfish_anatomy::AnatomyError> {
+    let table = fish.body_table()?;
+    let in_stretch = |r: &&hagfish_anatomy::BodyRow| (0.4..0.6).contains(&r.joint_fraction);
+    let universal = |r: &&hagfish_anatomy::BodyRow| r.joint == JointKind::UniversalYz;
+    Ok(table.rows.iter().filter(universal).filter(in_stretch).map(|r| r.limits_deg[0].upper).sum())
+}
+
+/// D16: the body count is a resolution, not another animal. The bending compliance of the
+/// chain is that of the continuous rod `B = k·2ℓ` of the 100-body chain up to the midpoint
+/// rule's `−1/N²` (unscaled per-joint springs would make it grow ∝ N); the largest bend over
+/// 0.4–0.6 L is the 100-body chain's within one joint's limit (unscaled limits: ∝ N), and
+/// the damping per length is the same at every N.
+#[test]
+fn the_body_count_changes_the_resolution_not_the_animal()
+-> Result<(), hagfish_anatomy::AnatomyError> {
+    let reference = es103();
+    let length = reference.length_cm;
+    let rod_bending = reference.bending_stiffness_dyn_cm_per_rad * 2.0 * length / 100.0;
+    let continuum = length.powi(3) / (3.0 * rod_bending);
+    let bend_at_100 = bend_allowed_over_a_fifth(&reference)?;
+    for bodies in [50, 100, 200, 400, 1000] {
+        let fish = Biometrics { body_count: bodies, ..reference.clone() };
+        let model = fish.to_model()?;
+        let n = bodies as f64;
+        let error = tip_compliance(&model, length) / continuum - 1.0;
+        assert!(close(error, -1.0 / (n * n), 1e-12), "{bodies} bodies: compliance error {error}");
+        let bend = bend_allowed_over_a_fifth(&fish)?;
+        let one_joint = 75.0 * 100.0 / n;
+        assert!(close(bend, bend_at_100, one_joint), "{bodies} bodies: {bend}° vs {bend_at_100}°");
+        let damping_per_length = model.dofs()[1].damping * 2.0 * length / n;
+        assert!(close(damping_per_length, 0.1 * 2.0 * length / 100.0, 1e-15), "{bodies} bodies");
+    }
+    Ok(())
+}
