@@ -11,31 +11,32 @@
 //!
 //! CGS units throughout.
 //!
-//! A phase's end condition in body lengths, so that it carries over to another body: the
-//! contact span (the stretch of body the knot's contacts cover) at most half of L, held for
-//! 0.3 s.
+//! A phase's end condition as a knot size in local diameters, so that it carries over to
+//! another body: the contact span (the stretch of body the knot's contacts cover) at most
+//! 12 mean local diameters D, held for 0.3 s.
 //!
 //! ```
 //! use hagfish_control::{KnotSpan, Observation, Until};
 //!
-//! let until = Until { seconds: 6.0, hold_s: 0.3, span_below_l: Some(0.5), ..Until::default() };
-//! let span = |length_cm: f64| KnotSpan {
+//! let until = Until { seconds: 6.0, hold_s: 0.3, span_below_d: Some(12.0), ..Until::default() };
+//! let span = |length_cm: f64, diameter_cm: f64| KnotSpan {
 //!     start_cm: 10.0,
 //!     end_cm: 10.0 + length_cm,
 //!     first_contact_cm: 10.0,
 //!     last_contact_cm: 10.0,
+//!     diameter_cm,
 //! };
-//! fn seen(span: &KnotSpan, body_length_cm: f64) -> Observation<'_> {
-//!     Observation { span: Some(span), body_length_cm, kinetic_energy_erg: 0.0, core_start_l: None }
+//! fn seen(span: &KnotSpan) -> Observation<'_> {
+//!     Observation { span: Some(span), body_length_cm: 42.4, kinetic_energy_erg: 0.0, core_start_l: None }
 //! }
-//! let (tight, loose) = (span(20.0), span(25.0));
+//! let (tight, loose) = (span(20.0, 1.76), span(25.0, 1.76));
 //! let mut since = None;
-//! assert!(!until.over(1.0, 1.0, &seen(&loose, 42.4), &mut since), "25 cm > 0.5 × 42.4 cm");
-//! assert!(!until.over(1.1, 1.1, &seen(&tight, 42.4), &mut since), "tight, not yet held");
-//! assert!(until.over(1.5, 1.5, &seen(&tight, 42.4), &mut since), "held for 0.4 s ≥ 0.3 s");
-//! // On a 35 cm body the same 20 cm span is not tight enough.
+//! assert!(!until.over(1.0, 1.0, &seen(&loose), &mut since), "25 cm = 14.2 D > 12 D");
+//! assert!(!until.over(1.1, 1.1, &seen(&tight), &mut since), "11.4 D, not yet held");
+//! assert!(until.over(1.5, 1.5, &seen(&tight), &mut since), "held for 0.4 s ≥ 0.3 s");
+//! // On a body a sixth thinner the same 20 cm span is 13.6 D: not tight enough.
 //! let mut since = None;
-//! assert!(!until.over(1.5, 1.5, &seen(&tight, 35.0), &mut since));
+//! assert!(!until.over(1.5, 1.5, &seen(&span(20.0, 1.47)), &mut since));
 //! ```
 
 mod controller;

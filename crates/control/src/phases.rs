@@ -96,6 +96,14 @@ pub struct Until {
     /// [`Until::span_above_cm`] as a fraction of L.
     #[serde(default)]
     pub span_above_l: Option<f64>,
+    /// [`Until::span_below_cm`] in mean local diameters D over the span
+    /// ([`KnotSpan::length_d`]): a knot size that carries over to bodies of other lengths
+    /// and thicknesses.
+    #[serde(default)]
+    pub span_below_d: Option<f64>,
+    /// [`Until::span_above_cm`] in mean local diameters D over the span.
+    #[serde(default)]
+    pub span_above_d: Option<f64>,
     /// Ends once the knotted core's head-ward end is within this fraction of L of the head:
     /// the core (shortest knotted sub-arc, `hagfish_knots`) of the latest recorded frame, so
     /// it is looked at every `record_every_s`. Unlike [`Until::knot_start_below_l`] (the
@@ -166,6 +174,7 @@ impl Until {
         };
         let start = span.map(|s| s.start_cm);
         let length = span.map(KnotSpan::length_cm);
+        let length_d = span.map(KnotSpan::length_d);
         let of_l = |limit: Option<f64>| limit.map(|fraction| fraction * body_length_cm);
         at_most(self.knot_start_below_cm, start)
             || at_least(self.knot_start_above_cm, start)
@@ -175,6 +184,8 @@ impl Until {
             || at_least(of_l(self.knot_start_above_l), start)
             || at_most(of_l(self.span_below_l), length)
             || at_least(of_l(self.span_above_l), length)
+            || at_most(self.span_below_d, length_d)
+            || at_least(self.span_above_d, length_d)
     }
 }
 
@@ -398,7 +409,13 @@ mod tests {
     }
 
     fn span(start_cm: f64, end_cm: f64) -> KnotSpan {
-        KnotSpan { start_cm, end_cm, first_contact_cm: start_cm, last_contact_cm: start_cm }
+        KnotSpan {
+            start_cm,
+            end_cm,
+            first_contact_cm: start_cm,
+            last_contact_cm: start_cm,
+            diameter_cm: 2.0,
+        }
     }
 
     #[test]

@@ -163,7 +163,13 @@ mod tests {
     }
 
     fn span(end_cm: f64) -> Option<KnotSpan> {
-        Some(KnotSpan { start_cm: 0.0, end_cm, first_contact_cm: 0.0, last_contact_cm: 0.0 })
+        Some(KnotSpan {
+            start_cm: 0.0,
+            end_cm,
+            first_contact_cm: 0.0,
+            last_contact_cm: 0.0,
+            diameter_cm: 1.0,
+        })
     }
 
     #[test]

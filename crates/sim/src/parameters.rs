@@ -343,6 +343,18 @@ pub const PARAMETERS: &[Parameter] = &[
     p("Thigmotaxis.until.span_below_l", "L", "None", "span_below_cm as a fraction of L"),
     p("Thigmotaxis.until.span_above_l", "L", "None", "span_above_cm as a fraction of L"),
     p(
+        "Thigmotaxis.until.span_below_d",
+        "D",
+        "None",
+        "span_below_cm in mean local diameters over the span (carries over to any body)",
+    ),
+    p(
+        "Thigmotaxis.until.span_above_d",
+        "D",
+        "None",
+        "span_above_cm in mean local diameters over the span",
+    ),
+    p(
         "Thigmotaxis.until.core_start_below_l",
         "L",
         "None",
@@ -445,6 +457,8 @@ mod tests {
                         knot_start_above_l: Some(0.7),
                         span_below_l: Some(0.5),
                         span_above_l: Some(0.7),
+                        span_below_d: Some(12.0),
+                        span_above_d: Some(15.0),
                         core_start_below_l: Some(0.04),
                         kinetic_energy_below_erg: Some(1e-6),
                     },

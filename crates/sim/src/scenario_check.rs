@@ -254,6 +254,13 @@ impl Checker<'_> {
                 self.check(key, value, Range::Fraction)?;
             }
         }
+        for (key, value) in
+            [("span_below_d", until.span_below_d), ("span_above_d", until.span_above_d)]
+        {
+            if let Some(value) = value {
+                self.check(key, value, Range::Positive)?;
+            }
+        }
         if let Some(energy) = until.kinetic_energy_below_erg {
             self.check("kinetic_energy_below_erg", energy, Range::NonNegative)?;
         }
