@@ -110,11 +110,11 @@ fn check(dir: &Path, variant: &Variant) -> Option<String> {
     for set in &variant.sets {
         extra.extend(["--set".to_string(), set.to_string()]);
     }
-    let run = match thesis_run(&dir.join(format!("run_{}", variant.name)), &extra) {
+    let run = match scenario_run(THESIS, &dir.join(format!("run_{}", variant.name)), &extra) {
         Ok(run) => run,
         Err(message) => return Some(format!("{}: {message}", variant.name)),
     };
-    let held = if variant.right_handed { run.held_right } else { run.held_left };
+    let held = run.held("3_1", Some(if variant.right_handed { 1.0 } else { -1.0 }));
     let failures = [
         (held >= 0.99, format!("held on {:.1} % of the frames after tying", 100.0 * held)),
         (run.penetration < 0.02, format!("self penetration {:.2} % of r", 100.0 * run.penetration)),
@@ -185,12 +185,10 @@ fn a_tie_stopped_mid_plan_resumes_bit_for_bit() {
     }
 }
 
-/// What one run of `thesis.ron` did: the tie, then the slide.
+/// What one run of a tie → tighten → slide scenario did.
 struct Run {
-    /// The fraction of frames after tying that show the trefoil with positive writhe
-    /// (right-handed; > 0.5) and with negative writhe.
-    held_right: f64,
-    held_left: f64,
+    /// The knot type and the core's writhe of every frame after tying.
+    after_tying: Vec<(String, f64)>,
     /// The core's head-ward end when tied (L).
     tied_core_start: f64,
     /// The core midpoint's travel toward the head from the slide's start to its nearest (L).
@@ -220,9 +218,24 @@ fn slope(points: &[(f64, f64)]) -> f64 {
     covariance / variance
 }
 
-/// Runs `thesis.ron` with `extra` arguments into `out` and measures it, or says why not.
-fn thesis_run(out: &Path, extra: &[String]) -> Result<Run, String> {
-    let scenario = format!("{ROOT}/data/scenarios/thesis.ron");
+impl Run {
+    /// The fraction of the frames after tying that show `knot`, and with `writhe_sign` its
+    /// handedness (writhe of that sign, beyond 0.5).
+    fn held(&self, knot: &str, writhe_sign: Option<f64>) -> f64 {
+        let shown = self.after_tying.iter().filter(|(name, writhe)| {
+            name == knot && writhe_sign.is_none_or(|sign| sign * writhe > 0.5)
+        });
+        shown.count() as f64 / self.after_tying.len() as f64
+    }
+}
+
+/// The trefoil's tie → tighten → slide.
+const THESIS: &str = "thesis.ron";
+
+/// Runs `data/scenarios/{scenario}` with `extra` arguments into `out` and measures it, or
+/// says why not.
+fn scenario_run(scenario: &str, out: &Path, extra: &[String]) -> Result<Run, String> {
+    let scenario = format!("{ROOT}/data/scenarios/{scenario}");
     let out_text = out.to_string_lossy();
     let mut args = vec!["run", &scenario, "--quiet", "--out", &out_text];
     args.extend(extra.iter().map(String::as_str));
@@ -237,10 +250,6 @@ fn thesis_run(out: &Path, extra: &[String]) -> Result<Run, String> {
     let length_cm =
         number(&rows[tied], "knot_core_length_cm") / number(&rows[tied], "knot_core_length_L");
     let after = &rows[tied..];
-    let held = |sign: f64| {
-        let shown = after.iter().filter(|r| r[header["knot"]] == "3_1");
-        shown.filter(|r| sign * number(r, "knot_writhe") > 0.5).count() as f64 / after.len() as f64
-    };
     let slide: Vec<&Vec<String>> = rows.iter().filter(|r| r[header["phase"]] == "slide").collect();
     if slide.len() < 10 {
         return Err(format!("{} slide frames", slide.len()));
@@ -254,8 +263,10 @@ fn thesis_run(out: &Path, extra: &[String]) -> Result<Run, String> {
         middle.iter().map(|r| (number(r, "time_s"), mid(r) * length_cm)).collect();
     let maximum = |name: &str| rows.iter().map(|r| number(r, name)).fold(0.0, f64::max);
     Ok(Run {
-        held_right: held(1.0),
-        held_left: held(-1.0),
+        after_tying: after
+            .iter()
+            .map(|r| (r[header["knot"]].clone(), number(r, "knot_writhe")))
+            .collect(),
         tied_core_start: number(&rows[tied], "knot_core_start_L"),
         travel: mid(slide[0]) - after.iter().map(mid).fold(f64::INFINITY, f64::min),
         nearest: after.iter().map(|r| number(r, "knot_core_start_L")).fold(1.0, f64::min),
@@ -266,9 +277,18 @@ fn thesis_run(out: &Path, extra: &[String]) -> Result<Run, String> {
     })
 }
 
-/// `thesis.ron` with `extra` arguments run into a fresh directory named `name`, measured.
-fn slide(name: &str, extra: &[String]) -> Run {
-    thesis_run(&fresh_dir(name), extra).unwrap_or_else(|e| panic!("{name}: {e}"))
+/// `scenario` with `extra` arguments run into a fresh directory named `name`, measured.
+fn slide(scenario: &str, name: &str, extra: &[String]) -> Run {
+    scenario_run(scenario, &fresh_dir(name), extra).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+/// `--set` arguments that zero both slide targets (phase 2): the control run.
+fn zero_slide_targets() -> Vec<String> {
+    let zero = [
+        "phases[2].Thigmotaxis.parameters.head=(0.0, 0.0)",
+        "phases[2].Thigmotaxis.parameters.tail=(0.0, 0.0)",
+    ];
+    zero.iter().flat_map(|s| ["--set".to_string(), s.to_string()]).collect()
 }
 
 /// The slide of `thesis.ron` on ES103, as written and with the time step changed by 1 to 7
@@ -287,7 +307,8 @@ fn the_tied_knot_slides_to_the_head_on_es103_because_of_the_targets() {
                 scope.spawn(move || {
                     let h = 0.01 * (1.0 + f64::from(k) * 1e-12);
                     let extra = ["--set".to_string(), format!("time_step_s={h:?}")];
-                    slide(&format!("thesis_slide_{k}"), if k == 0 { &[] } else { &extra })
+                    let extra = if k == 0 { &[][..] } else { &extra };
+                    slide(THESIS, &format!("thesis_slide_{k}"), extra)
                 })
             })
             .collect();
@@ -296,9 +317,9 @@ fn the_tied_knot_slides_to_the_head_on_es103_because_of_the_targets() {
     for (k, run) in runs.iter().enumerate() {
         let label = format!("δh/h = {k}e-12");
         assert!(
-            run.held_right >= 0.99,
+            run.held("3_1", Some(1.0)) >= 0.99,
             "{label}: trefoil held on {} of the frames",
-            run.held_right
+            run.held("3_1", Some(1.0))
         );
         assert!(run.travel >= 0.25, "{label}: the core's midpoint moved {} L", run.travel);
         assert!(run.nearest <= 0.05, "{label}: the core's head-ward end came to {} L", run.nearest);
@@ -307,13 +328,7 @@ fn the_tied_knot_slides_to_the_head_on_es103_because_of_the_targets() {
     }
     let written = &runs[0];
     assert!(written.change.abs() <= 0.3, "the core's length changed by {}", written.change);
-    let zero = [
-        "phases[2].Thigmotaxis.parameters.head=(0.0, 0.0)",
-        "phases[2].Thigmotaxis.parameters.tail=(0.0, 0.0)",
-    ];
-    let zero: Vec<String> =
-        zero.iter().flat_map(|s| ["--set".to_string(), s.to_string()]).collect();
-    let control = slide("thesis_slide_control", &zero);
+    let control = slide(THESIS, "thesis_slide_control", &zero_slide_targets());
     assert!(
         written.travel - control.travel >= 0.2,
         "travel {} L with the targets, {} L without",
@@ -322,22 +337,25 @@ fn the_tied_knot_slides_to_the_head_on_es103_because_of_the_targets() {
     );
 }
 
+/// The figure-eight of `figure_eight.ron` on ES103 (tie → tighten → slide): tied and held
+/// as 4_1 on every frame after, its core's head-ward end brought within 0.05 L of the head,
+/// self penetration below 2 % of the radius; its midpoint travels at least 0.15 L (the
+/// issue's bound for the long 6_2: the 4_1 core is ≈ 17 D of ES103's 24 D, so the 0.25 L of
+/// the trefoil does not fit, docs/physics.md) and 0.08 L more than in the control run with
+/// zero slide targets, whose head-ward end stays beyond 0.1 L.
 #[test]
-fn the_figure_eight_is_tied_and_held_on_es103() {
-    let dir = fresh_dir("tie_figure_eight");
-    let scenario = format!("{ROOT}/data/scenarios/figure_eight.ron");
-    let output = run_hagfish(["run", &scenario, "--quiet", "--out", &dir.to_string_lossy()]);
-    assert!(output.status.success(), "{}", code_and_stderr(&output).1);
-    let (header, rows) = metrics_table(&dir);
-    let tied = rows.iter().position(|r| r[header["phase"]] != "tie").expect("tied");
-    let after = &rows[tied..];
-    let held = after.iter().filter(|r| r[header["knot"]] == "4_1").count();
-    assert!(held as f64 >= 0.99 * after.len() as f64, "held on {held} of {}", after.len());
-    for row in after {
-        let writhe: f64 = row[header["knot_writhe"]].parse().expect("a writhe");
-        assert!(writhe.abs() < 1.5, "frame {}: writhe {writhe} (4_1 is achiral)", row[0]);
-    }
-    let penetration = rows.iter().map(|r| r[header["max_self_penetration_rel"]].parse::<f64>());
-    let deepest = penetration.map(|p| p.expect("a number")).fold(0.0, f64::max);
-    assert!(deepest < 0.02, "self penetration {:.2} % of r", 100.0 * deepest);
+fn the_figure_eight_is_tied_held_and_slid_to_the_head_on_es103() {
+    let (run, control) = std::thread::scope(|scope| {
+        let run = scope.spawn(|| slide("figure_eight.ron", "figure_eight_slide", &[]));
+        let zero = zero_slide_targets();
+        let control = slide("figure_eight.ron", "figure_eight_control", &zero);
+        (run.join().expect("the run"), control)
+    });
+    assert!(run.held("4_1", None) >= 0.99, "4_1 held on {} of the frames", run.held("4_1", None));
+    assert!(run.penetration < 0.02, "penetration {} of r", run.penetration);
+    assert!(run.limit_excess_deg < 0.5, "limit excess {}°", run.limit_excess_deg);
+    assert!(run.nearest <= 0.05, "the core's head-ward end came to {} L", run.nearest);
+    assert!(run.travel >= 0.15, "the core's midpoint moved {} L", run.travel);
+    assert!(run.travel - control.travel >= 0.08, "{} L, control {} L", run.travel, control.travel);
+    assert!(control.nearest > 0.1, "without targets the core came to {} L", control.nearest);
 }
