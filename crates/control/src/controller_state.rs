@@ -88,6 +88,7 @@ mod tests {
                 condition_since: Some(2.7),
                 load_since: None,
                 core_start_l: Some(0.3),
+                core_length_d: Some(14.0),
             },
             forming: Some(ScriptProgress {
                 step: 1,

@@ -26,9 +26,13 @@
 //!     last_contact_cm: 10.0,
 //!     diameter_cm,
 //! };
-//! fn seen(span: &KnotSpan) -> Observation<'_> {
-//!     Observation { span: Some(span), body_length_cm: 42.4, kinetic_energy_erg: 0.0, core_start_l: None }
-//! }
+//! let seen = |span| Observation {
+//!     span: Some(span),
+//!     body_length_cm: 42.4,
+//!     kinetic_energy_erg: 0.0,
+//!     core_start_l: None,
+//!     core_length_d: None,
+//! };
 //! let (tight, loose) = (span(20.0, 1.76), span(25.0, 1.76));
 //! let mut since = None;
 //! assert!(!until.over(1.0, 1.0, &seen(&loose), &mut since), "25 cm = 14.2 D > 12 D");

@@ -111,6 +111,13 @@ pub struct Until {
     /// knot is still far from it), this is where the knot itself is.
     #[serde(default)]
     pub core_start_below_l: Option<f64>,
+    /// Ends once the knotted core (of the latest recorded frame, as
+    /// [`Until::core_start_below_l`]) is at least this many local diameters long: loosened.
+    #[serde(default)]
+    pub core_length_above_d: Option<f64>,
+    /// Ends once the knotted core is at most this many local diameters long: tightened.
+    #[serde(default)]
+    pub core_length_below_d: Option<f64>,
     /// Ends once the kinetic energy `½ Σ Vᵢ·IᵢVᵢ` is at most this (erg = g·cm²/s²) for
     /// `hold_s`: the body has settled.
     #[serde(default)]
@@ -129,6 +136,9 @@ pub struct Observation<'a> {
     /// The knotted core's head-ward end at the latest recorded frame (fraction of L), if
     /// that frame was knotted.
     pub core_start_l: Option<f64>,
+    /// The knotted core's length at the latest recorded frame in local diameters, if that
+    /// frame was knotted.
+    pub core_length_d: Option<f64>,
 }
 
 /// The kinetic energy of the body at the start of the step (erg,
@@ -156,8 +166,15 @@ impl Until {
             .core_start_below_l
             .zip(observed.core_start_l)
             .is_some_and(|(limit, start)| start <= limit);
+        let core_length = |limit: Option<f64>, reached: fn(f64, f64) -> bool| {
+            limit.zip(observed.core_length_d).is_some_and(|(limit, d)| reached(d, limit))
+        };
+        let loosened = core_length(self.core_length_above_d, |d, limit| d >= limit);
+        let tightened = core_length(self.core_length_below_d, |d, limit| d <= limit);
         let holds = settled
             || core_near_head
+            || loosened
+            || tightened
             || self.knot_condition(observed.span, observed.body_length_cm);
         *since = if holds { Some(since.unwrap_or(t)) } else { None };
         elapsed >= self.seconds || since.is_some_and(|since| t - since >= self.hold_s)
@@ -200,6 +217,8 @@ pub struct KnotObservation<'a> {
     pub right_handed: Option<bool>,
     /// The knotted core's head-ward end (fraction of L), if the frame is knotted.
     pub core_start_l: Option<f64>,
+    /// The knotted core's length in local diameters, if the frame is knotted.
+    pub core_length_d: Option<f64>,
 }
 
 /// Progress through the phases: the controller state a checkpoint must keep.
@@ -221,6 +240,10 @@ pub struct PhaseProgress {
     /// `None` if that frame was not knotted ([`Until::core_start_below_l`]).
     #[serde(default)]
     pub core_start_l: Option<f64>,
+    /// The knotted core's length at the latest recorded frame (local diameters), or `None`
+    /// ([`Until::core_length_above_d`], [`Until::core_length_below_d`]).
+    #[serde(default)]
+    pub core_length_d: Option<f64>,
 }
 
 /// Drag plus phases, in order.
@@ -261,6 +284,7 @@ impl PhasedController {
     /// after its plan without the knot).
     pub fn observe_knot(&mut self, t: f64, knot: Option<KnotObservation<'_>>) {
         self.progress.core_start_l = knot.and_then(|k| k.core_start_l);
+        self.progress.core_length_d = knot.and_then(|k| k.core_length_d);
         let Some(Phase::Tie(phase)) = self.phases.get(self.progress.phase) else {
             return;
         };
@@ -325,6 +349,7 @@ impl PhasedController {
                     body_length_cm: body_length(context),
                     kinetic_energy_erg: kinetic_energy(context),
                     core_start_l: self.progress.core_start_l,
+                    core_length_d: self.progress.core_length_d,
                 };
                 until.over(t, elapsed, &observed, &mut self.progress.condition_since)
             }
@@ -339,9 +364,13 @@ impl PhasedController {
             Some(Phase::Load(_)) => Some(t),
             _ => self.progress.load_since,
         };
-        let core_start_l = self.progress.core_start_l;
-        self.progress =
-            PhaseProgress { phase, started_at: t, condition_since: None, load_since, core_start_l };
+        self.progress = PhaseProgress {
+            phase,
+            started_at: t,
+            condition_since: None,
+            load_since,
+            ..self.progress
+        };
         if let Some(script) = self.phases.get(self.progress.phase).and_then(Phase::script) {
             self.forming = Some(FormingController::new(script));
         }
@@ -405,7 +434,13 @@ mod tests {
     use super::*;
 
     fn seen(span: Option<&KnotSpan>) -> Observation<'_> {
-        Observation { span, body_length_cm: 40.0, kinetic_energy_erg: 1.0, core_start_l: None }
+        Observation {
+            span,
+            body_length_cm: 40.0,
+            kinetic_energy_erg: 1.0,
+            core_start_l: None,
+            core_length_d: None,
+        }
     }
 
     fn span(start_cm: f64, end_cm: f64) -> KnotSpan {
@@ -454,13 +489,27 @@ mod tests {
             agreement: 1.0,
             right_handed: Some(true),
             core_start_l: Some(0.3),
+            core_length_d: Some(14.0),
         };
         controller.observe_knot(0.5, Some(knot));
         assert_eq!(controller.progress().core_start_l, Some(0.3), "kept in any phase");
         controller.advance(1.0);
         assert_eq!(controller.progress().core_start_l, Some(0.3), "and across phases");
+        assert_eq!(controller.progress().core_length_d, Some(14.0));
         controller.observe_knot(1.1, None);
         assert_eq!(controller.progress().core_start_l, None, "a failed analysis forgets it");
+        assert_eq!(controller.progress().core_length_d, None);
+    }
+
+    #[test]
+    fn loosened_and_tightened_look_at_the_cores_length_in_diameters() {
+        let loosen = Until { seconds: 5.0, core_length_above_d: Some(18.0), ..Until::default() };
+        let tighten = Until { seconds: 5.0, core_length_below_d: Some(13.0), ..Until::default() };
+        let at = |core_length_d| Observation { core_length_d, ..seen(None) };
+        let over = |until: &Until, d| until.over(1.0, 1.0, &at(d), &mut None);
+        assert!(!over(&loosen, Some(17.9)) && over(&loosen, Some(18.0)));
+        assert!(!over(&tighten, Some(13.1)) && over(&tighten, Some(13.0)));
+        assert!(!over(&loosen, None) && !over(&tighten, None), "an unknotted frame");
     }
 
     #[test]

@@ -255,7 +255,8 @@ mod tests {
             )
         };
         let seen = |name, agreement, right_handed| {
-            Some(KnotObservation { name, agreement, right_handed, core_start_l: Some(0.4) })
+            let (core_start_l, core_length_d) = (Some(0.4), Some(14.0));
+            Some(KnotObservation { name, agreement, right_handed, core_start_l, core_length_d })
         };
         let shown = seen("3_1", 0.95, Some(true));
         let mut controller = tie(2);

@@ -361,6 +361,18 @@ pub const PARAMETERS: &[Parameter] = &[
         "end once the knotted core's head-ward end is this close to the head (latest frame)",
     ),
     p(
+        "Thigmotaxis.until.core_length_above_d",
+        "D",
+        "None",
+        "end once the knotted core is at least this many local diameters long (latest frame)",
+    ),
+    p(
+        "Thigmotaxis.until.core_length_below_d",
+        "D",
+        "None",
+        "end once the knotted core is at most this many local diameters long (latest frame)",
+    ),
+    p(
         "Thigmotaxis.until.kinetic_energy_below_erg",
         "erg",
         "None",
@@ -460,6 +472,8 @@ mod tests {
                         span_below_d: Some(12.0),
                         span_above_d: Some(15.0),
                         core_start_below_l: Some(0.04),
+                        core_length_above_d: Some(18.0),
+                        core_length_below_d: Some(13.0),
                         kinetic_energy_below_erg: Some(1e-6),
                     },
                 }),

@@ -337,12 +337,15 @@ impl Recording {
         world.body_centres(&mut self.centres);
         let knot = self.knots.analyse(&self.centres, &self.knot_options).ok();
         let name = knot.as_ref().map(|k| k.knot.to_string());
-        let observed = knot.as_ref().zip(name.as_deref()).map(|(k, name)| KnotObservation {
-            name,
-            agreement: k.agreement,
-            right_handed: k.right_handed(),
-            core_start_l: KnotCore::of(k, &self.centres, &self.radii, self.body_length_cm)
-                .map(|core| core.of_body_length(core.start_cm)),
+        let observed = knot.as_ref().zip(name.as_deref()).map(|(k, name)| {
+            let core = KnotCore::of(k, &self.centres, &self.radii, self.body_length_cm);
+            KnotObservation {
+                name,
+                agreement: k.agreement,
+                right_handed: k.right_handed(),
+                core_start_l: core.map(|core| core.of_body_length(core.start_cm)),
+                core_length_d: core.map(|core| core.length_in_diameters()),
+            }
         });
         controller.observe_knot(world.state().t, observed);
         let dofs = world.model().dof_count();
