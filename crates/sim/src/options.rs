@@ -20,7 +20,7 @@ pub struct StepOptions {
     /// d < 0. Default 1 (full correction; `docs/physics.md` explains why not 0.2).
     pub push_out: f64,
     /// A joint-limit row is added when the gap to the limit is below
-    /// `max(limit_margin, 2h|q̇|)` (rad).
+    /// `max(min(limit_margin, range/4), 2h|q̇|)` (rad; range = upper − lower).
     pub limit_margin: f64,
     /// Whether self contact is detected and enforced.
     pub self_contact: bool,

@@ -22,7 +22,7 @@ pub fn add_limit_rows(
 ) {
     for (k, dof) in model.dofs().iter().enumerate() {
         for (gap, sign) in [(state.q[k] - dof.lower, 1.0), (dof.upper - state.q[k], -1.0)] {
-            if has_row(gap, state.qdot[k], time_step, margin) {
+            if has_row(gap, state.qdot[k], time_step, dof_margin(dof, margin)) {
                 let rhs = unilateral_rhs(gap, time_step, push_out);
                 rows.push_zeroed(RowKind::Inequality, RowGroup::Limit.source(k), rhs)[k] = sign;
             }
@@ -34,6 +34,11 @@ pub fn add_limit_rows(
 /// than twice the distance the DOF's rate covers in a step.
 fn has_row(gap: f64, rate: f64, time_step: f64, margin: f64) -> bool {
     gap < margin.max(2.0 * time_step * rate.abs())
+}
+
+/// The margin of `dof`: `margin`, but at most a quarter of the DOF's range.
+fn dof_margin(dof: &hagfish_tree::DofParams, margin: f64) -> f64 {
+    margin.min(0.25 * (dof.upper - dof.lower))
 }
 
 /// Appends limit rows for the DOFs that the solved velocities `qdot_next` would carry past a
@@ -87,7 +92,7 @@ fn overshooting_limits<'a>(
         ]
         .into_iter()
         .filter(move |&(gap, next_gap, _)| {
-            next_gap < 0.0 && !has_row(gap, state.qdot[k], time_step, margin)
+            next_gap < 0.0 && !has_row(gap, state.qdot[k], time_step, dof_margin(dof, margin))
         })
         .map(move |(gap, _, sign)| (k, gap, sign))
     })
@@ -134,6 +139,20 @@ mod tests {
             assert_eq!(added, 0, "the penetrated limit already has its row");
         }
         assert_eq!(rows.len(), 1);
+    }
+
+    #[test]
+    fn the_margin_never_covers_a_quarter_of_the_range() {
+        // ±0.1 rad: with a 0.1 rad margin a joint at rest would get both rows; the margin is
+        // held to 0.05 rad, a quarter of the range.
+        let (model, h, margin) = (hinge(), 0.01, 0.1);
+        let mut state = State::rest(&model);
+        let mut rows = Rows::new(1);
+        add_limit_rows(&model, &state, h, margin, 0.5, &mut rows);
+        assert_eq!(rows.len(), 0, "at rest, 0.1 rad from either limit");
+        state.q[0] = 0.06;
+        add_limit_rows(&model, &state, h, margin, 0.5, &mut rows);
+        assert_eq!(rows.len(), 1, "0.04 rad from the upper limit");
     }
 
     #[test]
