@@ -15,8 +15,12 @@
 //! chain already "touches" itself up to ~4 bodies away (adjacent discs of radius r
 //! spaced ℓ ≪ r overlap).
 //!
-//! At 100 bodies the pruned all-pairs loop is ~4 200 sphere tests, a few microseconds
-//! (see `benches/broad_phase.rs`), so no spatial hierarchy is needed.
+//! The pairs are found in two levels along the chain: runs of [`BLOCK`] consecutive bodies
+//! are bounded by one sphere each; a pair of runs is looked into only if their spheres
+//! overlap and some pair of their bodies is farther apart along the chain than the index
+//! gap. A chain is spatially coherent, so at 10 000 bodies this tests ≈ 2·10⁵ run pairs and
+//! the bodies of the few that touch, where testing all pairs of bodies took ≈ 60 ms per call;
+//! the pairs come out in the same order (sorted by i, then j), without a sort.
 
 use parry3d_f64::bounding_volume::{BoundingSphere, BoundingVolume};
 
@@ -42,11 +46,18 @@ impl Default for BroadPhaseOptions {
     }
 }
 
-/// Broad-phase workspace: the per-body bounding spheres, reused across calls.
+/// Consecutive bodies bounded together by one sphere (module docs).
+const BLOCK: usize = 16;
+
+/// Broad-phase workspace: the per-body and per-run bounding spheres, reused across calls.
 #[derive(Debug, Clone)]
 pub struct BroadPhase {
     options: BroadPhaseOptions,
     spheres: Vec<BoundingSphere>,
+    /// One sphere per run of [`BLOCK`] consecutive bodies, holding their spheres.
+    blocks: Vec<BoundingSphere>,
+    /// The runs that may hold partners of the run being searched.
+    partner_runs: Vec<usize>,
     /// Per segment k: `|c_{k+1} − c_k|/2 + σ_k + max(r_k, r_{k+1})` (module docs).
     reaches: Vec<f64>,
 }
@@ -61,7 +72,13 @@ impl BroadPhase {
             ("inflation", options.inflation),
             ("margin", options.margin),
         ])?;
-        Ok(BroadPhase { options, spheres: Vec::new(), reaches: Vec::new() })
+        Ok(BroadPhase {
+            options,
+            spheres: Vec::new(),
+            blocks: Vec::new(),
+            partner_runs: Vec::new(),
+            reaches: Vec::new(),
+        })
     }
 
     /// The options this broad phase was built with.
@@ -107,11 +124,34 @@ impl BroadPhase {
                 BoundingSphere::new(c, own.max(reach + half_margin))
             },
         ));
+        self.blocks.clear();
+        self.blocks.extend(self.spheres.chunks(BLOCK).map(|run| {
+            let centre = run.iter().map(|s| s.center).sum::<glam::DVec3>() / run.len() as f64;
+            let radius = run.iter().map(|s| s.center.distance(centre) + s.radius);
+            BoundingSphere::new(centre, radius.fold(0.0, f64::max))
+        }));
         out.clear();
-        let first_partner = self.options.index_gap.saturating_add(1);
-        for (i, sphere) in self.spheres.iter().enumerate() {
-            let partners = self.spheres.iter().enumerate().skip(i.saturating_add(first_partner));
-            out.extend(partners.filter(|(_, other)| sphere.intersects(other)).map(|(j, _)| (i, j)));
+        let (gap, spheres, n) = (self.options.index_gap, &self.spheres, self.spheres.len());
+        for (a, run_a) in self.blocks.iter().enumerate() {
+            let (first_a, end_a) = (a * BLOCK, ((a + 1) * BLOCK).min(n));
+            // The runs from this one on that may hold a partner: some pair of the two runs
+            // is farther apart than the index gap, and their spheres overlap.
+            self.partner_runs.clear();
+            self.partner_runs.extend(self.blocks.iter().enumerate().skip(a).filter_map(
+                |(b, run_b)| {
+                    let end_b = ((b + 1) * BLOCK).min(n);
+                    (end_b - 1 - first_a > gap && run_a.intersects(run_b)).then_some(b)
+                },
+            ));
+            // Body by body, partner runs in order: the pairs come out sorted by (i, j).
+            for i in first_a..end_a {
+                for &b in &self.partner_runs {
+                    let first = i.saturating_add(gap).saturating_add(1);
+                    let partners = (b * BLOCK).max(first)..((b + 1) * BLOCK).min(n);
+                    let touching = partners.filter(|&j| spheres[i].intersects(&spheres[j]));
+                    out.extend(touching.map(|j| (i, j)));
+                }
+            }
         }
         Ok(())
     }
@@ -162,14 +202,21 @@ mod tests {
     proptest! {
         #[test]
         fn equals_brute_force_over_all_pairs(
-            coordinates in prop::collection::vec(-3.0_f64..3.0, 6..90),
+            coordinates in prop::collection::vec(-3.0_f64..3.0, 6..600),
             radius in 0.2_f64..1.0,
             length in 0.0_f64..0.8,
-            index_gap in 0_usize..10,
+            index_gap in 0_usize..40,
             inflation in 0.0_f64..0.5,
+            walk in any::<bool>(),
         ) {
-            let centres: Vec<_> =
-                coordinates.chunks_exact(3).map(|c| DVec3::new(c[0], c[1], c[2])).collect();
+            // Scattered points, or a random walk of steps of at most 0.35 (a chain, whose
+            // runs of bodies are spatially coherent as the two-level search expects).
+            let points = coordinates.chunks_exact(3).map(|c| DVec3::new(c[0], c[1], c[2]));
+            let centres: Vec<_> = if walk {
+                points.scan(DVec3::ZERO, |at, step| { *at += 0.06 * step; Some(*at) }).collect()
+            } else {
+                points.collect()
+            };
             let n = centres.len();
             let radii: Vec<_> = (0..n).map(|k| radius * (1.0 + 0.1 * (k % 3) as f64)).collect();
             let lengths: Vec<_> = (0..n).map(|k| length * (1.0 + 0.2 * (k % 2) as f64)).collect();
