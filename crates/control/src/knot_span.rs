@@ -44,7 +44,8 @@ impl KnotSpan {
     }
 
     /// Length of the knotted stretch in mean local diameters, `(end − start) / D`: the knot's
-    /// size relative to the body's thickness (the thesis' 21 cm on ES103 is 11.9 D).
+    /// size relative to the body's thickness (the thesis' 21 cm is 12.6 D where ES103's tied knot
+    /// sits).
     pub fn length_d(&self) -> f64 {
         self.length_cm() / self.diameter_cm
     }
