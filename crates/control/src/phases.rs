@@ -280,9 +280,8 @@ impl PhasedController {
 
     /// Takes the knot analysis of a recorded frame at time `t` (`None` if it failed). Its
     /// core's head-ward end and length are kept for [`Until::core_start_below_l`] and the core
-    /// length conditions. A tie phase ends on
-    /// it (the knot shown for `hold_s`), or starts its plan again, or fails (`settle_s`
-    /// after its plan without the knot).
+    /// length conditions. A tie phase ends on it (the knot shown for `hold_s`), or starts its
+    /// plan again, or fails (`settle_s` after its plan without the knot).
     pub fn observe_knot(&mut self, t: f64, knot: Option<KnotObservation<'_>>) {
         self.progress.core_start_l = knot.and_then(|k| k.core_start_l);
         self.progress.core_length_d = knot.and_then(|k| k.core_length_d);
