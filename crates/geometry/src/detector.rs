@@ -109,8 +109,11 @@ pub struct ContactDetector {
     options: DetectorOptions,
     broad_phase: BroadPhase,
     body_pairs: Vec<(usize, usize)>,
-    /// Every segment of the centreline with its seed-grid samples and bounds.
+    /// The segments of the segment pairs with their seed-grid samples and bounds, in the
+    /// order first needed.
     segments: Vec<SampledSegment>,
+    /// Per segment of the centreline, its place in `segments` (`usize::MAX`: not needed).
+    slots: Vec<usize>,
     segment_pairs: Vec<(usize, usize)>,
     candidates: Vec<Candidate>,
 }
@@ -136,6 +139,7 @@ impl ContactDetector {
             broad_phase,
             body_pairs: Vec::new(),
             segments: Vec::new(),
+            slots: Vec::new(),
             segment_pairs: Vec::new(),
             candidates: Vec::new(),
         })
@@ -148,6 +152,7 @@ impl ContactDetector {
         let pairs = PAIRS_PER_BODY * bodies;
         self.body_pairs.reserve(pairs);
         self.segments.reserve(bodies + 1);
+        self.slots.reserve(bodies + 1);
         self.segment_pairs.reserve(pairs);
         self.candidates.reserve(pairs);
     }
@@ -198,10 +203,19 @@ impl ContactDetector {
         centreline: &Centreline,
         out: &mut Vec<SelfContact>,
     ) -> DetectionReport {
+        // Only the segments of some pair are sampled: on a long chain that is in contact in
+        // a few places, most are not.
         self.segments.clear();
-        self.segments.extend(
-            (0..centreline.segment_count()).map(|k| SampledSegment::new(centreline.segment(k))),
-        );
+        self.slots.clear();
+        self.slots.resize(centreline.segment_count(), usize::MAX);
+        for &(k_a, k_b) in &self.segment_pairs {
+            for k in [k_a, k_b] {
+                if self.slots[k] == usize::MAX {
+                    self.slots[k] = self.segments.len();
+                    self.segments.push(SampledSegment::new(centreline.segment(k)));
+                }
+            }
+        }
         let (margin, index_gap) = (self.options.margin, self.options.index_gap as f64);
         // A search result as a contact candidate: within the margin and outside the
         // chain-index exclusion.
@@ -221,7 +235,7 @@ impl ContactDetector {
         self.candidates.clear();
         for &pair in &self.segment_pairs {
             let reach = reach(centreline.radii(), pair, margin);
-            let (a, b) = (&self.segments[pair.0], &self.segments[pair.1]);
+            let (a, b) = (&self.segments[self.slots[pair.0]], &self.segments[self.slots[pair.1]]);
             let chord = closest_chord_parameters(a.segment.chord(), b.segment.chord());
             if !may_touch(a, b, chord, reach) {
                 continue;
