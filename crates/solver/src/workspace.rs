@@ -41,7 +41,7 @@ use crate::problem::Problem;
 use crate::refine::{FactoredSystem, Refined, Refinement};
 use crate::report::{SolvePath, SolveReport, SolveStatus};
 use crate::residuals::{Evaluation, Stationarity, evaluate, row_residuals};
-use crate::rows::{RowTag, Rows};
+use crate::rows::{PerTag, RowTag, Rows};
 
 /// How often a refined answer may send a violated bound row back to the active-set method.
 const VERIFICATION_PASSES: usize = 4;
@@ -57,6 +57,10 @@ pub struct SolverWorkspace {
     velocity: Vec<f64>,
     multipliers: Vec<f64>,
     impulses: Mat<f64>,
+    /// The columns of `impulses` that may hold non-zero values (tags that had rows in the
+    /// last solve): only they and the tags with rows now are cleared, so a long chain with a
+    /// few kinds of rows does not clear `RowTag::COUNT` columns of n per solve.
+    impulses_written: PerTag<bool>,
     residual: Vec<f64>,
     work: Vec<f64>,
     /// (vᵢ, sᵢ) of every row at the answer (`residuals::row_residuals`).
@@ -93,6 +97,7 @@ impl SolverWorkspace {
             velocity: Vec::new(),
             multipliers: Vec::new(),
             impulses: Mat::zeros(0, RowTag::COUNT),
+            impulses_written: PerTag::default(),
             residual: Vec::new(),
             work: Vec::new(),
             row_residuals: Vec::new(),
@@ -331,8 +336,17 @@ impl SolverWorkspace {
     /// impulse_g = Σ_{i tagged g} λᵢcᵢ for every tag g.
     fn collect_impulses(&mut self, problem: &Problem<'_>) {
         let rows = problem.rows();
-        self.impulses.resize_with(problem.dofs(), RowTag::COUNT, |_, _| 0.0);
-        self.impulses.fill(0.0);
+        if self.impulses.nrows() != problem.dofs() {
+            self.impulses.resize_with(problem.dofs(), RowTag::COUNT, |_, _| 0.0);
+            self.impulses.fill(0.0);
+            self.impulses_written = PerTag::default();
+        }
+        for (tag, &count) in rows.count_per_tag().iter() {
+            if count > 0 || self.impulses_written[tag] {
+                self.impulses.col_as_slice_mut(tag.index()).fill(0.0);
+            }
+            self.impulses_written[tag] = count > 0;
+        }
         for (i, source) in rows.sources().iter().enumerate() {
             let impulse = self.impulses.col_as_slice_mut(source.tag.index());
             axpy(self.multipliers[i], rows.row(i), impulse);

@@ -69,6 +69,25 @@ fn a_caller_defined_row_kind_is_reported_and_traced_by_its_own_tags() -> Result<
     Ok(())
 }
 
+/// A kind of row present in one solve and gone in the next leaves no impulse behind.
+#[test]
+fn a_kind_without_rows_has_no_impulse_after_one_that_had() -> Result<(), SolverError> {
+    let mass = Mat::<f64>::identity(2, 2) * MASS_G;
+    let mut workspace = SolverWorkspace::default();
+    let both = rows()?;
+    workspace
+        .factor(Mass::Dense(mass.as_ref()), &both)?
+        .solve(&[MASS_G, -3.0 * MASS_G], both.rhs())?;
+    assert!(workspace.tag_impulse(FLOOR)[1] > 0.0);
+    let mut rope_only = Rows::new(2);
+    rope_only.push(RowKind::Equality, RowSource::new(ROPE, ROPE_ID), 0.0, &[1.0, 0.0])?;
+    let force = [MASS_G, -3.0 * MASS_G];
+    workspace.factor(Mass::Dense(mass.as_ref()), &rope_only)?.solve(&force, rope_only.rhs())?;
+    assert_eq!(workspace.tag_impulse(FLOOR), &[0.0, 0.0], "the floor had rows before");
+    assert!((workspace.tag_impulse(ROPE)[0] + MASS_G).abs() < 1e-12);
+    Ok(())
+}
+
 #[test]
 fn a_factored_problem_is_solved_again_with_new_bounds_and_refuses_wrong_sizes()
 -> Result<(), SolverError> {
