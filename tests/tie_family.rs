@@ -359,3 +359,21 @@ fn the_figure_eight_is_tied_held_and_slid_to_the_head_on_es103() {
     assert!(run.travel - control.travel >= 0.08, "{} L, control {} L", run.travel, control.travel);
     assert!(control.nearest > 0.1, "without targets the core came to {} L", control.nearest);
 }
+
+/// A run whose duration ends before its tie has tied the knot is not passed off as done: the
+/// summary and the manifest name the unfinished tie, its knot and its attempt.
+#[test]
+fn a_run_that_ends_before_its_knot_is_tied_says_so() {
+    let dir = fresh_dir("tie_cut_short");
+    let scenario = format!("{ROOT}/data/scenarios/thesis.ron");
+    let out = dir.to_string_lossy();
+    let args = ["run", &scenario, "--quiet", "--out", &out, "--set", "duration_s=3"];
+    let output = run_hagfish(args);
+    assert!(output.status.success(), "{}", code_and_stderr(&output).1);
+    let unfinished = "tie (3_1 not tied, attempt 1 of 2)";
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(stdout.contains(&format!("the duration ended in phase {unfinished}")), "{stdout}");
+    let manifest = common::manifest(&dir);
+    assert_eq!(manifest["status"], "completed");
+    assert_eq!(manifest["unfinished_phase"], unfinished);
+}

@@ -97,6 +97,10 @@ pub struct Manifest {
     /// The most substeps one step needed (1: none was divided).
     #[serde(default)]
     pub max_substeps: u32,
+    /// The scenario phase still running when the run stopped (`null`: every phase was
+    /// over), e.g. `tie (3_1 not tied, attempt 1 of 2)` when the duration ended first.
+    #[serde(default)]
+    pub unfinished_phase: Option<String>,
     /// Frame counts at which the run was resumed, in order.
     pub resumed_at_frames: Vec<usize>,
     /// Every other file of the run directory with its size, by name.
@@ -125,6 +129,7 @@ impl Manifest {
             error: None,
             substepped_steps: 0,
             max_substeps: 1,
+            unfinished_phase: None,
             resumed_at_frames: Vec::new(),
             files: Vec::new(),
         }

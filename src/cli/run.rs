@@ -304,6 +304,7 @@ fn finish(
     manifest.time_s = outcome.state.t;
     manifest.substepped_steps = outcome.summary.substepped_steps;
     manifest.max_substeps = outcome.summary.max_substeps;
+    manifest.unfinished_phase.clone_from(&outcome.summary.unfinished_phase);
     manifest.final_state_hash = Some(state_hash(&outcome.state));
     manifest.error.clone_from(&error);
     manifest.write(directory)?;
@@ -359,6 +360,9 @@ fn summarise(
         .iter()
         .map(|(name, seconds)| format!("{name} {:.1}", 1e6 * seconds / steps))
         .collect();
+    if let Some(phase) = summary.unfinished_phase.as_ref().filter(|_| status == Status::Completed) {
+        writeln!(out, "the duration ended in phase {phase}: a longer duration_s lets it finish")?;
+    }
     if summary.substepped_steps > 0 {
         writeln!(
             out,

@@ -427,6 +427,21 @@ impl PhasedController {
     pub fn finished(&self) -> bool {
         self.progress.phase >= self.phases.len()
     }
+
+    /// The phase still running, as a reader should see it at the end of a run, or `None`
+    /// when every phase is over: its name, and for a tie phase the knot that is not tied yet
+    /// and the attempt (`tie (3_1 not tied, attempt 1 of 2)`).
+    pub fn unfinished_phase(&self) -> Option<String> {
+        match self.phases.get(self.progress.phase)? {
+            Phase::Tie(phase) => Some(format!(
+                "tie ({} not tied, attempt {} of {})",
+                phase.knot.name(),
+                self.tie.attempt,
+                phase.attempts
+            )),
+            _ => Some(self.phase_name().to_string()),
+        }
+    }
 }
 
 #[cfg(test)]
@@ -499,6 +514,18 @@ mod tests {
         controller.observe_knot(1.1, None);
         assert_eq!(controller.progress().core_start_l, None, "a failed analysis forgets it");
         assert_eq!(controller.progress().core_length_d, None);
+    }
+
+    #[test]
+    fn the_unfinished_phase_is_named_and_a_tie_says_its_knot_and_attempt() {
+        let tie = TiePhase::new(TieKnot::Trefoil(crate::tie::Handedness::Right), 0.31);
+        let mut controller = PhasedController::new(None, vec![Phase::Tie(tie), Phase::Hold(1.0)]);
+        let unfinished = controller.unfinished_phase();
+        assert_eq!(unfinished.as_deref(), Some("tie (3_1 not tied, attempt 1 of 2)"));
+        controller.advance(10.0);
+        assert_eq!(controller.unfinished_phase().as_deref(), Some("hold"));
+        controller.advance(11.0);
+        assert_eq!(controller.unfinished_phase(), None, "every phase over");
     }
 
     #[test]

@@ -67,6 +67,10 @@ pub struct RunSummary {
     pub substepped_steps: u64,
     /// The most substeps one step needed (1 when none was divided).
     pub max_substeps: u32,
+    /// The phase still running when the run stopped, if any
+    /// ([`hagfish_control::PhasedController::unfinished_phase`]): a run whose duration ends
+    /// during its tie says that its knot was never tied.
+    pub unfinished_phase: Option<String>,
 }
 
 /// Where a run starts and when it stops early.
@@ -203,6 +207,7 @@ pub fn run(
         }
     };
     summary.steps = world.steps();
+    summary.unfinished_phase = controller.unfinished_phase();
     Ok(RunOutcome { summary, end, state: world.state().clone() })
 }
 
