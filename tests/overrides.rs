@@ -76,3 +76,26 @@ fn bad_overrides_are_exit_2_naming_the_override() {
     let output = run_hagfish(["run", "--resume", "somewhere", "--set", "time_step_s=1"]);
     assert_eq!(code_and_stderr(&output).0, Some(2));
 }
+
+/// A knot-size end condition out of its range is exit 2 at its place in the overridden text:
+/// sizes in diameters > 0, growth > 0, shrinkage a proportion in (0, 1).
+#[test]
+fn knot_size_end_conditions_are_checked() {
+    let dir = fresh_dir("overrides_knot_size");
+    let scenario = format!("{ROOT}/data/scenarios/loosen_tighten.ron");
+    let cases = [
+        ("phases[1].Thigmotaxis.until.core_length_above_d=0.0", "core_length_above_d = 0"),
+        ("phases[2].Thigmotaxis.until.core_length_below_d=-1.0", "core_length_below_d = -1"),
+        ("phases[1].Thigmotaxis.until.core_growth_above=-0.5", "expected finite and > 0"),
+        ("phases[2].Thigmotaxis.until.core_shrink_above=1.5", "expected a proportion in (0, 1)"),
+        ("phases[1].Thigmotaxis.until.span_above_d=0.0", "span_above_d = 0"),
+    ];
+    for (given, expected) in cases {
+        let out = dir.join("run").display().to_string();
+        let output = run_hagfish(["run", &scenario, "--quiet", "--out", &out, "--set", given]);
+        let (code, stderr) = code_and_stderr(&output);
+        assert_eq!(code, Some(2), "{given}: {stderr}");
+        assert!(stderr.contains("[with overrides]:"), "{given}: no location in {stderr}");
+        assert!(stderr.contains(expected), "{given}: expected {expected:?} in {stderr}");
+    }
+}

@@ -89,6 +89,7 @@ mod tests {
                 load_since: None,
                 core_start_l: Some(0.3),
                 core_length_d: Some(14.0),
+                core_length_d_at_start: Some(13.0),
             },
             forming: Some(ScriptProgress {
                 step: 1,

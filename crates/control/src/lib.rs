@@ -32,6 +32,7 @@
 //!     kinetic_energy_erg: 0.0,
 //!     core_start_l: None,
 //!     core_length_d: None,
+//!     core_length_d_at_start: None,
 //! };
 //! let (tight, loose) = (span(20.0, 1.76), span(25.0, 1.76));
 //! let mut since = None;

@@ -118,6 +118,14 @@ pub struct Until {
     /// Ends once the knotted core is at most this many local diameters long: tightened.
     #[serde(default)]
     pub core_length_below_d: Option<f64>,
+    /// Ends once the knotted core is this fraction longer than when the phase started (0.3:
+    /// 30 % longer): loosened relative to the knot the phase was given, whatever its size.
+    #[serde(default)]
+    pub core_growth_above: Option<f64>,
+    /// Ends once the knotted core is this fraction shorter than when the phase started (0.25:
+    /// a quarter shorter): tightened relative to the knot the phase was given.
+    #[serde(default)]
+    pub core_shrink_above: Option<f64>,
     /// Ends once the kinetic energy `½ Σ Vᵢ·IᵢVᵢ` is at most this (erg = g·cm²/s²) for
     /// `hold_s`: the body has settled.
     #[serde(default)]
@@ -139,6 +147,8 @@ pub struct Observation<'a> {
     /// The knotted core's length at the latest recorded frame in local diameters, if that
     /// frame was knotted.
     pub core_length_d: Option<f64>,
+    /// The core's length (local diameters) at the last frame before the phase started.
+    pub core_length_d_at_start: Option<f64>,
 }
 
 /// The kinetic energy of the body at the start of the step (erg,
@@ -169,8 +179,14 @@ impl Until {
         let core_length = |limit: Option<f64>, reached: fn(f64, f64) -> bool| {
             limit.zip(observed.core_length_d).is_some_and(|(limit, d)| reached(d, limit))
         };
-        let loosened = core_length(self.core_length_above_d, |d, limit| d >= limit);
-        let tightened = core_length(self.core_length_below_d, |d, limit| d <= limit);
+        let now_and_start = observed.core_length_d.zip(observed.core_length_d_at_start);
+        let changed = |fraction: Option<f64>, reached: fn(f64, f64, f64) -> bool| {
+            fraction.zip(now_and_start).is_some_and(|(f, (now, start))| reached(now, start, f))
+        };
+        let loosened = core_length(self.core_length_above_d, |d, limit| d >= limit)
+            || changed(self.core_growth_above, |now, start, f| now >= (1.0 + f) * start);
+        let tightened = core_length(self.core_length_below_d, |d, limit| d <= limit)
+            || changed(self.core_shrink_above, |now, start, f| now <= (1.0 - f) * start);
         let holds = settled
             || core_near_head
             || loosened
@@ -244,6 +260,10 @@ pub struct PhaseProgress {
     /// ([`Until::core_length_above_d`], [`Until::core_length_below_d`]).
     #[serde(default)]
     pub core_length_d: Option<f64>,
+    /// [`PhaseProgress::core_length_d`] when the current phase started
+    /// ([`Until::core_growth_above`], [`Until::core_shrink_above`]).
+    #[serde(default)]
+    pub core_length_d_at_start: Option<f64>,
 }
 
 /// Drag plus phases, in order.
@@ -350,6 +370,7 @@ impl PhasedController {
                     kinetic_energy_erg: kinetic_energy(context),
                     core_start_l: self.progress.core_start_l,
                     core_length_d: self.progress.core_length_d,
+                    core_length_d_at_start: self.progress.core_length_d_at_start,
                 };
                 until.over(t, elapsed, &observed, &mut self.progress.condition_since)
             }
@@ -369,6 +390,7 @@ impl PhasedController {
             started_at: t,
             condition_since: None,
             load_since,
+            core_length_d_at_start: self.progress.core_length_d,
             ..self.progress
         };
         if let Some(script) = self.phases.get(self.progress.phase).and_then(Phase::script) {
@@ -455,6 +477,7 @@ mod tests {
             kinetic_energy_erg: 1.0,
             core_start_l: None,
             core_length_d: None,
+            core_length_d_at_start: None,
         }
     }
 
@@ -537,6 +560,21 @@ mod tests {
         assert!(!over(&loosen, Some(17.9)) && over(&loosen, Some(18.0)));
         assert!(!over(&tighten, Some(13.1)) && over(&tighten, Some(13.0)));
         assert!(!over(&loosen, None) && !over(&tighten, None), "an unknotted frame");
+
+        // Relative to the core when the phase started: 14 D → loosened at 18.2 D (+30 %),
+        // tightened at 10.5 D (−25 %).
+        let grow = Until { seconds: 5.0, core_growth_above: Some(0.3), ..Until::default() };
+        let shrink = Until { seconds: 5.0, core_shrink_above: Some(0.25), ..Until::default() };
+        let from_14 = |core_length_d| Observation {
+            core_length_d,
+            core_length_d_at_start: Some(14.0),
+            ..seen(None)
+        };
+        let over = |until: &Until, d| until.over(1.0, 1.0, &from_14(d), &mut None);
+        assert!(!over(&grow, Some(18.1)) && over(&grow, Some(18.2)));
+        assert!(!over(&shrink, Some(10.6)) && over(&shrink, Some(10.5)));
+        let unknown_start = Observation { core_length_d: Some(30.0), ..seen(None) };
+        assert!(!grow.over(1.0, 1.0, &unknown_start, &mut None), "no core when the phase began");
     }
 
     #[test]

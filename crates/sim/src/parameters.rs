@@ -373,6 +373,18 @@ pub const PARAMETERS: &[Parameter] = &[
         "end once the knotted core is at most this many local diameters long (latest frame)",
     ),
     p(
+        "Thigmotaxis.until.core_growth_above",
+        "-",
+        "None",
+        "end once the knotted core is this fraction longer than when the phase started",
+    ),
+    p(
+        "Thigmotaxis.until.core_shrink_above",
+        "-",
+        "None",
+        "end once the knotted core is this fraction shorter than when the phase started",
+    ),
+    p(
         "Thigmotaxis.until.kinetic_energy_below_erg",
         "erg",
         "None",
@@ -474,6 +486,8 @@ mod tests {
                         core_start_below_l: Some(0.04),
                         core_length_above_d: Some(18.0),
                         core_length_below_d: Some(13.0),
+                        core_growth_above: Some(0.3),
+                        core_shrink_above: Some(0.25),
                         kinetic_energy_below_erg: Some(1e-6),
                     },
                 }),

@@ -24,6 +24,8 @@ enum Range {
     AtLeast(f64),
     AtMost(f64),
     Fraction,
+    /// In (0, 1): a part of something other than the body length.
+    Proportion,
     Positive,
     NonNegative,
     Finite,
@@ -36,6 +38,7 @@ impl Range {
                 Range::AtLeast(floor) => value >= floor,
                 Range::AtMost(cap) => value <= cap,
                 Range::Fraction => (0.0..=1.0).contains(&value),
+                Range::Proportion => value > 0.0 && value < 1.0,
                 Range::Positive => value > 0.0,
                 Range::NonNegative => value >= 0.0,
                 Range::Finite => true,
@@ -47,6 +50,7 @@ impl Range {
             Range::AtLeast(floor) => format!("finite and ≥ {floor:e}"),
             Range::AtMost(cap) => format!("at most {cap}"),
             Range::Fraction => "a fraction of the body length in [0, 1]".into(),
+            Range::Proportion => "a proportion in (0, 1)".into(),
             Range::Positive => "finite and > 0".into(),
             Range::NonNegative => "finite and ≥ 0".into(),
             Range::Finite => "finite".into(),
@@ -254,12 +258,19 @@ impl Checker<'_> {
                 self.check(key, value, Range::Fraction)?;
             }
         }
-        for (key, value) in
-            [("span_below_d", until.span_below_d), ("span_above_d", until.span_above_d)]
-        {
+        for (key, value) in [
+            ("span_below_d", until.span_below_d),
+            ("span_above_d", until.span_above_d),
+            ("core_length_above_d", until.core_length_above_d),
+            ("core_length_below_d", until.core_length_below_d),
+            ("core_growth_above", until.core_growth_above),
+        ] {
             if let Some(value) = value {
                 self.check(key, value, Range::Positive)?;
             }
+        }
+        if let Some(shrink) = until.core_shrink_above {
+            self.check("core_shrink_above", shrink, Range::Proportion)?;
         }
         if let Some(energy) = until.kinetic_energy_below_erg {
             self.check("kinetic_energy_below_erg", energy, Range::NonNegative)?;
