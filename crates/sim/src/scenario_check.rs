@@ -237,43 +237,29 @@ impl Checker<'_> {
     fn until(&mut self, until: &Until) -> Result<(), AnatomyError> {
         self.check("seconds", until.seconds, Range::NonNegative)?;
         self.check("hold_s", until.hold_s, Range::NonNegative)?;
-        for (key, value) in [
-            ("knot_start_below_cm", until.knot_start_below_cm),
-            ("knot_start_above_cm", until.knot_start_above_cm),
-            ("span_below_cm", until.span_below_cm),
-            ("span_above_cm", until.span_above_cm),
-        ] {
+        // The optional end conditions in file order, each with its range.
+        let optional = [
+            ("knot_start_below_cm", until.knot_start_below_cm, Range::Finite),
+            ("knot_start_above_cm", until.knot_start_above_cm, Range::Finite),
+            ("span_below_cm", until.span_below_cm, Range::Finite),
+            ("span_above_cm", until.span_above_cm, Range::Finite),
+            ("knot_start_below_l", until.knot_start_below_l, Range::Fraction),
+            ("knot_start_above_l", until.knot_start_above_l, Range::Fraction),
+            ("span_below_l", until.span_below_l, Range::Fraction),
+            ("span_above_l", until.span_above_l, Range::Fraction),
+            ("span_below_d", until.span_below_d, Range::Positive),
+            ("span_above_d", until.span_above_d, Range::Positive),
+            ("core_start_below_l", until.core_start_below_l, Range::Fraction),
+            ("core_length_above_d", until.core_length_above_d, Range::Positive),
+            ("core_length_below_d", until.core_length_below_d, Range::Positive),
+            ("core_growth_above", until.core_growth_above, Range::Positive),
+            ("core_shrink_above", until.core_shrink_above, Range::Proportion),
+            ("kinetic_energy_below_erg", until.kinetic_energy_below_erg, Range::NonNegative),
+        ];
+        for (key, value, range) in optional {
             if let Some(value) = value {
-                self.check(key, value, Range::Finite)?;
+                self.check(key, value, range)?;
             }
-        }
-        for (key, value) in [
-            ("knot_start_below_l", until.knot_start_below_l),
-            ("knot_start_above_l", until.knot_start_above_l),
-            ("span_below_l", until.span_below_l),
-            ("span_above_l", until.span_above_l),
-            ("core_start_below_l", until.core_start_below_l),
-        ] {
-            if let Some(value) = value {
-                self.check(key, value, Range::Fraction)?;
-            }
-        }
-        for (key, value) in [
-            ("span_below_d", until.span_below_d),
-            ("span_above_d", until.span_above_d),
-            ("core_length_above_d", until.core_length_above_d),
-            ("core_length_below_d", until.core_length_below_d),
-            ("core_growth_above", until.core_growth_above),
-        ] {
-            if let Some(value) = value {
-                self.check(key, value, Range::Positive)?;
-            }
-        }
-        if let Some(shrink) = until.core_shrink_above {
-            self.check("core_shrink_above", shrink, Range::Proportion)?;
-        }
-        if let Some(energy) = until.kinetic_energy_below_erg {
-            self.check("kinetic_energy_below_erg", energy, Range::NonNegative)?;
         }
         Ok(())
     }
