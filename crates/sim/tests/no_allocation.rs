@@ -1,7 +1,8 @@
-//! A step allocates nothing once warm. Two knotted states are stepped on with their
+//! A step allocates nothing once warm. Three knotted states are stepped on with their
 //! scenario's own controller: the knotted benchmark state (`form.ron` at t = 23.13 s, about
-//! 40 self contacts, knot-forming pull; on both dynamics backends) and `thesis_scripted.ron` at
-//! t = 21 s (thigmotaxis rows).
+//! 40 self contacts, knot-forming pull; on both dynamics backends), `thesis_scripted.ron` at
+//! t = 21 s (thigmotaxis rows) and `tie.ron` on ES103 at 1000 bodies (sparse backend) at
+//! t = 19 s, a trefoil tied by control.
 //! After warm-up steps the next steps must not touch the heap (counted by an instrumented
 //! global allocator). One test function: the counter is global, so nothing else may run
 //! alongside.
@@ -10,7 +11,7 @@ use std::alloc::System;
 
 use hagfish_bench_support::knotted_world;
 use hagfish_control::PhasedController;
-use hagfish_sim::{DynamicsBackend, LoadedScenario, StepOptions, World};
+use hagfish_sim::{DynamicsBackend, LoadedScenario, Override, StepOptions, World};
 use stats_alloc::{INSTRUMENTED_SYSTEM, Region, StatsAlloc};
 
 #[global_allocator]
@@ -61,4 +62,17 @@ fn knotted_steps_do_not_allocate() {
         LoadedScenario::load(format!("{root}/data/scenarios/thesis_scripted.ron")).expect("loads");
     let (mut world, mut controller) = thesis.build_at(21.0).expect("thesis at 21 s");
     assert_steps_do_not_allocate("thesis_scripted.ron", &mut world, &mut controller);
+
+    // ES103 at 1000 bodies (D16: the same animal), the trefoil tied by control.
+    let body = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("es103_1000_bodies.ron");
+    let es103 = std::fs::read_to_string(format!("{root}/data/hagfish/es103.ron")).expect("es103");
+    std::fs::write(&body, es103.replace(" body_count: 100,", " body_count: 1000,")).expect("write");
+    let overrides = [
+        Override { path: "body".into(), value: format!("{:?}", body.display().to_string()) },
+        Override::parse("backend=SparseMaximal").expect("an override"),
+    ];
+    let tie = LoadedScenario::load_with(format!("{root}/data/scenarios/tie.ron"), &overrides)
+        .expect("loads");
+    let (mut world, mut controller) = tie.build_at(19.0).expect("tie.ron at 19 s");
+    assert_steps_do_not_allocate("tie.ron, 1000 bodies, sparse", &mut world, &mut controller);
 }
