@@ -274,9 +274,8 @@ impl ContactDetector {
     /// body i touches segments i − 1 and i (those that exist), so segment k_a is touched by
     /// the body pairs of bodies k_a and k_a + 1. The body pairs come sorted by (i, j), so each
     /// of those two rows gives its partners k_b ∈ {j − 1, j} in order; merging the two rows
-    /// gives the pairs of k_a sorted, in time and memory linear in the pairs (a bit set over
-    /// all k_a·S + k_b, used before, cleared and scanned S² bits every step: 12.5 MB at
-    /// 10 000 bodies).
+    /// gives the pairs of k_a sorted, in memory linear in the pairs and time O(S log p) (no
+    /// table over all S² segment pairs).
     fn collect_segment_pairs(&mut self, segment_count: usize) {
         self.segment_pairs.clear();
         let pairs = &self.body_pairs;
