@@ -56,6 +56,7 @@ mod phases;
 mod tail_pd;
 mod thigmotaxis;
 mod tie;
+mod until;
 
 pub use controller::{Actuation, ControlContext, Controller, Passive, PointDamper, PointForce};
 pub use controller_state::ControllerState;
@@ -66,9 +67,10 @@ pub use knot_span::KnotSpan;
 pub use load::{LoadDirection, LoadPhase};
 pub use loops::{ProjectedLoop, largest_projected_loop};
 pub use phases::{
-    KnotObservation, Observation, Phase, PhaseProgress, PhasedController, ThigmoPhase, TieFailure,
-    Until, kinetic_energy,
+    KnotObservation, Phase, PhaseProgress, PhasedController, ThigmoPhase, TieFailure,
+    kinetic_energy,
 };
 pub use tail_pd::TailGains;
 pub use thigmotaxis::{SlidingTargets, Strand, ThigmoParameters, ThigmoRequest};
 pub use tie::{Handedness, MIN_AGREEMENT, TieKnot, TiePhase, TieProgress};
+pub use until::{Observation, Until};

@@ -6,7 +6,7 @@ use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
 use crate::controller::{Actuation, ControlContext, PointForce};
-use crate::phases::Until;
+use crate::until::Until;
 
 /// Which way the load pulls.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
