@@ -2,22 +2,18 @@
 //! `params`, `knot`, `render`, `report`), all sharing [`CliError`].
 
 mod body;
-mod error;
 mod knot;
-mod manifest;
 mod params;
 mod progress;
 mod render;
 mod report;
 mod run;
-mod run_dir;
-mod utc;
 
 use std::io::{BufWriter, Write};
 
 use clap::{Parser, Subcommand};
 
-pub use error::CliError;
+pub use crate::CliError;
 
 /// Command-line arguments of the `hagfish` binary.
 #[derive(Debug, Parser)]

@@ -4,27 +4,17 @@
 //! from its checkpoint, bit for bit.
 
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::Instant;
 
 use clap::Args;
-use hagfish_sim::{
-    CHECKPOINT_FILE, Checkpoint, LoadedScenario, Override, Recorder, RunEnd, RunOptions,
-    RunOutcome, SimError, state_hash,
-};
+use hagfish_sim::Override;
 
-use super::CliError;
-use super::manifest::{MANIFEST_FILE, Manifest, Status};
 use super::progress::Reporter;
-use super::run_dir::{LockedDirectory, SetAside};
-
-/// The resolved scenario in a run directory.
-const SCENARIO_FILE: &str = "scenario.ron";
-
-/// The state at which a run diverged.
-const DIVERGED_FILE: &str = "diverged.ron";
+use crate::CliError;
+use crate::manifest::Status;
+use crate::runner::{Existing, Finished, RunRequest, Source, body_override, run_into_directory};
 
 /// Arguments of `hagfish run`.
 #[derive(Debug, Args)]
@@ -71,14 +61,32 @@ pub struct RunArgs {
 /// last frame; while the pictures and report are written it exits at once (the run itself is
 /// complete and recorded; `hagfish render` and `hagfish report` write them again).
 pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
-    let started = Instant::now();
-    let _lock = match (&args.resume, &args.out) {
-        (Some(Some(directory)), None) => LockedDirectory::lock(directory, false)?,
-        (_, Some(directory)) => LockedDirectory::lock(directory, true)?,
+    let overrides = overrides(args)?;
+    let (source, directory, existing) = match (&args.resume, &args.scenario, &args.out) {
+        (Some(Some(_)), None, None) if !overrides.is_empty() => {
+            return Err(CliError::Usage(
+                "--set and --body change a scenario: give them with SCENARIO --out DIR, not \
+                 with --resume DIR (which continues the run as it was started)",
+            ));
+        }
+        (Some(Some(directory)), None, None) => (Source::Stopped, directory, Existing::Resume),
+        (resume @ (Some(None) | None), Some(path), Some(directory)) => {
+            let existing = match (resume, args.overwrite) {
+                (Some(None), _) => Existing::Resume,
+                (_, true) => Existing::Replace,
+                _ => Existing::Refuse,
+            };
+            (Source::Scenario { path, overrides: &overrides }, directory, existing)
+        }
         _ => return Err(CliError::Usage(USAGE)),
     };
-    let (loaded, directory, checkpoint, mut manifest) = open(args)?;
-    let mut recorder = prepare(&loaded, &directory, checkpoint.as_ref(), &mut manifest)?;
+    let request = RunRequest {
+        source,
+        directory,
+        existing,
+        stop_after_frame: args.stop_after_frames,
+        max_steps: args.max_steps,
+    };
 
     let signalled = Arc::new(AtomicBool::new(false));
     let reporting = Arc::new(AtomicBool::new(false));
@@ -93,235 +101,48 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
         }
         flag.store(true, Ordering::Relaxed);
     })?;
-    let mut reporter = Reporter::new(args.quiet, loaded.scenario.duration_s);
-    let options = RunOptions {
-        resume: checkpoint.as_ref(),
-        stop_after_frame: args.stop_after_frames,
-        stop: Some(&signalled),
-        max_steps: args.max_steps,
-    };
-    let outcome = hagfish_sim::run(&loaded, options, &mut recorder, &mut |p| reporter.update(p))?;
-    reporter.finish();
-    let wall = started.elapsed().as_secs_f64();
-    let diverged = finish(&outcome, &directory, &mut manifest, wall)?;
-    let steps_run = outcome.summary.steps - checkpoint.as_ref().map_or(0, |c| c.steps);
-    summarise(&loaded, &directory, &outcome, manifest.status, wall, steps_run, out)?;
+    let mut reporter: Option<Reporter> = None;
+    let quiet = args.quiet;
+    let mut finished = run_into_directory(&request, &signalled, &mut |p| {
+        reporter.get_or_insert_with(|| Reporter::new(quiet, p.duration)).update(p);
+    })?;
+    if let Some(reporter) = reporter {
+        reporter.finish();
+    }
+    summarise(&finished, out)?;
     reporting.store(true, Ordering::Relaxed);
+    let frames = finished.outcome.summary.frames;
     if signalled.load(Ordering::Relaxed) {
-        return Err(CliError::Interrupted { directory, frames: outcome.summary.frames });
+        return Err(CliError::Interrupted { directory: directory.clone(), frames });
     }
-    let written = hagfish_report::write_all(&directory)?;
-    writeln!(out, "pictures, report and exports in {:.2} s", written.total_seconds())?;
-    manifest.write(&directory)?; // again, to list the pictures and the report too
-    match (diverged, &outcome.end) {
-        (Some(reason), RunEnd::TieFailed(_)) => Err(CliError::TieFailed { directory, reason }),
-        (Some(reason), _) => Err(CliError::Diverged { directory, reason }),
-        (None, RunEnd::Interrupted) if signalled.load(Ordering::Relaxed) => {
-            Err(CliError::Interrupted { directory, frames: outcome.summary.frames })
+    let seconds = finished.write_pictures()?;
+    writeln!(out, "pictures, report and exports in {seconds:.2} s")?;
+    match finished.failure() {
+        Some(error) => Err(error),
+        None if signalled.load(Ordering::Relaxed) => {
+            Err(CliError::Interrupted { directory: directory.clone(), frames })
         }
-        (None, _) => Ok(()),
-    }
-}
-
-/// What a run or resume starts from.
-type Opened = (LoadedScenario, PathBuf, Option<Checkpoint>, Manifest);
-
-/// The scenario, run directory, checkpoint (when resuming) and manifest the arguments name.
-fn open(args: &RunArgs) -> Result<Opened, CliError> {
-    let overrides = overrides(args)?;
-    match (&args.resume, &args.scenario, &args.out) {
-        (Some(Some(directory)), None, None) if overrides.is_empty() => {
-            open_stopped(directory, None)
-        }
-        (Some(Some(_)), None, None) => Err(CliError::Usage(
-            "--set and --body change a scenario: give them with SCENARIO --out DIR, not with \
-             --resume DIR (which continues the run as it was started)",
-        )),
-        (Some(None), Some(scenario), Some(directory)) if directory.join(MANIFEST_FILE).exists() => {
-            let hash = LoadedScenario::load_with(scenario, &overrides)?.hash();
-            open_stopped(directory, Some(&hash))
-        }
-        (None, Some(_), Some(directory))
-            if directory.join(MANIFEST_FILE).exists() && !args.overwrite =>
-        {
-            let status = Manifest::read(directory).map_or("unreadable", |m| m.status.name());
-            Err(CliError::RunDirectory {
-                path: directory.clone(),
-                reason: format!(
-                    "holds a run (status {status}): continue it with --resume, or replace it \
-                     with --overwrite"
-                ),
-            })
-        }
-        (Some(None) | None, Some(scenario), Some(directory)) => {
-            let loaded = LoadedScenario::load_with(scenario, &overrides)?;
-            let given = overrides.iter().map(Override::text).collect();
-            let manifest = Manifest::start(scenario, given, &loaded);
-            Ok((loaded, directory.clone(), None, manifest))
-        }
-        _ => Err(CliError::Usage(USAGE)),
+        None => Ok(()),
     }
 }
 
 /// How `hagfish run` is called.
 const USAGE: &str = "give SCENARIO --out DIR [--resume | --overwrite], or --resume DIR alone";
 
-/// The overrides of `--set` in order, then `--body` as an override of `body` (made absolute,
-/// so that it does not depend on the scenario's directory).
+/// The overrides of `--set` in order, then `--body` as an override of `body`.
 fn overrides(args: &RunArgs) -> Result<Vec<Override>, CliError> {
     let mut overrides =
         args.set.iter().map(|text| Override::parse(text)).collect::<Result<Vec<_>, _>>()?;
     if let Some(body) = &args.body {
-        let absolute = std::path::absolute(body)
-            .map_err(|e| CliError::RunDirectory { path: body.clone(), reason: e.to_string() })?;
-        overrides
-            .push(Override { path: "body".into(), value: format!("\"{}\"", absolute.display()) });
+        overrides.push(body_override(body)?);
     }
     Ok(overrides)
 }
 
-/// Opens the output files (cut to the checkpoint when resuming; new, with `scenario.ron`,
-/// otherwise), removes a stale `diverged.ron` and writes the manifest of the starting part.
-fn prepare(
-    loaded: &LoadedScenario,
-    directory: &Path,
-    checkpoint: Option<&Checkpoint>,
-    manifest: &mut Manifest,
-) -> Result<Recorder, CliError> {
-    let model = loaded.body.to_model()?;
-    let (dofs, joints) = (model.dof_count(), model.body_count());
-    let recorder = match checkpoint {
-        Some(checkpoint) => Recorder::reopen(directory, dofs, joints, checkpoint)?,
-        None => {
-            // An earlier run here (replaced with --overwrite) is kept until the new one has
-            // its files, and put back if they cannot be made.
-            let earlier = SetAside::new(directory)?;
-            match start_files(loaded, directory, (dofs, joints), manifest) {
-                Ok(recorder) => {
-                    earlier.discard()?;
-                    recorder
-                }
-                Err(error) => {
-                    earlier.restore()?;
-                    return Err(error);
-                }
-            }
-        }
-    };
-    if let Some(checkpoint) = checkpoint {
-        manifest.resumed_at_frames.push(checkpoint.frames);
-        manifest.status = Status::Running;
-        manifest.ended_utc = None;
-        manifest.error = None;
-    }
-    // The failing state of an earlier part of this run no longer describes the directory.
-    match std::fs::remove_file(directory.join(DIVERGED_FILE)) {
-        Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
-            return Err(CliError::RunDirectory {
-                path: directory.join(DIVERGED_FILE),
-                reason: e.to_string(),
-            });
-        }
-        _ => {}
-    }
-    manifest.write(directory)?;
-    Ok(recorder)
-}
-
-/// The files a new run starts with in `directory`: the recorder's outputs, `scenario.ron`
-/// and the manifest.
-fn start_files(
-    loaded: &LoadedScenario,
-    directory: &Path,
-    (dofs, joints): (usize, usize),
-    manifest: &mut Manifest,
-) -> Result<Recorder, CliError> {
-    let recorder = Recorder::create(directory, dofs, joints)?;
-    hagfish_sim::replace_file(&directory.join(SCENARIO_FILE), loaded.resolved_text().as_bytes())?;
-    manifest.write(directory)?;
-    Ok(recorder)
-}
-
-/// The scenario, checkpoint and manifest of the stopped run in `directory`, which must be of
-/// the scenario with hash `expected` if one is given.
-fn open_stopped(directory: &Path, expected: Option<&str>) -> Result<Opened, CliError> {
-    let manifest = Manifest::read(directory)?;
-    if manifest.status == Status::Completed {
-        return Err(CliError::RunDirectory {
-            path: directory.to_path_buf(),
-            reason: "the run is completed: nothing to resume".into(),
-        });
-    }
-    let loaded = LoadedScenario::load(directory.join(SCENARIO_FILE))?;
-    let path = directory.join(CHECKPOINT_FILE);
-    let checkpoint = Checkpoint::read(&path)?;
-    if checkpoint.body_hash != loaded.body_hash {
-        return Err(CliError::RunDirectory {
-            path: loaded.scenario.body.clone(),
-            reason: format!(
-                "the body file changed since the run's checkpoint (hash {} then, {} now): \
-                 resuming would continue another body; start a new run",
-                checkpoint.body_hash, loaded.body_hash
-            ),
-        });
-    }
-    let hash = loaded.hash();
-    let hashes = [Some(checkpoint.scenario_hash.as_str()), Some(&manifest.scenario_hash), expected];
-    if let Some(other) = hashes.into_iter().flatten().find(|h| *h != hash) {
-        return Err(CliError::RunDirectory {
-            path,
-            reason: format!(
-                "the run is of another scenario: hash {other} (checkpoint, manifest or the \
-                 scenario given) differs from {hash} of {SCENARIO_FILE}"
-            ),
-        });
-    }
-    Ok((loaded, directory.to_path_buf(), Some(checkpoint), manifest))
-}
-
-/// Writes the end of the run into the manifest (and `diverged.ron` for a diverged run);
-/// returns the error of a diverged run or a failed tie phase.
-fn finish(
-    outcome: &RunOutcome,
-    directory: &Path,
-    manifest: &mut Manifest,
-    wall: f64,
-) -> Result<Option<String>, CliError> {
-    let (status, error) = match &outcome.end {
-        RunEnd::Completed => (Status::Completed, None),
-        RunEnd::Interrupted => (Status::Interrupted, None),
-        RunEnd::Diverged { error, at } => {
-            at.write(&directory.join(DIVERGED_FILE))?;
-            (Status::Diverged, Some(error.to_string()))
-        }
-        RunEnd::TieFailed(failure) => {
-            (Status::TieFailed, Some(SimError::TieFailed(*failure).to_string()))
-        }
-    };
-    manifest.stop(status, wall);
-    manifest.steps = outcome.summary.steps;
-    manifest.frames = outcome.summary.frames;
-    manifest.time_s = outcome.state.t;
-    manifest.substepped_steps = outcome.summary.substepped_steps;
-    manifest.max_substeps = outcome.summary.max_substeps;
-    manifest.unfinished_phase.clone_from(&outcome.summary.unfinished_phase);
-    manifest.final_state_hash = Some(state_hash(&outcome.state));
-    manifest.error.clone_from(&error);
-    manifest.write(directory)?;
-    Ok(error)
-}
-
 /// The summary on stdout.
-fn summarise(
-    loaded: &LoadedScenario,
-    directory: &Path,
-    outcome: &RunOutcome,
-    status: Status,
-    wall: f64,
-    steps_run: u64,
-    out: &mut dyn Write,
-) -> Result<(), CliError> {
-    let summary = &outcome.summary;
+fn summarise(finished: &Finished, out: &mut dyn Write) -> Result<(), CliError> {
+    let Finished { loaded, directory, outcome, manifest, wall_s: wall, steps_run, .. } = finished;
+    let (status, summary) = (manifest.status, &outcome.summary);
     let last = summary.knots.last().and_then(|k| k.knot.as_ref());
     writeln!(
         out,
@@ -353,7 +174,7 @@ fn summarise(
             stats.temporal_roughness,
         )?;
     }
-    let steps = steps_run.max(1) as f64;
+    let steps = (*steps_run).max(1) as f64;
     let stages: Vec<String> = summary
         .timings
         .stages()

@@ -10,9 +10,9 @@ use std::time::SystemTime;
 
 use hagfish_sim::{CHECKPOINT_FILE, Recorder};
 
-use super::CliError;
-use super::manifest::MANIFEST_FILE;
-use super::utc::iso8601;
+use crate::CliError;
+use crate::manifest::MANIFEST_FILE;
+use crate::utc::iso8601;
 
 /// The lock file of a run directory: `flock`ed while a process runs in the directory, and
 /// holding that process's id and start time for the message of a second one.

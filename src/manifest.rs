@@ -9,8 +9,8 @@ use std::time::SystemTime;
 use hagfish_sim::LoadedScenario;
 use serde::{Deserialize, Serialize};
 
-use super::CliError;
-use super::utc::iso8601;
+use crate::CliError;
+use crate::utc::iso8601;
 
 /// Name of the manifest in a run directory.
 pub const MANIFEST_FILE: &str = "manifest.json";

@@ -1,0 +1,17 @@
+//! `hagfish` as a library: everything the `hagfish` program does, for callers that are not a
+//! shell — the Python package (`crates/python`), sweeps, and other Rust programs.
+//!
+//! - [`runner`]: run a scenario into a run directory (`docs/outputs.md`), or resume one;
+//! - [`manifest`], [`run_dir`]: the run directory's `manifest.json` and its lock;
+//! - [`cli`]: the command line, one file per subcommand.
+//!
+//! Units are CGS (cm, g, s; dyn, dyn·cm) throughout, as in every output column name.
+
+pub mod cli;
+mod error;
+pub mod manifest;
+pub mod run_dir;
+pub mod runner;
+mod utc;
+
+pub use error::CliError;
