@@ -1,4 +1,4 @@
-//! The error of any subcommand; `main` prints it as one line and exits with its
+//! The error of the program and its library (runs, sweeps, every subcommand); `main` prints it as one line and exits with its
 //! [`exit_code`](CliError::exit_code): 3 for a diverged run, 4 for a knot a tie phase could
 //! not tie, 130 for a run stopped by a signal, 2 for everything else.
 
@@ -69,6 +69,21 @@ pub enum CliError {
         /// What is wrong and what was expected.
         message: String,
     },
+    /// A malformed sweep grid file, at `file:line:column`.
+    #[error("{}:{line}:{column}: {message}", path.display())]
+    Grid {
+        /// The grid file.
+        path: PathBuf,
+        /// Line, from 1.
+        line: usize,
+        /// Column, from 1.
+        column: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// A sweep that cannot be planned, run or collected (the message names the run).
+    #[error("{0}")]
+    Sweep(String),
     /// Arguments that do not go together.
     #[error("{0}")]
     Usage(&'static str),

@@ -2,6 +2,8 @@
 //! shell — the Python package (`crates/python`), sweeps, and other Rust programs.
 //!
 //! - [`runner`]: run a scenario into a run directory (`docs/outputs.md`), or resume one;
+//! - [`study`]: the numbers a study compares, read from a run directory;
+//! - [`sweep`]: many runs of one scenario, planned, made in shards or threads, collected;
 //! - [`manifest`], [`run_dir`]: the run directory's `manifest.json` and its lock;
 //! - [`cli`]: the command line, one file per subcommand.
 //!
@@ -12,6 +14,8 @@ mod error;
 pub mod manifest;
 pub mod run_dir;
 pub mod runner;
+pub mod study;
+pub mod sweep;
 mod utc;
 
 pub use error::CliError;

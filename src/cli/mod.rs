@@ -1,5 +1,5 @@
 //! The command line: one [`Command`] variant and one file per subcommand (`body`, `run`,
-//! `params`, `knot`, `render`, `report`), all sharing [`CliError`].
+//! `params`, `knot`, `render`, `report`, `sweep`), all sharing [`CliError`].
 
 mod body;
 mod knot;
@@ -8,6 +8,7 @@ mod progress;
 mod render;
 mod report;
 mod run;
+mod sweep;
 
 use std::io::{BufWriter, Write};
 
@@ -37,6 +38,8 @@ enum Command {
     Knot(knot::KnotArgs),
     /// Re-make a run directory's plots, animation.gif, ParaView frames and run.glb.
     Render(render::RenderArgs),
+    /// Parameter studies: plan a grid of runs, make them (in shards or threads), collect them.
+    Sweep(sweep::SweepArgs),
     /// Re-make a run directory's report.html (one offline page with a 3-D view).
     Report(report::ReportArgs),
 }
@@ -51,6 +54,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Knot(args) => knot::run(&args, &mut out)?,
         Command::Render(args) => render::run(&args, &mut out)?,
         Command::Report(args) => report::run(&args, &mut out)?,
+        Command::Sweep(args) => sweep::run(&args, &mut out)?,
     }
     out.flush()?;
     Ok(())

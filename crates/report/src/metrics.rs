@@ -29,6 +29,12 @@ pub struct Metrics {
     pub knot_core_start: Vec<Option<f64>>,
     /// `knot_core_end_cm` (likewise).
     pub knot_core_end: Vec<Option<f64>>,
+    /// `knot_core_start_L`: the core's head-ward end as a fraction of the body length.
+    pub knot_core_start_l: Vec<Option<f64>>,
+    /// `knot_core_mid_L`: the core's midpoint as a fraction of the body length.
+    pub knot_core_mid_l: Vec<Option<f64>>,
+    /// `knot_core_length_D`: the core's length in local diameters.
+    pub knot_core_length_d: Vec<Option<f64>>,
     /// `contacts_start_cm`.
     pub contacts_start: Vec<Option<f64>>,
     /// `contacts_end_cm`.
@@ -83,6 +89,9 @@ impl Metrics {
             knot_position: optional("knot_position_cm")?,
             knot_core_start: later("knot_core_start_cm")?,
             knot_core_end: later("knot_core_end_cm")?,
+            knot_core_start_l: later("knot_core_start_L")?,
+            knot_core_mid_l: later("knot_core_mid_L")?,
+            knot_core_length_d: later("knot_core_length_D")?,
             contacts_start: optional("contacts_start_cm")?,
             contacts_end: optional("contacts_end_cm")?,
             first_contact: optional("first_contact_cm")?,

@@ -4,6 +4,7 @@
 
 mod figure;
 mod kymograph;
+mod scatter;
 mod time_series;
 
 use std::path::Path;
@@ -12,6 +13,7 @@ use plotters::style::RGBColor;
 
 pub use figure::Plot;
 use kymograph::Kymograph;
+pub use scatter::Scatter;
 use time_series::{Line, TimeSeries};
 
 use crate::colour::Rgb;
@@ -128,4 +130,17 @@ pub fn write(drawn: &[Plot], plots: &Path) -> Result<Vec<std::path::PathBuf>, Re
         }
     }
     Ok(files)
+}
+
+/// Draws each scatter plot and writes it as `<stem>.png` and `<stem>.svg` into `directory`
+/// (created if missing); returns the files written.
+pub fn write_scatters(
+    scatters: &[Scatter],
+    directory: &Path,
+) -> Result<Vec<std::path::PathBuf>, ReportError> {
+    let drawn = scatters
+        .iter()
+        .map(|s| figure::render(s, &s.stem, &s.title, &directory.join(format!("{}.png", s.stem))))
+        .collect::<Result<Vec<_>, _>>()?;
+    write(&drawn, directory)
 }

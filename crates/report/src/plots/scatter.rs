@@ -1,0 +1,75 @@
+//! A scatter plot of one quantity against another: a sweep's summary metric against a swept
+//! parameter, one point per run.
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+use super::figure::{DrawResult, Figure};
+use crate::font::FAMILY;
+
+/// Points of one quantity (y) against another (x).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scatter {
+    /// File stem (`<stem>.png`, `<stem>.svg`).
+    pub stem: String,
+    /// Caption.
+    pub title: String,
+    /// Label of the x axis (with its unit).
+    pub x_label: String,
+    /// Label of the y axis (with its unit).
+    pub y_label: String,
+    /// The points (x, y).
+    pub points: Vec<(f64, f64)>,
+}
+
+/// Smallest and largest of `values`, widened by 5 % of the range (by 0.5 if all are equal;
+/// 0..1 without values).
+fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    let (low, high) =
+        values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
+    if low > high {
+        return (0.0, 1.0);
+    }
+    let pad = if high > low { 0.05 * (high - low) } else { 0.5 * low.abs().max(1.0) };
+    (low - pad, high + pad)
+}
+
+impl Figure for Scatter {
+    fn size(&self) -> (u32, u32) {
+        (560, 400)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<DB> {
+        let (x0, x1) = range(self.points.iter().map(|p| p.0));
+        let (y0, y1) = range(self.points.iter().map(|p| p.1));
+        let mut chart = ChartBuilder::on(root)
+            .caption(&self.title, (FAMILY, 16))
+            .margin(10)
+            .x_label_area_size(40)
+            .y_label_area_size(60)
+            .build_cartesian_2d(x0..x1, y0..y1)?;
+        chart
+            .configure_mesh()
+            .light_line_style(RGBColor(235, 235, 235))
+            .x_desc(self.x_label.as_str())
+            .y_desc(self.y_label.as_str())
+            .label_style((FAMILY, 12))
+            .axis_desc_style((FAMILY, 14))
+            .draw()?;
+        let colour = RGBColor(31, 119, 180);
+        chart.draw_series(self.points.iter().map(|&p| Circle::new(p, 4, colour.filled())))?;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_ranges_cover_every_point_and_a_single_value_gets_width() {
+        assert_eq!(range([0.0, 10.0].into_iter()), (-0.5, 10.5));
+        assert_eq!(range([2.0, 2.0].into_iter()), (0.0, 4.0));
+        assert_eq!(range(std::iter::empty()), (0.0, 1.0));
+    }
+}

@@ -1,0 +1,461 @@
+//! Parameter sweeps: many runs of one scenario with different overrides, each in its own run
+//! directory under a sweep folder, so nothing is lost if the sweep stops half-way and a rerun
+//! makes only the runs that are missing.
+//!
+//! A sweep folder holds
+//! - `plan.json`: the scenario (absolute path), the swept parameter paths and every run's id
+//!   and overrides (`PATH=VALUE`, as `hagfish run --set` takes them), written once by
+//!   [`Plan::write`];
+//! - `runs/<id>/`: one run directory per run (`docs/outputs.md`);
+//! - `summary.csv` and `plots/`: written by [`collect`] — one row per run (its id, the value
+//!   of each swept parameter, then [`RunRow`]'s columns) and each numeric summary column
+//!   against each numeric swept parameter.
+//!
+//! The grid file (`hagfish sweep plan GRID.ron`) names the scenario (relative to the grid file)
+//! and the values of each parameter; the runs are their Cartesian product (the last parameter
+//! varies fastest), followed by any runs listed one by one:
+//!
+//! ```ron
+//! Sweep(
+//!     scenario: "../data/scenarios/tie.ron",
+//!     grid: [
+//!         ("time_step_s", ["0.005", "0.01"]),
+//!         ("drag.quadratic_g_per_cm3", ["0.5", "1.0"]),
+//!     ],
+//!     runs: [["time_step_s=0.02", "duration_s=5"]],
+//! )
+//! ```
+
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::time::Instant;
+
+use hagfish_sim::{LoadedScenario, Override};
+use serde::{Deserialize, Serialize};
+
+use crate::CliError;
+use crate::manifest::{MANIFEST_FILE, Manifest, Status};
+use crate::runner::{Existing, RunRequest, Source, run_into_directory};
+use crate::study::RunRow;
+
+/// The plan of a sweep folder.
+pub const PLAN_FILE: &str = "plan.json";
+
+/// The run directories' parent in a sweep folder.
+pub const RUNS_DIRECTORY: &str = "runs";
+
+/// The table [`collect`] writes.
+pub const SUMMARY_FILE: &str = "summary.csv";
+
+/// A grid file (`GRID.ron`): the scenario and the values to sweep.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(rename = "Sweep", deny_unknown_fields)]
+pub struct Grid {
+    /// The scenario file, relative to the grid file (or absolute).
+    pub scenario: PathBuf,
+    /// Each parameter's dotted path (as `hagfish params` lists it) and its values (as `--set`
+    /// takes them); the runs are the Cartesian product.
+    #[serde(default)]
+    pub grid: Vec<(String, Vec<String>)>,
+    /// Further runs, each a list of `PATH=VALUE` overrides.
+    #[serde(default)]
+    pub runs: Vec<Vec<String>>,
+}
+
+/// One planned run.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct PlannedRun {
+    /// Its id: the run's directory name under `runs/` (zero-padded index).
+    pub id: String,
+    /// Its overrides, `PATH=VALUE`, in order.
+    pub overrides: Vec<String>,
+}
+
+/// The content of `plan.json`.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Plan {
+    /// The scenario file (absolute).
+    pub scenario: PathBuf,
+    /// The swept parameter paths, in the order of the grid then of first appearance.
+    pub parameters: Vec<String>,
+    /// The runs.
+    pub runs: Vec<PlannedRun>,
+}
+
+/// How a sweep's run ended in this call.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum RunResult {
+    /// It had already ended (completed, diverged or tie failed) and was left alone.
+    Skipped(Status),
+    /// It was made (or resumed) and ended with this status.
+    Ran(Status),
+    /// It could not be made; the message says why.
+    Failed(String),
+}
+
+impl Grid {
+    /// Reads a grid file; errors name the file, line and column.
+    ///
+    /// # Errors
+    /// [`CliError::RunDirectory`] if the file cannot be read, [`CliError::Grid`] if it is
+    /// malformed.
+    pub fn read(path: &Path) -> Result<Self, CliError> {
+        let text = std::fs::read_to_string(path).map_err(|e| CliError::RunDirectory {
+            path: path.to_path_buf(),
+            reason: e.to_string(),
+        })?;
+        ron::from_str(&text).map_err(|e| CliError::Grid {
+            path: path.to_path_buf(),
+            line: e.span.start.line,
+            column: e.span.start.col,
+            message: e.code.to_string(),
+        })
+    }
+}
+
+impl Plan {
+    /// The plan of `grid` read from `grid_path`: the scenario made absolute, every run's
+    /// overrides parsed and applied to the scenario (so a wrong path or value is refused here,
+    /// not half-way through the sweep).
+    ///
+    /// # Errors
+    /// A [`CliError`] naming the run and the override that does not fit.
+    pub fn of(grid: &Grid, grid_path: &Path) -> Result<Self, CliError> {
+        let base = grid_path.parent().unwrap_or(Path::new("."));
+        let scenario = std::path::absolute(base.join(&grid.scenario)).map_err(|e| {
+            CliError::RunDirectory { path: grid.scenario.clone(), reason: e.to_string() }
+        })?;
+        let mut combinations: Vec<Vec<String>> = vec![Vec::new()];
+        for (path, values) in &grid.grid {
+            if values.is_empty() {
+                return Err(CliError::Sweep(format!(
+                    "{}: `{path}` has no values",
+                    grid_path.display()
+                )));
+            }
+            combinations = combinations
+                .iter()
+                .flat_map(|c| {
+                    values.iter().map(move |v| [c.clone(), vec![format!("{path}={v}")]].concat())
+                })
+                .collect();
+        }
+        if grid.grid.is_empty() {
+            combinations.clear();
+        }
+        combinations.extend(grid.runs.iter().cloned());
+        if combinations.is_empty() {
+            return Err(CliError::Sweep(format!(
+                "{}: no runs (grid and runs empty)",
+                grid_path.display()
+            )));
+        }
+        Self::with_runs(scenario, combinations)
+    }
+
+    /// The plan of `scenario` (absolute) with one run per list of overrides, checked.
+    ///
+    /// # Errors
+    /// A [`CliError`] naming the run and the override that does not fit.
+    pub fn with_runs(scenario: PathBuf, combinations: Vec<Vec<String>>) -> Result<Self, CliError> {
+        let width = combinations.len().saturating_sub(1).to_string().len().max(4);
+        let mut parameters: Vec<String> = Vec::new();
+        let mut runs = Vec::with_capacity(combinations.len());
+        for (index, overrides) in combinations.into_iter().enumerate() {
+            let parsed = parse_overrides(&overrides)?;
+            LoadedScenario::load_with(&scenario, &parsed).map_err(|e| {
+                CliError::Sweep(format!("run {index} ({}): {e}", overrides.join(" ")))
+            })?;
+            for o in &parsed {
+                if !parameters.contains(&o.path) {
+                    parameters.push(o.path.clone());
+                }
+            }
+            runs.push(PlannedRun { id: format!("{index:0width$}"), overrides });
+        }
+        Ok(Self { scenario, parameters, runs })
+    }
+
+    /// Writes `plan.json` into `folder` (created if missing). A folder that already holds a
+    /// different plan is refused: its runs belong to that plan.
+    ///
+    /// # Errors
+    /// [`CliError::Sweep`] for another plan there, [`CliError::RunDirectory`] if it cannot be
+    /// written.
+    pub fn write(&self, folder: &Path) -> Result<(), CliError> {
+        let path = folder.join(PLAN_FILE);
+        if path.exists() {
+            let existing = Self::read(folder)?;
+            return if existing == *self {
+                Ok(())
+            } else {
+                Err(CliError::Sweep(format!(
+                    "{} holds another plan: choose another folder for this sweep",
+                    path.display()
+                )))
+            };
+        }
+        std::fs::create_dir_all(folder.join(RUNS_DIRECTORY)).map_err(|e| {
+            CliError::RunDirectory { path: folder.to_path_buf(), reason: e.to_string() }
+        })?;
+        let text = serde_json::to_string_pretty(self)
+            .map_err(|e| CliError::Sweep(format!("cannot write the plan: {e}")))?;
+        hagfish_sim::replace_file(&path, (text + "\n").as_bytes()).map_err(CliError::from)
+    }
+
+    /// Reads the plan of the sweep folder `folder`.
+    ///
+    /// # Errors
+    /// [`CliError::RunDirectory`] if `plan.json` is missing or malformed.
+    pub fn read(folder: &Path) -> Result<Self, CliError> {
+        let path = folder.join(PLAN_FILE);
+        let text = std::fs::read_to_string(&path)
+            .map_err(|e| CliError::RunDirectory { path: path.clone(), reason: e.to_string() })?;
+        serde_json::from_str(&text)
+            .map_err(|e| CliError::RunDirectory { path, reason: e.to_string() })
+    }
+
+    /// The run directory of `run` in the sweep folder `folder`.
+    pub fn directory(folder: &Path, run: &PlannedRun) -> PathBuf {
+        folder.join(RUNS_DIRECTORY).join(&run.id)
+    }
+
+    /// The value each swept parameter has in `run` (the last override of it; empty if the
+    /// run does not set it).
+    pub fn values(&self, run: &PlannedRun) -> Vec<String> {
+        self.parameters
+            .iter()
+            .map(|p| {
+                run.overrides
+                    .iter()
+                    .rev()
+                    .filter_map(|o| o.split_once('='))
+                    .find(|(path, _)| path.trim() == p)
+                    .map_or_else(String::new, |(_, v)| v.trim().to_owned())
+            })
+            .collect()
+    }
+}
+
+/// Parses `PATH=VALUE` texts.
+fn parse_overrides(texts: &[String]) -> Result<Vec<Override>, CliError> {
+    texts.iter().map(|t| Override::parse(t).map_err(CliError::from)).collect()
+}
+
+/// Whether the run in `directory` has ended for good (completed, diverged or tie failed):
+/// a sweep leaves it alone.
+pub fn ended(directory: &Path) -> Option<Status> {
+    if !directory.join(MANIFEST_FILE).exists() {
+        return None;
+    }
+    let status = Manifest::read(directory).ok()?.status;
+    matches!(status, Status::Completed | Status::Diverged | Status::TieFailed).then_some(status)
+}
+
+/// Makes run `index` of the plan in `folder` unless it has ended: a new run, or the resumed
+/// part of one that was stopped or killed. Returns how it ended.
+///
+/// # Errors
+/// [`CliError`] if the plan cannot be read, `index` is out of range, or the run cannot start
+/// or be recorded.
+pub fn run_one(
+    folder: &Path,
+    plan: &Plan,
+    index: usize,
+    stop: &AtomicBool,
+) -> Result<RunResult, CliError> {
+    let run = plan.runs.get(index).ok_or_else(|| {
+        CliError::Sweep(format!("no run {index}: the plan has {} runs", plan.runs.len()))
+    })?;
+    let directory = Plan::directory(folder, run);
+    if let Some(status) = ended(&directory) {
+        return Ok(RunResult::Skipped(status));
+    }
+    let overrides = parse_overrides(&run.overrides)?;
+    let request = RunRequest {
+        source: Source::Scenario { path: &plan.scenario, overrides: &overrides },
+        directory: &directory,
+        existing: Existing::Resume,
+        stop_after_frame: None,
+        max_steps: None,
+    };
+    let finished = run_into_directory(&request, stop, &mut |_| {})?;
+    Ok(RunResult::Ran(finished.manifest.status))
+}
+
+/// Which runs of a plan one process makes: those whose index is `index` modulo `count`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Shard {
+    /// This shard, from 0.
+    pub index: usize,
+    /// How many shards there are.
+    pub count: usize,
+}
+
+impl Shard {
+    /// Every run.
+    pub const ALL: Shard = Shard { index: 0, count: 1 };
+
+    /// Parses `i/n` with `i < n` (0-based, as Slurm's `--array=0-(n-1)` numbers its tasks).
+    ///
+    /// # Errors
+    /// [`CliError::Sweep`] for anything else.
+    pub fn parse(text: &str) -> Result<Self, CliError> {
+        let bad = || CliError::Sweep(format!("--shard {text}: expected i/n with 0 ≤ i < n"));
+        let (i, n) = text.split_once('/').ok_or_else(bad)?;
+        let (index, count): (usize, usize) =
+            (i.trim().parse().map_err(|_| bad())?, n.trim().parse().map_err(|_| bad())?);
+        if index < count { Ok(Self { index, count }) } else { Err(bad()) }
+    }
+
+    /// The indices of this shard among `runs` runs.
+    pub fn indices(self, runs: usize) -> impl Iterator<Item = usize> {
+        (self.index..runs).step_by(self.count)
+    }
+}
+
+/// Makes the runs of `shard` of the plan in `folder` on `jobs` threads (each run on one
+/// thread), calling `report(index, result, seconds)` as each ends; stops starting runs when
+/// `stop` becomes true. Returns every result by run index.
+///
+/// # Errors
+/// [`CliError`] if the plan cannot be read.
+pub fn run_shard(
+    folder: &Path,
+    shard: Shard,
+    jobs: usize,
+    stop: &AtomicBool,
+    report: &(dyn Fn(usize, &RunResult, f64) + Sync),
+) -> Result<Vec<(usize, RunResult)>, CliError> {
+    let plan = Plan::read(folder)?;
+    let indices: Vec<usize> = shard.indices(plan.runs.len()).collect();
+    let next = AtomicUsize::new(0);
+    let results = Mutex::new(Vec::with_capacity(indices.len()));
+    std::thread::scope(|scope| {
+        for _ in 0..jobs.clamp(1, indices.len().max(1)) {
+            scope.spawn(|| {
+                while !stop.load(Ordering::Relaxed) {
+                    let Some(&index) = indices.get(next.fetch_add(1, Ordering::Relaxed)) else {
+                        break;
+                    };
+                    let started = Instant::now();
+                    let result = run_one(folder, &plan, index, stop)
+                        .unwrap_or_else(|e| RunResult::Failed(e.to_string()));
+                    report(index, &result, started.elapsed().as_secs_f64());
+                    if let Ok(mut results) = results.lock() {
+                        results.push((index, result));
+                    }
+                }
+            });
+        }
+    });
+    let mut results = results.into_inner().unwrap_or_else(std::sync::PoisonError::into_inner);
+    results.sort_by_key(|(index, _)| *index);
+    Ok(results)
+}
+
+/// Reads every run of the sweep in `folder` and writes `summary.csv` (one row per planned
+/// run; a run without a run directory has status `missing` and empty values) and, in
+/// `plots/`, each numeric summary column against each swept parameter whose values are all
+/// numbers. Returns the table's rows (without the header).
+///
+/// # Errors
+/// [`CliError`] if the plan, a run's files or an output cannot be read or written.
+pub fn collect(folder: &Path) -> Result<Vec<Vec<String>>, CliError> {
+    let plan = Plan::read(folder)?;
+    let header: Vec<String> = ["id"]
+        .into_iter()
+        .map(str::to_owned)
+        .chain(plan.parameters.iter().cloned())
+        .chain(RunRow::COLUMNS.iter().map(|c| (*c).to_owned()))
+        .collect();
+    let mut rows = Vec::with_capacity(plan.runs.len());
+    for run in &plan.runs {
+        let directory = Plan::directory(folder, run);
+        let values =
+            if directory.join(MANIFEST_FILE).exists() && directory.join("metrics.csv").exists() {
+                RunRow::read(&directory)?.values()
+            } else {
+                let mut empty = vec![String::new(); RunRow::COLUMNS.len()];
+                empty[0] = "missing".into();
+                empty
+            };
+        rows.push([vec![run.id.clone()], plan.values(run), values].concat());
+    }
+    let mut text = csv_line(&header);
+    for row in &rows {
+        text.push_str(&csv_line(row));
+    }
+    hagfish_sim::replace_file(&folder.join(SUMMARY_FILE), text.as_bytes())?;
+    hagfish_report::write_scatters(&scatters(&plan, &header, &rows), &folder.join("plots"))?;
+    Ok(rows)
+}
+
+/// One CSV line; a field with a comma, quote or newline is quoted.
+fn csv_line(fields: &[String]) -> String {
+    let quoted: Vec<String> = fields
+        .iter()
+        .map(|f| {
+            if f.contains([',', '"', '\n']) {
+                format!("\"{}\"", f.replace('"', "\"\""))
+            } else {
+                f.clone()
+            }
+        })
+        .collect();
+    quoted.join(",") + "\n"
+}
+
+/// Each numeric summary column against each swept parameter whose values are all numbers.
+fn scatters(plan: &Plan, header: &[String], rows: &[Vec<String>]) -> Vec<hagfish_report::Scatter> {
+    let number = |row: &Vec<String>, c: usize| row.get(c).and_then(|v| v.parse::<f64>().ok());
+    let first_metric = 1 + plan.parameters.len();
+    let skip: BTreeSet<&str> = ["steps", "time_s"].into_iter().collect();
+    let mut scatters = Vec::new();
+    for (p, parameter) in plan.parameters.iter().enumerate() {
+        let x = 1 + p;
+        if rows.iter().any(|r| number(r, x).is_none()) {
+            continue;
+        }
+        for (m, metric) in header.iter().enumerate().skip(first_metric) {
+            let points: Vec<(f64, f64)> =
+                rows.iter().filter_map(|r| Some((number(r, x)?, number(r, m)?))).collect();
+            if points.is_empty() || skip.contains(metric.as_str()) {
+                continue;
+            }
+            let stem = format!("{}_vs_{}", metric, parameter.replace(['.', '[', ']'], "_"));
+            scatters.push(hagfish_report::Scatter {
+                title: format!("{metric} against {parameter}"),
+                stem,
+                x_label: parameter.clone(),
+                y_label: metric.clone(),
+                points,
+            });
+        }
+    }
+    scatters
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shards_split_the_runs_without_overlap() {
+        let shards: Vec<Vec<usize>> =
+            (0..3).map(|i| Shard { index: i, count: 3 }.indices(8).collect()).collect();
+        assert_eq!(shards, vec![vec![0, 3, 6], vec![1, 4, 7], vec![2, 5]]);
+        assert_eq!(Shard::parse("1/4").ok(), Some(Shard { index: 1, count: 4 }));
+        for bad in ["4/4", "1", "a/2", "-1/2"] {
+            assert!(Shard::parse(bad).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn csv_fields_with_commas_are_quoted() {
+        let line = csv_line(&["a".into(), "(1.0, 2.0)".into(), "say \"x\"".into()]);
+        assert_eq!(line, "a,\"(1.0, 2.0)\",\"say \"\"x\"\"\"\n");
+    }
+}
