@@ -13,6 +13,7 @@
 mod golden;
 mod knotted;
 mod metrics;
+mod python;
 mod regress;
 mod table;
 mod test_all;

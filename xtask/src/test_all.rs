@@ -7,6 +7,8 @@
 //!    or password-less `sudo`). The path found is handed to the tests in `HAGFISH_CHROMIUM`.
 //! 2. `cargo xtask regress --check` (in this process).
 //! 3. `cargo test --workspace --release`.
+//! 4. The Python package: a virtual environment in the target directory, the package built
+//!    from `crates/python` and installed there, its pytest suite ([`crate::python`]).
 //!
 //! Each step says what it does on stderr; the first failure stops the command with a non-zero
 //! exit code and a line that names the step.
@@ -15,7 +17,7 @@ use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use crate::regress;
+use crate::{python, regress};
 
 /// The environment variable through which the browser test finds Chromium.
 pub const CHROMIUM_VARIABLE: &str = "HAGFISH_CHROMIUM";
@@ -38,11 +40,11 @@ pub fn run(root: &Path) -> Result<(), String> {
         .env(CHROMIUM_VARIABLE, &chromium)
         .status()
         .map_err(|e| format!("could not start cargo test: {e}"))?;
-    if status.success() {
-        Ok(())
-    } else {
-        Err(format!("cargo test --workspace --release failed ({status})"))
+    if !status.success() {
+        return Err(format!("cargo test --workspace --release failed ({status})"));
     }
+    let hagfish = python::target_directory(root).join("release").join("hagfish");
+    python::test(root, &hagfish)
 }
 
 /// The `cargo` that runs this task (Cargo sets `CARGO` for the programs it runs).

@@ -1,0 +1,38 @@
+"""hagfish: a hagfish tying a knot in its own body and sliding it to the head, from Python.
+
+The simulator is the Rust program ``hagfish`` (CGS units: cm, g, s; dyn, dyn·cm); this
+package runs it in-process (the GIL released while stepping) and reads its run directories
+as pandas DataFrames and NumPy arrays::
+
+    import hagfish
+    scenario = hagfish.Scenario.load("data/scenarios/thesis.ron", time_step_s=0.02)
+    run = hagfish.run(scenario, out="out/h02")
+    run.summary["core_speed_cm_s"], run.metrics["knot_core_mid_L"], run.centreline.shape
+
+    table = hagfish.sweep(scenario, {"time_step_s": [0.005, 0.01, 0.02]}, out="sweeps/h")
+
+Every mistake raises :class:`HagfishError` with the message (file:line:column where there
+is one) and exit code of the command line.
+"""
+
+from ._native import HagfishError, __version__
+from .scenario import Body, Scenario, override_text, params
+from .runs import Run, open_run, run
+from . import runs, sweeps
+from .sweeps import open_sweep, sweep
+
+__all__ = [
+    "Body",
+    "HagfishError",
+    "Run",
+    "Scenario",
+    "__version__",
+    "open_run",
+    "open_sweep",
+    "override_text",
+    "params",
+    "run",
+    "runs",
+    "sweep",
+    "sweeps",
+]

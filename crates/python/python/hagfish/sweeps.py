@@ -1,0 +1,95 @@
+"""Parameter sweeps: the Cartesian product (or a list) of overrides, one run directory each
+under a sweep folder, run serially or on any executor (``concurrent.futures`` or a Dask
+``distributed.Client``), collected into one tidy DataFrame.
+
+The folder has the layout of ``hagfish sweep plan`` (``plan.json``, ``runs/<id>/``,
+``summary.csv``, ``plots/``), so the command line can run or collect a sweep planned here and
+the other way round. A run that has ended (completed, diverged, tie failed) is never made
+again: rerunning an interrupted sweep makes only the missing runs, and resumes the one that
+was cut off from its last frame."""
+
+from __future__ import annotations
+
+import itertools
+from pathlib import Path
+from typing import Any, Iterable, List, Mapping, Sequence, Union
+
+import pandas as pd
+
+from . import _native
+from .scenario import PathLike, Scenario, override_text
+
+Grid = Union[Mapping[str, Sequence[Any]], Sequence[Mapping[str, Any]]]
+
+
+def combinations(grid: Grid) -> List[dict]:
+    """The runs of ``grid``: a dict of path → values gives their Cartesian product (the last
+    path varies fastest); a list of dicts is taken as it is."""
+    if isinstance(grid, Mapping):
+        paths = list(grid)
+        return [dict(zip(paths, values)) for values in itertools.product(*grid.values())]
+    return [dict(run) for run in grid]
+
+
+def run_planned(folder: str, index: int) -> tuple:
+    """Makes run ``index`` of the sweep planned in ``folder`` unless it has ended; returns
+    ``(status, skipped)``. A top-level function, so that executors can pickle it."""
+    return _native.sweep_run(folder, index)
+
+
+def _is_dask(executor: Any) -> bool:
+    return type(executor).__module__.split(".")[0] == "distributed"
+
+
+def sweep(
+    scenario: Union[Scenario, PathLike],
+    grid: Grid,
+    out: PathLike,
+    *,
+    executor: Any = None,
+) -> pd.DataFrame:
+    """Runs ``scenario`` once per combination of ``grid`` (see :func:`combinations`), each
+    into ``out/runs/<id>``, and returns ``summary.csv`` as a DataFrame: one row per run with
+    its id, the value of each swept path, then status, final knot, tie time, the knotted
+    core's travel, speed and length change, penetration maxima, force-field statistics and
+    wall time (units in the column names).
+
+    ``executor`` is ``None`` (one run after another in this process), a
+    ``concurrent.futures`` executor, or a Dask ``distributed.Client`` (a ``LocalCluster`` or
+    a ``dask_jobqueue`` cluster's client); each task makes one run and returns only its
+    status, so no run's arrays are held in memory. The scenario's own overrides apply to
+    every run, before the grid's. Re-running the same sweep into the same folder makes only
+    the runs that have not ended; another plan in that folder is refused."""
+    if not isinstance(scenario, Scenario):
+        scenario = Scenario.load(scenario)
+    folder = Path(out).resolve()
+    base = scenario.set_arguments()
+    runs = [
+        base + [f"{path}={override_text(value)}" for path, value in run.items()]
+        for run in combinations(grid)
+    ]
+    ids = _native.sweep_plan(str(scenario.path), runs, str(folder))
+    indices: Iterable[int] = range(len(ids))
+    if executor is None:
+        for index in indices:
+            run_planned(str(folder), index)
+    else:
+        submit = executor.submit
+        if _is_dask(executor):
+            futures = [submit(run_planned, str(folder), i, pure=False) for i in indices]
+        else:
+            futures = [submit(run_planned, str(folder), i) for i in indices]
+        for future in futures:
+            future.result()
+    summary = _native.sweep_collect(str(folder))
+    return pd.read_csv(summary, dtype={"id": str}, keep_default_na=False, na_values=[""])
+
+
+def open_sweep(out: PathLike) -> pd.DataFrame:
+    """Collects the sweep in ``out`` (runs made so far; missing ones have status
+    ``missing``) and returns its ``summary.csv``."""
+    summary = _native.sweep_collect(str(Path(out).resolve()))
+    return pd.read_csv(summary, dtype={"id": str}, keep_default_na=False, na_values=[""])
+
+
+__all__ = ["combinations", "open_sweep", "run_planned", "sweep"]

@@ -1,0 +1,82 @@
+"""Sweeps: a Dask LocalCluster of two worker processes gives the rows of the same runs made
+serially; an interrupted sweep, rerun, makes only what is missing; the command line collects
+a sweep planned from Python."""
+
+import json
+import subprocess
+from concurrent.futures import ThreadPoolExecutor
+
+import pandas as pd
+import pytest
+
+import hagfish
+
+GRID = {"time_step_s": [0.01, 0.02], "drag.quadratic_g_per_cm3": [0.5, 0.75, 1.0]}
+
+
+def comparable(table: pd.DataFrame) -> pd.DataFrame:
+    """A summary without the wall time, the only column equal runs differ in."""
+    return table.drop(columns=["wall_time_s"]).reset_index(drop=True)
+
+
+def final_hashes(folder):
+    return {
+        run.name: json.loads((run / "manifest.json").read_text())["final_state_hash"]
+        for run in sorted((folder / "runs").iterdir())
+    }
+
+
+def test_a_dask_sweep_equals_the_same_runs_made_serially(tmp_path, thesis):
+    distributed = pytest.importorskip("distributed")
+    scenario = hagfish.Scenario.load(thesis)
+    serial = hagfish.sweep(scenario, GRID, out=tmp_path / "serial")
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+    ) as cluster, distributed.Client(cluster) as client:
+        parallel = hagfish.sweep(scenario, GRID, out=tmp_path / "dask", executor=client)
+    assert len(serial) == 6 and list(serial.status) == ["completed"] * 6
+    assert list(serial["time_step_s"]) == [0.01, 0.01, 0.01, 0.02, 0.02, 0.02]
+    pd.testing.assert_frame_equal(comparable(serial), comparable(parallel))
+    assert final_hashes(tmp_path / "serial") == final_hashes(tmp_path / "dask")
+    assert set(serial.final_knot) == {"3_1"}
+
+
+def test_an_interrupted_sweep_rerun_makes_only_the_missing_runs(tmp_path, thesis):
+    scenario = hagfish.Scenario.load(thesis, time_step_s=0.02)
+    grid = [{"drag.quadratic_g_per_cm3": d} for d in (0.5, 0.75, 1.0)]
+    folder = tmp_path / "sweep"
+    # As if the sweep had stopped: run 0 made, run 1 cut off after 40 frames, run 2 not begun.
+    ids = hagfish._native.sweep_plan(
+        str(scenario.path),
+        [scenario.set_arguments() + [f"drag.quadratic_g_per_cm3={d}"] for d in (0.5, 0.75, 1.0)],
+        str(folder),
+    )
+    assert ids == ["0000", "0001", "0002"]
+    hagfish.sweeps.run_planned(str(folder), 0)
+    first = json.loads((folder / "runs/0000/manifest.json").read_text())
+    cut = scenario.with_overrides({"drag.quadratic_g_per_cm3": 0.75})
+    hagfish.run(cut, out=folder / "runs/0001", progress=False, stop_after_frames=40)
+    assert hagfish.sweeps.open_sweep(folder).status.tolist() == [
+        "completed", "interrupted", "missing"]
+
+    table = hagfish.sweep(scenario, grid, out=folder, executor=ThreadPoolExecutor(2))
+    assert table.status.tolist() == ["completed"] * 3
+    again = json.loads((folder / "runs/0000/manifest.json").read_text())
+    assert again["started_utc"] == first["started_utc"], "run 0 was not made again"
+    resumed = json.loads((folder / "runs/0001/manifest.json").read_text())
+    assert resumed["resumed_at_frames"] == [41], "run 1 was resumed, not restarted"
+    assert resumed["final_state_hash"] == hagfish.run(
+        cut, out=tmp_path / "whole", progress=False, pictures=False).summary["final_state_hash"]
+
+
+def test_the_command_line_collects_a_sweep_planned_in_python(tmp_path, thesis, hagfish_bin):
+    scenario = hagfish.Scenario.load(thesis, time_step_s=0.02)
+    folder = tmp_path / "sweep"
+    table = hagfish.sweep(scenario, {"drag.quadratic_g_per_cm3": [0.5, 1.0]}, out=folder)
+    (folder / "summary.csv").unlink()
+    subprocess.run([str(hagfish_bin), "sweep", "collect", str(folder)], check=True,
+                   capture_output=True)
+    collected = pd.read_csv(folder / "summary.csv", dtype={"id": str})
+    pd.testing.assert_frame_equal(comparable(table), comparable(collected))
+    with pytest.raises(hagfish.HagfishError, match="holds another plan"):
+        hagfish.sweep(scenario, {"drag.quadratic_g_per_cm3": [0.25]}, out=folder)
