@@ -1,7 +1,8 @@
 //! The command line: one [`Command`] variant and one file per subcommand (`body`, `run`,
-//! `params`, `knot`, `render`, `report`, `sweep`), all sharing [`CliError`].
+//! `params`, `knot`, `render`, `report`, `export`, `sweep`), all sharing [`CliError`].
 
 mod body;
+mod export;
 mod knot;
 mod params;
 mod progress;
@@ -38,6 +39,8 @@ enum Command {
     Knot(knot::KnotArgs),
     /// Re-make a run directory's plots, animation.gif, ParaView frames and run.glb.
     Render(render::RenderArgs),
+    /// Export a run directory for other tools: `export wcon DIR` (the midline as WCON).
+    Export(export::ExportArgs),
     /// Parameter studies: plan a grid of runs, make them (in shards or threads), collect them.
     Sweep(sweep::SweepArgs),
     /// Re-make a run directory's report.html (one offline page with a 3-D view).
@@ -54,6 +57,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Knot(args) => knot::run(&args, &mut out)?,
         Command::Render(args) => render::run(&args, &mut out)?,
         Command::Report(args) => report::run(&args, &mut out)?,
+        Command::Export(args) => export::run(&args, &mut out)?,
         Command::Sweep(args) => sweep::run(&args, &mut out)?,
     }
     out.flush()?;

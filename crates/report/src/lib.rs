@@ -61,6 +61,7 @@ mod tension;
 #[cfg(test)]
 mod test_files;
 mod vtk;
+mod wcon;
 
 pub use centreline::Centreline;
 pub use error::ReportError;
@@ -73,3 +74,4 @@ pub use plots::{Scatter, write_scatters};
 pub use radii::{DEFAULT_RADIUS_CM, Radii};
 pub use run_dir::RunDir;
 pub use tension::Tension;
+pub use wcon::{WCON_FILE, export_wcon, wcon};
