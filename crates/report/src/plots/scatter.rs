@@ -69,7 +69,7 @@ mod tests {
     #[test]
     fn the_ranges_cover_every_point_and_a_single_value_gets_width() {
         assert_eq!(range([0.0, 10.0].into_iter()), (-0.5, 10.5));
-        assert_eq!(range([2.0, 2.0].into_iter()), (0.0, 4.0));
+        assert_eq!(range([2.0, 2.0].into_iter()), (1.0, 3.0));
         assert_eq!(range(std::iter::empty()), (0.0, 1.0));
     }
 }
