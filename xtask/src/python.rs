@@ -11,8 +11,15 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 /// What the package's tests need besides the package.
-const TEST_REQUIREMENTS: [&str; 5] =
-    ["maturin>=1.9,<2", "numpy>=1.22", "pandas>=1.5", "pytest>=7", "dask[distributed]>=2023.1"];
+/// (matplotlib for the example study in `examples/`).
+const TEST_REQUIREMENTS: [&str; 6] = [
+    "maturin>=1.9,<2",
+    "numpy>=1.22",
+    "pandas>=1.5",
+    "pytest>=7",
+    "dask[distributed]>=2023.1",
+    "matplotlib>=3.5",
+];
 
 /// The target directory Cargo builds into (`CARGO_TARGET_DIR`, else `<root>/target`).
 pub fn target_directory(root: &Path) -> PathBuf {
@@ -35,8 +42,14 @@ pub fn test(root: &Path, hagfish: &Path) -> Result<(), String> {
                 )
             })?;
     }
+    // maturin, run by pip without build isolation, is found on PATH.
+    let bin = venv.join("bin");
+    let path = std::env::var_os("PATH").unwrap_or_default();
+    let path = std::env::join_paths(std::iter::once(bin).chain(std::env::split_paths(&path)))
+        .map_err(|e| format!("cannot put the environment on PATH: {e}"))?;
     let pip = |arguments: &[&str]| {
         let mut command = Command::new(&python);
+        command.env("PATH", &path);
         command.args(["-m", "pip", "install", "--quiet", "--disable-pip-version-check"]);
         command.args(arguments);
         command

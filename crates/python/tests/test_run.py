@@ -98,3 +98,14 @@ def test_params_and_bodies_are_tables():
     body = hagfish.Body.load(Path(__file__).resolve().parents[3] / "data/hagfish/es103.ron")
     assert (body.bodies, body.dofs, len(body.table)) == (100, 150, 100)
     assert body.table.mass_g.sum() == pytest.approx(body.mass_g, rel=1e-9)
+
+
+def test_a_body_variant_changes_the_fields_asked_for(tmp_path):
+    base = hagfish.Body.load(Path(__file__).resolve().parents[3] / "data/hagfish/es103.ron")
+    long = base.variant(tmp_path / "long.ron", length_cm=50.0, mass_g=94.0)
+    assert (long.length_cm, long.mass_g, long.bodies) == (50.0, 94.0, base.bodies)
+    assert long.table.radius_cm.tolist() == base.table.radius_cm.tolist()
+    with pytest.raises(KeyError, match="no top-level field `length`"):
+        base.variant(tmp_path / "bad.ron", length=50.0)
+    with pytest.raises(hagfish.HagfishError, match=r"bad\.ron:\d+:\d+"):
+        base.variant(tmp_path / "bad.ron", length_cm=-1.0)

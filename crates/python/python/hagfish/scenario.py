@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping, Optional, Union
@@ -72,6 +73,22 @@ class Body:
             dofs=derived["dofs"],
             table=pd.DataFrame(derived["rows"]),
         )
+
+    def variant(self, out: PathLike, **fields: Any) -> "Body":
+        """A copy of this body file with top-level fields changed, written to ``out`` and
+        loaded (checked): ``body.variant("long.ron", length_cm=50.0, mass_g=94.3)``. Values
+        are as for :func:`override_text`; a field the file does not have raises
+        ``KeyError``. For studies of the body: scenario overrides cannot reach a body file."""
+        text = self.path.read_text()
+        for name, value in fields.items():
+            pattern = re.compile(rf"^(\s*{re.escape(name)}\s*:\s*)([^\n]*?)(,?\s*(//[^\n]*)?)$", re.M)
+            if not pattern.search(text):
+                raise KeyError(f"{self.path}: no top-level field `{name}`")
+            replacement = override_text(value)
+            text = pattern.sub(lambda m: m.group(1) + replacement + m.group(3), text, count=1)
+        out = Path(out)
+        out.write_text(text)
+        return Body.load(out)
 
 
 @dataclass(frozen=True)
