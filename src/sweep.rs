@@ -116,7 +116,7 @@ impl Grid {
 }
 
 impl Plan {
-    /// The plan of `grid` read from `grid_path`: the scenario made absolute, every run's
+    /// The plan of `grid` read from `grid_path`: the scenario's path made canonical, every run's
     /// overrides parsed and applied to the scenario (so a wrong path or value is refused here,
     /// not half-way through the sweep).
     ///
@@ -124,9 +124,10 @@ impl Plan {
     /// A [`CliError`] naming the run and the override that does not fit.
     pub fn of(grid: &Grid, grid_path: &Path) -> Result<Self, CliError> {
         let base = grid_path.parent().unwrap_or(Path::new("."));
-        let scenario = std::path::absolute(base.join(&grid.scenario)).map_err(|e| {
-            CliError::RunDirectory { path: grid.scenario.clone(), reason: e.to_string() }
-        })?;
+        let given = base.join(&grid.scenario);
+        let scenario = given
+            .canonicalize()
+            .map_err(|e| CliError::RunDirectory { path: given.clone(), reason: e.to_string() })?;
         let mut combinations: Vec<Vec<String>> = vec![Vec::new()];
         for (path, values) in &grid.grid {
             if values.is_empty() {
