@@ -11,6 +11,8 @@ was cut off from its last frame."""
 from __future__ import annotations
 
 import itertools
+import sys
+import time
 from pathlib import Path
 from typing import Any, Iterable, List, Mapping, Sequence, Union
 
@@ -47,6 +49,7 @@ def sweep(
     out: PathLike,
     *,
     executor: Any = None,
+    progress: bool = True,
 ) -> pd.DataFrame:
     """Runs ``scenario`` once per combination of ``grid`` (see :func:`combinations`), each
     into ``out/runs/<id>``, and returns ``summary.csv`` as a DataFrame: one row per run with
@@ -59,7 +62,8 @@ def sweep(
     a ``dask_jobqueue`` cluster's client); each task makes one run and returns only its
     status, so no run's arrays are held in memory. The scenario's own overrides apply to
     every run, before the grid's. Re-running the same sweep into the same folder makes only
-    the runs that have not ended; another plan in that folder is refused."""
+    the runs that have not ended; another plan in that folder is refused. ``progress`` prints
+    a line on stderr as each run's result arrives (in the order of the runs)."""
     if not isinstance(scenario, Scenario):
         scenario = Scenario.load(scenario)
     folder = Path(out).resolve()
@@ -70,17 +74,27 @@ def sweep(
     ]
     ids = _native.sweep_plan(str(scenario.path), runs, str(folder))
     indices: Iterable[int] = range(len(ids))
+    started = time.monotonic()
+
+    def report(index: int, result: tuple) -> None:
+        if progress:
+            status, skipped = result
+            done = "already " + status if skipped else status
+            elapsed = time.monotonic() - started
+            print(f"[{index + 1}/{len(ids)}] run {ids[index]} ({' '.join(runs[index][len(base):])}): "
+                  f"{done}, {elapsed:.1f} s into the sweep", file=sys.stderr, flush=True)
+
     if executor is None:
         for index in indices:
-            run_planned(str(folder), index)
+            report(index, run_planned(str(folder), index))
     else:
         submit = executor.submit
         if _is_dask(executor):
             futures = [submit(run_planned, str(folder), i, pure=False) for i in indices]
         else:
             futures = [submit(run_planned, str(folder), i) for i in indices]
-        for future in futures:
-            future.result()
+        for index, future in enumerate(futures):
+            report(index, future.result())
     summary = _native.sweep_collect(str(folder))
     return pd.read_csv(summary, dtype={"id": str}, keep_default_na=False, na_values=[""])
 
