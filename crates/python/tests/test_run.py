@@ -109,3 +109,28 @@ def test_a_body_variant_changes_the_fields_asked_for(tmp_path):
         base.variant(tmp_path / "bad.ron", length=50.0)
     with pytest.raises(hagfish.HagfishError, match=r"bad\.ron:\d+:\d+"):
         base.variant(tmp_path / "bad.ron", length_cm=-1.0)
+
+
+def test_the_gil_is_released_while_stepping(tmp_path, thesis):
+    """Another Python thread keeps running during a run: the longest pause between two of its
+    loop iterations stays far below the run's length (a run holding the GIL, with no progress
+    callback to hand it back, would pause it for the whole run)."""
+    import threading
+    import time
+
+    scenario = hagfish.Scenario.load(thesis, time_step_s=0.02)
+    worker = threading.Thread(
+        target=hagfish.run, args=(scenario,),
+        kwargs={"out": tmp_path / "run", "progress": False, "pictures": False},
+    )
+    started = last = time.monotonic()
+    longest = 0.0
+    worker.start()
+    while worker.is_alive():
+        now = time.monotonic()
+        longest, last = max(longest, now - last), now
+    worker.join()
+    length = time.monotonic() - started
+    assert hagfish.open_run(tmp_path / "run").status == "completed"
+    assert length > 0.4, f"the run took {length:.2f} s: too short to tell"
+    assert longest < 0.25 * length, f"the main thread paused {longest:.3f} s of {length:.3f} s"
