@@ -95,7 +95,7 @@ fn own_files(directory: &Path) -> Result<Vec<PathBuf>, CliError> {
     Ok(files)
 }
 
-/// The files of a run moved aside (into [`SET_ASIDE`], same relative paths) while a new run
+/// The files of a run moved aside (into `.hagfish-previous/`, same relative paths) while a new run
 /// is set up: [`SetAside::discard`] once it has started, [`SetAside::restore`] if it could not.
 #[derive(Debug)]
 pub struct SetAside {

@@ -1,4 +1,4 @@
-//! The command line: one [`Command`] variant and one file per subcommand (`body`, `run`,
+//! The command line: one `Command` variant and one file per subcommand (`body`, `run`,
 //! `params`, `knot`, `render`, `report`, `export`, `sweep`), all sharing [`CliError`].
 
 mod body;
