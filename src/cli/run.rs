@@ -117,13 +117,8 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     }
     let seconds = finished.write_pictures()?;
     writeln!(out, "pictures, report and exports in {seconds:.2} s")?;
-    match finished.failure() {
-        Some(error) => Err(error),
-        None if signalled.load(Ordering::Relaxed) => {
-            Err(CliError::Interrupted { directory: directory.clone(), frames })
-        }
-        None => Ok(()),
-    }
+    // A signal from here on ends the process in the handler above.
+    finished.failure().map_or(Ok(()), Err)
 }
 
 /// How `hagfish run` is called.
