@@ -134,3 +134,13 @@ def test_the_gil_is_released_while_stepping(tmp_path, thesis):
     assert hagfish.open_run(tmp_path / "run").status == "completed"
     assert length > 0.4, f"the run took {length:.2f} s: too short to tell"
     assert longest < 0.25 * length, f"the main thread paused {longest:.3f} s of {length:.3f} s"
+
+
+def test_python_values_become_the_command_lines_text():
+    assert [hagfish.override_text(v) for v in (True, None, 0.02, 3, "Trefoil(Left)")] == [
+        "true", "None", "0.02", "3", "Trefoil(Left)"]
+    assert hagfish.override_text((1.0, 2.5)) == "(1.0, 2.5)"
+    assert hagfish.override_text([5.6, 5.5]) == "[5.6, 5.5]"
+    assert hagfish.override_text(Path("/a/b.ron")) == '"/a/b.ron"'
+    with pytest.raises(TypeError):
+        hagfish.override_text(object())

@@ -18,7 +18,7 @@ PathLike = Union[str, "os.PathLike[str]"]
 def override_text(value: Any) -> str:
     """The ``--set`` text of a Python value: ``True``/``False`` → ``true``/``false``, ``None`` →
     ``None``, a number → its shortest round-trip form, a :class:`pathlib.Path` → a quoted
-    absolute path, a tuple → ``(a, b, …)``; a ``str`` is RON text as the command line takes it
+    absolute path, a tuple → ``(a, b, …)``, a list → ``[a, b, …]``; a ``str`` is RON text as the command line takes it
     (``"Trefoil(Left)"``, ``"SparseMaximal"``, ``'"my_body.ron"'`` for a file name)."""
     if isinstance(value, bool):
         return "true" if value else "false"
@@ -30,6 +30,8 @@ def override_text(value: Any) -> str:
         return '"' + str(value.resolve()) + '"'
     if isinstance(value, tuple):
         return "(" + ", ".join(override_text(v) for v in value) + ")"
+    if isinstance(value, list):
+        return "[" + ", ".join(override_text(v) for v in value) + "]"
     if isinstance(value, str):
         return value
     raise TypeError(f"cannot turn {value!r} ({type(value).__name__}) into a scenario value")
