@@ -1,4 +1,5 @@
-//! Broad phase and whole self-contact detection at 100 bodies on tangled centrelines.
+//! Broad phase and whole self-contact detection at 100 bodies on tangled centrelines, and the
+//! broad phase of a straight 10 000-body chain (no pairs: what a long free chain pays).
 
 #![allow(missing_docs)]
 
@@ -37,6 +38,15 @@ fn bench(c: &mut Criterion) {
             b.iter(|| centreline.update(black_box(&centres), &radii).expect("valid centreline"))
         });
     }
+    let long = 10_000;
+    let straight: Vec<_> =
+        (0..long).map(|k| glam::DVec3::new(BODY_LENGTH * k as f64, 0.0, 0.0)).collect();
+    let line = Centreline::new(&straight, &vec![0.89; long]).expect("valid centreline");
+    let (mut broad, mut pairs) =
+        (BroadPhase::new(BroadPhaseOptions::default()).expect("valid"), Vec::new());
+    c.bench_function("broad_phase/straight/10000", |b| {
+        b.iter(|| broad.find_pairs(black_box(&line), &vec![BODY_LENGTH; long], &mut pairs))
+    });
     let line = Centreline::new(&tangle(BODY_COUNT, 1), &radii).expect("valid centreline");
     let (a, b) = (line.segment(20), line.segment(60));
     c.bench_function("closest_points/tangle", |bench| {

@@ -15,12 +15,16 @@
 //! chain already "touches" itself up to ~4 bodies away (adjacent discs of radius r
 //! spaced ℓ ≪ r overlap).
 //!
-//! The pairs are found in two levels along the chain: runs of [`BLOCK`] consecutive bodies
-//! are bounded by one sphere each; a pair of runs is looked into only if their spheres
-//! overlap and some pair of their bodies is farther apart along the chain than the index
-//! gap. A chain is spatially coherent, so at 10 000 bodies this tests ≈ 2·10⁵ run pairs and
-//! the bodies of the few that touch, not 5·10⁷ body pairs; the pairs come out sorted by i,
-//! then j, without a sort.
+//! The pairs are found through a hierarchy along the chain: runs of [`BLOCK`] consecutive
+//! bodies are bounded by one sphere each, and pairs of neighbouring runs, pairs of those and
+//! so on by one sphere each (a binary tree over the runs, built bottom-up in O(runs)). A run's
+//! partners are searched from the top of the tree down, into the nodes whose sphere overlaps
+//! the run's, that hold runs from this one on, and whose last body is farther along the chain
+//! than the index gap; a pair of runs is looked into only if their spheres overlap. A chain is
+//! spatially coherent, so a free chain visits O(log runs) nodes per run: at 10 000 bodies
+//! ≈ 10⁴ sphere tests instead of the ≈ 2·10⁵ of all run pairs, or the 5·10⁷ of all body
+//! pairs. The tree visits the runs in order, so the pairs come out sorted by i, then j,
+//! without a sort.
 
 use parry3d_f64::bounding_volume::{BoundingSphere, BoundingVolume};
 
@@ -54,8 +58,10 @@ const BLOCK: usize = 16;
 pub struct BroadPhase {
     options: BroadPhaseOptions,
     spheres: Vec<BoundingSphere>,
-    /// One sphere per run of [`BLOCK`] consecutive bodies, holding their spheres.
-    blocks: Vec<BoundingSphere>,
+    /// The tree over the runs: `levels[0]` has one sphere per run of [`BLOCK`] consecutive
+    /// bodies, holding their spheres; `levels[k][i]` holds `levels[k − 1][2i]` and
+    /// `[2i + 1]`; the last level has one sphere.
+    levels: Vec<Vec<BoundingSphere>>,
     /// The runs that may hold partners of the run being searched.
     partner_runs: Vec<usize>,
     /// Per segment k: `|c_{k+1} − c_k|/2 + σ_k + max(r_k, r_{k+1})` (module docs).
@@ -75,7 +81,7 @@ impl BroadPhase {
         Ok(BroadPhase {
             options,
             spheres: Vec::new(),
-            blocks: Vec::new(),
+            levels: Vec::new(),
             partner_runs: Vec::new(),
             reaches: Vec::new(),
         })
@@ -124,25 +130,18 @@ impl BroadPhase {
                 BoundingSphere::new(c, own.max(reach + half_margin))
             },
         ));
-        self.blocks.clear();
-        self.blocks.extend(self.spheres.chunks(BLOCK).map(|run| {
-            let centre = run.iter().map(|s| s.center).sum::<glam::DVec3>() / run.len() as f64;
-            let radius = run.iter().map(|s| s.center.distance(centre) + s.radius);
-            BoundingSphere::new(centre, radius.fold(0.0, f64::max))
-        }));
+        self.build_levels();
         out.clear();
         let (gap, spheres, n) = (self.options.index_gap, &self.spheres, self.spheres.len());
-        for (a, run_a) in self.blocks.iter().enumerate() {
+        let top = self.levels.len().saturating_sub(1);
+        for (a, run_a) in self.levels[0].iter().enumerate() {
             let (first_a, end_a) = (a * BLOCK, ((a + 1) * BLOCK).min(n));
             // The runs from this one on that may hold a partner: some pair of the two runs
             // is farther apart than the index gap, and their spheres overlap.
             self.partner_runs.clear();
-            self.partner_runs.extend(self.blocks.iter().enumerate().skip(a).filter_map(
-                |(b, run_b)| {
-                    let end_b = ((b + 1) * BLOCK).min(n);
-                    (end_b - 1 - first_a > gap && run_a.intersects(run_b)).then_some(b)
-                },
-            ));
+            let search =
+                RunSearch { levels: &self.levels, bodies: n, gap, run: a, run_sphere: run_a };
+            search.collect(top, 0, &mut self.partner_runs);
             // Body by body, partner runs in order: the pairs come out sorted by (i, j).
             for i in first_a..end_a {
                 for &b in &self.partner_runs {
@@ -154,6 +153,64 @@ impl BroadPhase {
             }
         }
         Ok(())
+    }
+
+    /// Fills the tree over the runs from the bodies' spheres (`levels`, see its field).
+    fn build_levels(&mut self) {
+        let runs = self.spheres.len().div_ceil(BLOCK).max(1);
+        let depth = runs.next_power_of_two().trailing_zeros() as usize + 1;
+        self.levels.resize_with(depth, Vec::new);
+        let (first, rest) = self.levels.split_at_mut(1);
+        first[0].clear();
+        first[0].extend(self.spheres.chunks(BLOCK).map(|run| {
+            let centre = run.iter().map(|s| s.center).sum::<glam::DVec3>() / run.len() as f64;
+            let radius = run.iter().map(|s| s.center.distance(centre) + s.radius);
+            BoundingSphere::new(centre, radius.fold(0.0, f64::max))
+        }));
+        let mut below = &first[0];
+        for level in rest.iter_mut() {
+            level.clear();
+            level.extend(below.chunks(2).map(|pair| match pair {
+                [left, right] => left.merged(right),
+                single => single[0],
+            }));
+            below = level;
+        }
+    }
+}
+
+/// The search of one run's partner runs down the tree over the runs.
+struct RunSearch<'a> {
+    levels: &'a [Vec<BoundingSphere>],
+    /// The number of bodies.
+    bodies: usize,
+    /// The index gap.
+    gap: usize,
+    /// The run whose partners are sought.
+    run: usize,
+    /// Its sphere.
+    run_sphere: &'a BoundingSphere,
+}
+
+impl RunSearch<'_> {
+    /// Pushes onto `out`, in order, the runs under node `index` of `level` that are this run
+    /// or after it, hold a body farther than the gap from the run's first body, and whose
+    /// sphere overlaps the run's.
+    fn collect(&self, level: usize, index: usize, out: &mut Vec<usize>) {
+        let Some(node) = self.levels[level].get(index) else { return };
+        let (first_run, end_run) = (index << level, (index + 1) << level);
+        let last_body = (end_run * BLOCK).min(self.bodies) - 1;
+        let reaches_past_gap =
+            last_body.checked_sub(self.run * BLOCK).is_some_and(|d| d > self.gap);
+        if end_run <= self.run || !reaches_past_gap || !self.run_sphere.intersects(node) {
+            return;
+        }
+        if level == 0 {
+            out.push(first_run);
+        } else {
+            self.collect(level - 1, 2 * index, out);
+            self.collect(level - 1, 2 * index + 1, out);
+        }
     }
 }
 
