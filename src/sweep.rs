@@ -9,7 +9,7 @@
 //! - `runs/<id>/`: one run directory per run (`docs/outputs.md`);
 //! - `summary.csv` and `plots/`: written by [`collect`] — one row per run (its id, the value
 //!   of each swept parameter, then [`RunRow`]'s columns) and each numeric summary column
-//!   against each numeric swept parameter.
+//!   against each numeric swept parameter that varies.
 //!
 //! The grid file (`hagfish sweep plan GRID.ron`) names the scenario (relative to the grid file)
 //! and the values of each parameter; the runs are their Cartesian product (the last parameter
@@ -359,8 +359,8 @@ pub fn run_shard(
 
 /// Reads every run of the sweep in `folder` and writes `summary.csv` (one row per planned
 /// run; a run without a run directory has status `missing` and empty values) and, in
-/// `plots/`, each numeric summary column against each swept parameter whose values are all
-/// numbers. Returns the table's rows (without the header).
+/// `plots/`, each numeric summary column against each swept parameter whose values are
+/// numbers that vary. Returns the table's rows (without the header).
 ///
 /// # Errors
 /// [`CliError`] if the plan, a run's files or an output cannot be read or written.
@@ -409,7 +409,8 @@ fn csv_line(fields: &[String]) -> String {
     quoted.join(",") + "\n"
 }
 
-/// Each numeric summary column against each swept parameter whose values are all numbers.
+/// Each numeric summary column against each swept parameter whose values are all numbers and
+/// not all the same (a scenario override every run shares is a column, not an axis).
 fn scatters(plan: &Plan, header: &[String], rows: &[Vec<String>]) -> Vec<hagfish_report::Scatter> {
     let number = |row: &Vec<String>, c: usize| row.get(c).and_then(|v| v.parse::<f64>().ok());
     let first_metric = 1 + plan.parameters.len();
@@ -417,7 +418,9 @@ fn scatters(plan: &Plan, header: &[String], rows: &[Vec<String>]) -> Vec<hagfish
     let mut scatters = Vec::new();
     for (p, parameter) in plan.parameters.iter().enumerate() {
         let x = 1 + p;
-        if rows.iter().any(|r| number(r, x).is_none()) {
+        let values: Option<Vec<f64>> = rows.iter().map(|r| number(r, x)).collect();
+        let varies = values.is_some_and(|v| v.iter().any(|x| *x != v[0]));
+        if !varies {
             continue;
         }
         for (m, metric) in header.iter().enumerate().skip(first_metric) {
