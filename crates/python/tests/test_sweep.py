@@ -80,3 +80,22 @@ def test_the_command_line_collects_a_sweep_planned_in_python(tmp_path, thesis, h
     pd.testing.assert_frame_equal(comparable(table), comparable(collected))
     with pytest.raises(hagfish.HagfishError, match="holds another plan"):
         hagfish.sweep(scenario, {"drag.quadratic_g_per_cm3": [0.25]}, out=folder)
+
+
+def test_a_run_that_cannot_be_made_does_not_stop_the_others(tmp_path, thesis):
+    import fcntl
+
+    scenario = hagfish.Scenario.load(thesis, time_step_s=0.02)
+    grid = {"drag.quadratic_g_per_cm3": [0.5, 0.75, 1.0]}
+    folder = tmp_path / "sweep"
+    busy = folder / "runs" / "0001"
+    busy.mkdir(parents=True)
+    with open(busy / ".hagfish.lock", "w") as lock:  # another process runs in run 1's folder
+        fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        with pytest.raises(hagfish.HagfishError, match=r"1 of 3 runs could not be made") as error:
+            hagfish.sweep(scenario, grid, out=folder, progress=False)
+    assert "run 0001" in error.value.args[0] and "in use" in error.value.args[0]
+    assert hagfish.open_sweep(folder).status.tolist() == ["completed", "missing", "completed"]
+    # Once the folder is free, running the sweep again makes run 1 only.
+    table = hagfish.sweep(scenario, grid, out=folder, progress=False)
+    assert table.status.tolist() == ["completed"] * 3

@@ -14,7 +14,7 @@ import itertools
 import sys
 import time
 from pathlib import Path
-from typing import Any, Iterable, List, Mapping, Sequence, Union
+from typing import Any, Callable, Iterable, List, Mapping, Sequence, Union
 
 import pandas as pd
 
@@ -63,7 +63,10 @@ def sweep(
     status, so no run's arrays are held in memory. The scenario's own overrides apply to
     every run, before the grid's. Re-running the same sweep into the same folder makes only
     the runs that have not ended; another plan in that folder is refused. ``progress`` prints
-    a line on stderr as each run's result arrives (in the order of the runs)."""
+    a line on stderr as each run's result arrives (in the order of the runs). A run that
+    cannot be made (its directory in use by another process, a body file gone) does not stop
+    the others: the summary is written, then :class:`hagfish.HagfishError` lists those runs.
+    A run that diverges or fails its tie is a row with that status, not an error."""
     if not isinstance(scenario, Scenario):
         scenario = Scenario.load(scenario)
     folder = Path(out).resolve()
@@ -76,17 +79,24 @@ def sweep(
     indices: Iterable[int] = range(len(ids))
     started = time.monotonic()
 
-    def report(index: int, result: tuple) -> None:
-        if progress:
-            status, skipped = result
+    failed: List[str] = []
+
+    def report(index: int, outcome: Callable[[], tuple]) -> None:
+        """Takes one run's result (its exception kept for the end), prints its line."""
+        try:
+            status, skipped = outcome()
             done = "already " + status if skipped else status
+        except _native.HagfishError as error:
+            failed.append(f"run {ids[index]}: {error.args[0]}")
+            done = "failed: " + error.args[0]
+        if progress:
             elapsed = time.monotonic() - started
             print(f"[{index + 1}/{len(ids)}] run {ids[index]} ({' '.join(runs[index][len(base):])}): "
                   f"{done}, {elapsed:.1f} s into the sweep", file=sys.stderr, flush=True)
 
     if executor is None:
         for index in indices:
-            report(index, run_planned(str(folder), index))
+            report(index, lambda: run_planned(str(folder), index))
     else:
         submit = executor.submit
         if _is_dask(executor):
@@ -94,8 +104,12 @@ def sweep(
         else:
             futures = [submit(run_planned, str(folder), i) for i in indices]
         for index, future in enumerate(futures):
-            report(index, future.result())
+            report(index, future.result)
     summary = _native.sweep_collect(str(folder))
+    if failed:
+        raise _native.HagfishError(
+            f"{len(failed)} of {len(ids)} runs could not be made (the others are in "
+            f"{summary}):\n" + "\n".join(failed), 2)
     return pd.read_csv(summary, dtype={"id": str}, keep_default_na=False, na_values=[""])
 
 
