@@ -205,7 +205,9 @@ pub fn step(
             rows: data.rows.len(),
         });
     }
-    internal_forces(model, options, state, data);
+    if data.internal_forces_due {
+        internal_forces(model, options, state, data);
+    }
     timings.internal_forces = lap();
     hagfish_tree::integrate(state, data.solver.velocity(), options.time_step)
         .map_err(|source| SimError::Tree { step: step_index, time, source })?;

@@ -196,6 +196,11 @@ pub fn run(
         if world.steps() >= steps || phases_over {
             break RunEnd::Completed;
         }
+        // Joint loads are recorded, not used by the step: they are computed only for a step
+        // that may end on a frame (every step when the phases may end the run).
+        world.set_internal_forces_due(
+            scenario.end_after_phases || (world.steps() + 1) % record_every == 0,
+        );
         if let Err(error) = recording.advance(&mut world, &mut controller, &mut summary) {
             let at = Box::new(recording.checkpoint(&world, &controller, &summary));
             break RunEnd::Diverged { error, at };

@@ -63,6 +63,8 @@ pub struct StepData {
     pub tree_factor: Option<TreeFactor>,
     /// The load each joint transmits during the step (stage `internal_forces`).
     pub internal: InternalForces,
+    /// Whether stage `internal_forces` runs in the next steps ([`crate::World::set_internal_forces_due`]).
+    pub(crate) internal_forces_due: bool,
     pub(crate) detector: ContactDetector,
     pub(crate) wall: Option<Wall>,
     pub(crate) centres: Vec<DVec3>,
@@ -158,6 +160,7 @@ impl StepData {
                 DynamicsBackend::SparseMaximal => Some(TreeFactor::new(model)?),
             },
             internal: InternalForces::new(model.body_count()),
+            internal_forces_due: true,
             detector,
             wall,
             centres,

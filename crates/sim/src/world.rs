@@ -59,6 +59,14 @@ impl World {
         &self.data
     }
 
+    /// Whether the next steps compute the joint loads (stage `internal_forces`; default
+    /// true). They are only recorded, never used by a step: the run loop asks for them on the
+    /// steps that end on a recorded frame, and between those `data().internal` holds the
+    /// loads of the last step that computed them.
+    pub fn set_internal_forces_due(&mut self, due: bool) {
+        self.data.internal_forces_due = due;
+    }
+
     /// Number of steps taken.
     pub fn steps(&self) -> u64 {
         self.steps
