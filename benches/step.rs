@@ -11,13 +11,16 @@
 //!   maximal-coordinate backend (`StepOptions::backend`); and
 //!   `step/knotted/ContactSpace/NoPrediction`, without contact prediction (its cost).
 //!   Each iteration restores the state first (`World::set_state`, untimed).
+//! - `step/knotted_1000/SparseMaximal`: the same whole step in a long chain: ES103 at 1000
+//!   bodies on the sparse backend, `data/scenarios/tie.ron` at t = 19 s (a trefoil tied by
+//!   control, `hagfish_bench_support::long_knotted_world`), with the scenario's controller.
 //!   Per-stage benchmarks of the same state: `cargo bench -p hagfish-sim --bench stages`.
 
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
-use hagfish_bench_support::knotted_world;
+use hagfish_bench_support::{knotted_world, long_knotted_world};
 use hagfish_control::WaterDrag;
 use hagfish_sim::rows::RowGroup;
 use hagfish_sim::{DynamicsBackend, LoadedScenario, StepOptions, World};
@@ -92,5 +95,35 @@ fn knotted(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, unconstrained, knotted);
+fn long_knotted(c: &mut Criterion) {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let (mut world, mut controller) =
+        long_knotted_world(root.as_ref(), &std::env::temp_dir()).expect("long knotted state");
+    let (start, saved) = (world.state().clone(), controller.state());
+    world.step(&mut controller).expect("warm-up step");
+    println!(
+        "long knotted state: {} bodies, {} self contacts, rows per group {:?}",
+        world.model().body_count(),
+        world.data().report.self_contacts,
+        RowGroup::values(&world.data().report.solve.rows_per_tag)
+    );
+    let mut group = c.benchmark_group("step");
+    group.sample_size(20);
+    group.bench_function("knotted_1000/SparseMaximal", |b| {
+        b.iter_custom(|iterations| {
+            let mut elapsed = Duration::ZERO;
+            for _ in 0..iterations {
+                world.set_state(start.clone()).expect("state");
+                controller.restore(&saved).expect("controller state");
+                let begin = Instant::now();
+                black_box(world.step(&mut controller).expect("step").solve.iterations);
+                elapsed += begin.elapsed();
+            }
+            elapsed
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, unconstrained, knotted, long_knotted);
 criterion_main!(benches);

@@ -1,6 +1,7 @@
 //! Scaffolding of the hagfish workspace's benchmarks and tests, kept out of the simulator's
 //! public API: the knotted benchmark state (a scenario file found relative to the workspace
-//! root) and uniform long chains for the scaling benchmarks.
+//! root), the same animal knotted at 1000 bodies, and uniform long chains for the scaling
+//! benchmarks.
 //!
 //! ```
 //! let chain = hagfish_bench_support::segment_chain(20)?;
@@ -11,5 +12,8 @@
 mod knotted_state;
 mod segment_chain;
 
-pub use knotted_state::{KNOTTED_SCENARIO, KNOTTED_TIME_S, knotted_world};
+pub use knotted_state::{
+    KNOTTED_SCENARIO, KNOTTED_TIME_S, LONG_KNOTTED_BODIES, LONG_KNOTTED_TIME_S, knotted_world,
+    long_knotted_world,
+};
 pub use segment_chain::segment_chain;

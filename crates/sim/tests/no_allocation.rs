@@ -9,9 +9,9 @@
 
 use std::alloc::System;
 
-use hagfish_bench_support::knotted_world;
+use hagfish_bench_support::{knotted_world, long_knotted_world};
 use hagfish_control::PhasedController;
-use hagfish_sim::{DynamicsBackend, LoadedScenario, Override, StepOptions, World};
+use hagfish_sim::{DynamicsBackend, LoadedScenario, StepOptions, World};
 use stats_alloc::{INSTRUMENTED_SYSTEM, Region, StatsAlloc};
 
 #[global_allocator]
@@ -64,15 +64,8 @@ fn knotted_steps_do_not_allocate() {
     assert_steps_do_not_allocate("thesis_scripted.ron", &mut world, &mut controller);
 
     // ES103 at 1000 bodies (D16: the same animal), the trefoil tied by control.
-    let body = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("es103_1000_bodies.ron");
-    let es103 = std::fs::read_to_string(format!("{root}/data/hagfish/es103.ron")).expect("es103");
-    std::fs::write(&body, es103.replace(" body_count: 100,", " body_count: 1000,")).expect("write");
-    let overrides = [
-        Override { path: "body".into(), value: format!("{:?}", body.display().to_string()) },
-        Override::parse("backend=SparseMaximal").expect("an override"),
-    ];
-    let tie = LoadedScenario::load_with(format!("{root}/data/scenarios/tie.ron"), &overrides)
-        .expect("loads");
-    let (mut world, mut controller) = tie.build_at(19.0).expect("tie.ron at 19 s");
+    let scratch = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"));
+    let (mut world, mut controller) =
+        long_knotted_world(root.as_ref(), scratch).expect("tie.ron at 1000 bodies, 19 s");
     assert_steps_do_not_allocate("tie.ron, 1000 bodies, sparse", &mut world, &mut controller);
 }
