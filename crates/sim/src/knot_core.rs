@@ -34,7 +34,8 @@ impl KnotCore {
         if first > last || last >= centres.len() || radii.len() != centres.len() {
             return None;
         }
-        let arc = |k: usize| centres[..=k].windows(2).map(|w| w[0].distance(w[1])).sum::<f64>();
+        // From +0 (an empty `Sum` of floats is −0, written "-0.000" for a core at the head).
+        let arc = |k: usize| centres[..=k].windows(2).fold(0.0, |s, w| s + w[0].distance(w[1]));
         let core = &radii[first..=last];
         Some(Self {
             start_cm: arc(first),
@@ -86,6 +87,9 @@ mod tests {
         assert_eq!(core.midpoint_cm(), 2.5);
         assert_eq!(core.of_body_length(core.midpoint_cm()), 2.5 / 5.5);
         assert_eq!(core.length_in_diameters(), 6.0);
+        let at_head = KnotReport { extent: Some((0, 8)), ..knotted.clone() };
+        let core = KnotCore::of(&at_head, &centres, &radii, 5.5).expect("a core");
+        assert_eq!(format!("{:.3}", core.start_cm), "0.000");
         let outside = KnotReport { extent: Some((2, 11)), ..knotted };
         assert!(KnotCore::of(&outside, &centres, &radii, 5.5).is_none());
     }
