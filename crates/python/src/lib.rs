@@ -104,7 +104,8 @@ fn body<'py>(py: Python<'py>, path: PathBuf) -> PyResult<Bound<'py, PyDict>> {
     Ok(result)
 }
 
-/// Runs `scenario` with `overrides` (and `body`) into `out` with the GIL released; `existing`
+/// Runs `scenario` with `overrides` (`PATH=VALUE`, `body="FILE"` for another body) into `out`
+/// with the GIL released; `existing`
 /// is `"refuse"`, `"replace"` or `"resume"` (as `hagfish run`, `--overwrite`, `--resume`).
 /// `progress(time_s, duration_s, frames, phase, knot)` is called after every recorded frame
 /// (with the GIL); an exception from it (Ctrl-C included) stops the run after the step being
@@ -112,7 +113,7 @@ fn body<'py>(py: Python<'py>, path: PathBuf) -> PyResult<Bound<'py, PyDict>> {
 /// plots, animation, exports and report are written too. Returns `(status, error)`: a run that
 /// diverged or failed its tie is a result, not an exception.
 #[pyfunction]
-#[pyo3(signature = (scenario, overrides, out, existing, body=None, progress=None, pictures=true, stop_after_frames=None))]
+#[pyo3(signature = (scenario, overrides, out, existing, progress=None, pictures=true, stop_after_frames=None))]
 #[allow(clippy::too_many_arguments)]
 fn run(
     py: Python<'_>,
@@ -120,12 +121,11 @@ fn run(
     overrides: Vec<String>,
     out: PathBuf,
     existing: &str,
-    body: Option<PathBuf>,
     progress: Option<Py<PyAny>>,
     pictures: bool,
     stop_after_frames: Option<usize>,
 ) -> PyResult<(String, Option<String>)> {
-    let overrides = with_body(parse_overrides(&overrides)?, body.as_deref())?;
+    let overrides = parse_overrides(&overrides)?;
     let existing = match existing {
         "refuse" => Existing::Refuse,
         "replace" => Existing::Replace,

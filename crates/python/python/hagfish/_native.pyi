@@ -24,7 +24,6 @@ def run(
     overrides: list[str],
     out: str,
     existing: str,
-    body: Optional[str] = None,
     progress: Optional[Callable[[float, float, int, str, Optional[str]], Any]] = None,
     pictures: bool = True,
     stop_after_frames: Optional[int] = None,

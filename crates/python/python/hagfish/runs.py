@@ -169,10 +169,9 @@ def run(
     existing = "replace" if overwrite else "resume" if resume else "refuse"
     _native.run(
         str(scenario.path),
-        [f"{k}={v}" for k, v in scenario.overrides.items()],
+        scenario.set_arguments(),
         str(directory),
         existing,
-        body=None if scenario.body is None else str(scenario.body),
         progress=callback,
         pictures=pictures,
         stop_after_frames=stop_after_frames,
