@@ -89,11 +89,21 @@ proptest! {
     }
 
     /// Inverse dynamics (RNEA) then forward dynamics (CRBA mass matrix + Cholesky) returns q̈.
-    /// A forward solve cannot beat the conditioning of M: its relative error is bounded by
-    /// about cond(M)·ε (measured ratio err / (cond·ε) ≤ 2 over 20 random chains; cond(M) reaches
-    /// 2e8 for 100 bodies here). So the bound is 1e-9, or 10·cond(M)·ε when that is larger.
-    /// The consistency of RNEA and CRBA, which a bug would break by O(1), is also checked
-    /// without any solve: ‖M q̈ + C − τ‖ ≤ 1e-12 (‖M‖‖q̈‖ + ‖C‖).
+    ///
+    /// The consistency of RNEA and CRBA, which a bug would break by O(1), is checked without
+    /// any solve: ‖M q̈ + C − τ‖ ≤ 1e-12 (‖M‖‖q̈‖ + ‖C‖).
+    ///
+    /// Forward dynamics solves M x = b with b = τ − C, so x − q̈ = M⁻¹ (b − M q̈) plus the
+    /// solve's own rounding: the round trip can be no closer than the inverse-dynamics
+    /// residual carried through M⁻¹. With gravity that residual is not small relative to
+    /// M q̈: the gravity wrenches inside RNEA are up to ≈ 60× the inertial ones and cancel
+    /// (in CI a bound of cond(M)·ε, blind to this, failed at cond(M) = 4e5 although the solve
+    /// of M x = M q̈ was exact to 6e-13). So the assertion is
+    /// ‖x − q̈‖ ≤ 2 ‖b − M q̈‖ / λ_min(M) + 10 (n + 1) ε cond(M) ‖q̈‖,
+    /// the second term covering the solve and the rounding of M q̈ itself. Measured:
+    /// the error is at most 0.47 of it over 5000 random chains (n = 2…300, cond(M) to 2e8).
+    /// The solve alone is checked on the bias-free right-hand side M q̈:
+    /// relative error ≤ 10·cond(M)·ε (measured ≤ 1.05×).
     #[test]
     fn inverse_then_forward_dynamics_round_trips((spec, q, qdot, qddot) in chain_and_motion()) {
         let model = build_chain(&spec, DVec3::new(0.0, -980.0, 0.0), 0.0, 0.0);
@@ -121,9 +131,21 @@ proptest! {
         let recovered: Vec<f64> = (0..n).map(|a| rhs[(a, 0)]).collect();
         let eigenvalues = m.self_adjoint_eigenvalues(faer::Side::Lower).expect("symmetric");
         let condition = eigenvalues[n - 1] / eigenvalues[0];
-        let bound = (10.0 * condition * f64::EPSILON).max(1e-9);
-        let err = relative_error(&recovered, &qddot);
-        prop_assert!(err < bound, "relative error {err}, bound {bound}, cond(M) {condition:.3e}");
+        let m_qddot: Vec<f64> = (0..n).map(|a| (0..n).map(|b| m[(a, b)] * qddot[b]).sum::<f64>()).collect();
+        let residual: Vec<f64> = (0..n).map(|a| tau[a] - bias[a] - m_qddot[a]).collect();
+        let bound = 2.0 * norm(&residual) / eigenvalues[0]
+            + 10.0 * (n + 1) as f64 * f64::EPSILON * condition * norm(&qddot);
+        let err = norm(&recovered.iter().zip(&qddot).map(|(x, y)| x - y).collect::<Vec<_>>());
+        prop_assert!(err <= bound,
+            "‖x − q̈‖ = {err:.3e}, bound {bound:.3e} (‖τ − C − M q̈‖ = {:.3e}, cond(M) {condition:.3e})",
+            norm(&residual));
+        // The solve alone, on a right-hand side M q̈ free of the bias: cond(M)·ε bounds it.
+        let mut exact_rhs = Mat::<f64>::from_fn(n, 1, |a, _| m_qddot[a]);
+        llt.solve_in_place(exact_rhs.as_mut());
+        let solved: Vec<f64> = (0..n).map(|a| exact_rhs[(a, 0)]).collect();
+        let solve_err = relative_error(&solved, &qddot);
+        prop_assert!(solve_err < 10.0 * condition * f64::EPSILON,
+            "solve of M x = M q̈: relative error {solve_err}, cond(M) {condition:.3e}");
     }
 }
 
