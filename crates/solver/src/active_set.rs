@@ -126,6 +126,8 @@ pub(crate) struct ActiveSet {
     implied: Vec<usize>,
     /// Incremented whenever F changes (so `implied` marks expire).
     version: usize,
+    /// The warm-started rows in the order they join F.
+    warm: Vec<usize>,
 }
 
 impl ActiveSet {
@@ -148,6 +150,7 @@ impl ActiveSet {
         self.free.reset(rows);
         self.saved.reserve(rows + 1);
         self.implied.reserve(rows);
+        self.warm.reserve(rows);
     }
 
     /// The free rows and their factor at the end of the last run (for refinement).
@@ -252,9 +255,21 @@ impl ActiveSet {
             self.bound[row] = Bound::Redundant;
             lambda[row] = 0.0;
         }
-        for (row, kind) in kinds.iter().enumerate() {
-            let warm = *kind != RowKind::Equality && self.bound[row] == Bound::Free;
-            if warm && self.try_join(w, row, DEPENDENCE) != Join::Joined {
+        // Warm rows join largest impulse first (λᵢ√Wᵢᵢ, the size of M̃⁻¹cᵢλᵢ in the M̃ norm):
+        // when nearly dependent rows share a load, the one dropped is the one that carried
+        // least. Joining by row index instead dropped a row carrying 40× its partner's
+        // impulse, and the re-solve of an unchanged problem took more iterations than the
+        // cold solve (a degenerate case of tests/random_problems.rs, kept as a regression).
+        // The order depends on λ alone, so a run resumed from saved multipliers joins alike.
+        self.warm.clear();
+        self.warm.extend(
+            (0..m).filter(|&i| kinds[i] != RowKind::Equality && self.bound[i] == Bound::Free),
+        );
+        let impulse = |i: usize| lambda[i] * w[(i, i)].sqrt();
+        self.warm.sort_unstable_by(|&a, &b| impulse(b).total_cmp(&impulse(a)).then(a.cmp(&b)));
+        for k in 0..self.warm.len() {
+            let row = self.warm[k];
+            if self.try_join(w, row, DEPENDENCE) != Join::Joined {
                 self.fix(lambda, row, Bound::Lower);
             }
         }
