@@ -301,7 +301,7 @@ fn finish(
             (Status::Diverged, Some(error.to_string()))
         }
         RunEnd::TieFailed(failure) => {
-            (Status::TieFailed, Some(SimError::TieFailed(*failure).to_string()))
+            (Status::TieFailed, Some(SimError::TieFailed(failure.clone()).to_string()))
         }
     };
     manifest.stop(status, wall);

@@ -377,3 +377,35 @@ fn a_run_that_ends_before_its_knot_is_tied_says_so() {
     assert_eq!(manifest["status"], "completed");
     assert_eq!(manifest["unfinished_phase"], unfinished);
 }
+
+/// Each crossing is checked as it is made: a crossover planned 0.85 L from the head leaves a
+/// tail of 0.15 L (≈ 3.6 local diameters), too short to loop over the body. The tie fails at
+/// its first check (6.2 s), not after the whole plan and `settle_s` (a tie that fails only
+/// there has no crossing in its message), with status tie_failed, exit code 4 and a message
+/// that says which crossing went wrong.
+#[test]
+fn a_crossing_that_is_not_made_fails_the_tie_at_once_and_says_which() {
+    let dir = fresh_dir("tie_crossing_missed");
+    let scenario = format!("{ROOT}/data/scenarios/tie.ron");
+    let out = dir.to_string_lossy();
+    let args = [
+        "run",
+        &scenario,
+        "--quiet",
+        "--out",
+        &out,
+        "--set",
+        "phases[0].Tie.at=0.85",
+        "--set",
+        "phases[0].Tie.attempts=1",
+    ];
+    let output = run_hagfish(args);
+    let (code, stderr) = code_and_stderr(&output);
+    assert_eq!(code, Some(4), "{stderr}");
+    let missed = "the tie phase did not tie 3_1 after 1 attempt (attempt 1: after the crossover \
+                  the tail's crossings seen from above were none; the plan makes over)";
+    assert!(stderr.contains(missed), "{stderr}");
+    let manifest = common::manifest(&dir);
+    assert_eq!(manifest["status"], "tie_failed");
+    assert_eq!(manifest["error"], missed);
+}

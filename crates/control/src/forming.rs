@@ -210,7 +210,7 @@ fn mean_radius(context: &ControlContext<'_>) -> f64 {
 }
 
 /// The body containing arc length `at·L` from the head (the last body for `at` ≥ 1).
-fn body_at_fraction(context: &ControlContext<'_>, at: f64) -> usize {
+pub(crate) fn body_at_fraction(context: &ControlContext<'_>, at: f64) -> usize {
     let target = at * body_length(context);
     let mut walked = 0.0;
     for (k, body) in context.model.bodies().iter().enumerate() {

@@ -46,6 +46,7 @@
 
 mod controller;
 mod controller_state;
+mod crossings;
 mod drag;
 mod error;
 mod forming;
@@ -60,6 +61,7 @@ mod until;
 
 pub use controller::{Actuation, ControlContext, Controller, Passive, PointDamper, PointForce};
 pub use controller_state::ControllerState;
+pub use crossings::{Layer, tail_crossings};
 pub use drag::WaterDrag;
 pub use error::ControlError;
 pub use forming::{FormingController, FormingScript, ScriptProgress, ScriptStep, Waypoint};
@@ -72,5 +74,8 @@ pub use phases::{
 };
 pub use tail_pd::TailGains;
 pub use thigmotaxis::{SlidingTargets, Strand, ThigmoParameters, ThigmoRequest};
-pub use tie::{Handedness, MIN_AGREEMENT, TieKnot, TiePhase, TieProgress};
+pub use tie::{
+    CrossingCheck, CrossingMiss, Handedness, LayerCode, MIN_AGREEMENT, TieKnot, TiePhase,
+    TieProgress,
+};
 pub use until::{Observation, Until};

@@ -27,7 +27,7 @@ pub fn largest_projected_loop(centres: &[DVec3], view: DVec3) -> Option<Projecte
         let (a0, a1) = (project(centres[i]), project(centres[i + 1]));
         for j in i + 2..centres.len() - 1 {
             let (b0, b1) = (project(centres[j]), project(centres[j + 1]));
-            if !segments_cross(a0, a1, b0, b1) {
+            if segment_crossing(a0, a1, b0, b1).is_none() {
                 continue;
             }
             let loop_points = &centres[i + 1..=j];
@@ -45,12 +45,14 @@ fn cross(a: DVec2, b: DVec2) -> f64 {
     a.x * b.y - a.y * b.x
 }
 
-fn segments_cross(a0: DVec2, a1: DVec2, b0: DVec2, b1: DVec2) -> bool {
+/// Where two segments `a0 a1` and `b0 b1` cross properly: the parameters (s, t) of the
+/// crossing point `a0 + s (a1 − a0) = b0 + t (b1 − b0)`, both in (0, 1), or `None`.
+pub(crate) fn segment_crossing(a0: DVec2, a1: DVec2, b0: DVec2, b1: DVec2) -> Option<(f64, f64)> {
     let d1 = cross(a1 - a0, b0 - a0);
     let d2 = cross(a1 - a0, b1 - a0);
     let d3 = cross(b1 - b0, a0 - b0);
     let d4 = cross(b1 - b0, a1 - b0);
-    d1 * d2 < 0.0 && d3 * d4 < 0.0
+    (d1 * d2 < 0.0 && d3 * d4 < 0.0).then(|| (d3 / (d3 - d4), d1 / (d1 - d2)))
 }
 
 fn shoelace(points: impl Iterator<Item = DVec2> + Clone) -> f64 {

@@ -1,15 +1,19 @@
 //! A scenario's controller: water drag on every step plus a sequence of phases, each with its
 //! own way of ending (D13: an explicit phase switch, not "first contact").
 
+use std::fmt;
+
+use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
 use crate::controller::{Actuation, ControlContext, Controller};
+use crate::crossings::{Layer, tail_crossings};
 use crate::drag::WaterDrag;
-use crate::forming::{FormingController, FormingScript, body_length};
+use crate::forming::{FormingController, FormingScript, body_at_fraction, body_length};
 use crate::knot_span::KnotSpan;
 use crate::load::LoadPhase;
 use crate::thigmotaxis::ThigmoParameters;
-use crate::tie::{TieKnot, TiePhase, TieProgress};
+use crate::tie::{CrossingCheck, CrossingMiss, LayerCode, TieKnot, TiePhase, TieProgress};
 use crate::until::{Observation, Until};
 
 /// One phase of a scenario.
@@ -118,13 +122,29 @@ pub struct PhasedController {
     pub(crate) tie: TieProgress,
 }
 
-/// A tie phase that failed: which knot, after how many attempts.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// A tie phase that failed: which knot, after how many attempts, and the latest crossing
+/// check that failed.
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct TieFailure {
     /// The knot asked for.
     pub knot: TieKnot,
     /// Attempts made.
     pub attempts: u32,
+    /// The latest failed crossing check, described ("attempt 1: after the threading the
+    /// tail's crossings seen from above were under, over; the plan makes over, under, over").
+    pub last_miss: Option<String>,
+}
+
+impl fmt::Display for TieFailure {
+    /// "4_1 after 2 attempts (attempt 2: after the threading …)".
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let plural = if self.attempts == 1 { "" } else { "s" };
+        write!(f, "{} after {} attempt{plural}", self.knot.name(), self.attempts)?;
+        match &self.last_miss {
+            Some(miss) => write!(f, " ({miss})"),
+            None => Ok(()),
+        }
+    }
 }
 
 impl PhasedController {
@@ -157,10 +177,64 @@ impl PhasedController {
         if shown || !late || self.tie.failed {
             return;
         }
+        self.abandon_attempt(phase.clone());
+    }
+
+    /// Runs the tie phase's crossing checks whose step has ended ([`crate::CrossingCheck`])
+    /// on the body's crossings seen from above, from the crossover on.
+    fn check_crossings(&mut self, context: &ControlContext<'_>) {
+        let Some(Phase::Tie(phase)) = self.phases.get(self.progress.phase) else {
+            return;
+        };
+        if self.crossing_check_due().is_none() {
+            return;
+        }
+        let centres: Vec<DVec3> =
+            (0..context.model.body_count()).map(|i| context.centre(i)).collect();
+        let found = tail_crossings(&centres, body_at_fraction(context, phase.at), DVec3::Z);
+        self.observe_crossings(&found);
+    }
+
+    /// The tie phase and its next crossing check, if the check's step has ended.
+    fn crossing_check_due(&self) -> Option<(&TiePhase, &'static CrossingCheck)> {
+        let Some(Phase::Tie(phase)) = self.phases.get(self.progress.phase) else {
+            return None;
+        };
+        let step = self.forming.as_ref()?.progress().step;
+        let check = phase.crossing_checks().get(self.tie.checks_passed as usize)?;
+        (step > check.after_step && !self.tie.failed).then_some((phase, check))
+    }
+
+    /// Runs the due crossing checks on the crossings `found`. A failed check abandons the
+    /// attempt, as a late knot does — unless the knot is shown: the knot analysis is the judge.
+    pub(crate) fn observe_crossings(&mut self, found: &[Layer]) {
+        while let Some((phase, check)) = self.crossing_check_due() {
+            if phase.passes(check, found) || self.tie.shown_since.is_some() {
+                self.tie.checks_passed += 1;
+                continue;
+            }
+            let phase = phase.clone();
+            self.tie.last_miss = Some(CrossingMiss {
+                attempt: self.tie.attempt,
+                check: self.tie.checks_passed,
+                found: LayerCode::of(found),
+            });
+            self.abandon_attempt(phase);
+            return;
+        }
+    }
+
+    /// Ends the current tie attempt without its knot: the plan starts again from the current
+    /// shape, or the phase fails after its last attempt.
+    fn abandon_attempt(&mut self, phase: TiePhase) {
         if self.tie.attempt >= phase.attempts {
             self.tie.failed = true;
         } else {
-            self.tie = TieProgress { attempt: self.tie.attempt + 1, ..TieProgress::default() };
+            self.tie = TieProgress {
+                attempt: self.tie.attempt + 1,
+                last_miss: self.tie.last_miss,
+                ..TieProgress::default()
+            };
             self.forming = Some(FormingController::new(phase.script()));
         }
     }
@@ -168,11 +242,24 @@ impl PhasedController {
     /// The failed tie phase, if the current phase is one.
     pub fn tie_failure(&self) -> Option<TieFailure> {
         match self.phases.get(self.progress.phase) {
-            Some(Phase::Tie(phase)) if self.tie.failed => {
-                Some(TieFailure { knot: phase.knot, attempts: self.tie.attempt })
-            }
+            Some(Phase::Tie(phase)) if self.tie.failed => Some(TieFailure {
+                knot: phase.knot,
+                attempts: self.tie.attempt,
+                last_miss: self.tie.last_miss.map(|miss| self.describe(phase, miss)),
+            }),
             _ => None,
         }
+    }
+
+    /// A crossing miss in words, with the check's name and what the plan makes.
+    fn describe(&self, phase: &TiePhase, miss: CrossingMiss) -> String {
+        let check = phase.crossing_checks().get(miss.check as usize);
+        let (name, expected) = check
+            .map_or(("a check", String::new()), |c| (c.name, phase.expected_code(c).to_string()));
+        format!(
+            "attempt {}: after {name} the tail's crossings seen from above were {}; the plan makes {expected}",
+            miss.attempt, miss.found
+        )
     }
 
     /// Where the controller is.
@@ -266,6 +353,7 @@ impl Controller for PhasedController {
                         self.tie.plan_done_at = Some(context.state.t);
                     }
                 }
+                self.check_crossings(context);
             }
             Some(Phase::Thigmotaxis(phase)) => phase.parameters.actuate(context, out),
             Some(Phase::Load(_)) | None => {}
@@ -297,12 +385,16 @@ impl PhasedController {
     /// and the attempt (`tie (3_1 not tied, attempt 1 of 2)`).
     pub fn unfinished_phase(&self) -> Option<String> {
         match self.phases.get(self.progress.phase)? {
-            Phase::Tie(phase) => Some(format!(
-                "tie ({} not tied, attempt {} of {})",
-                phase.knot.name(),
-                self.tie.attempt,
-                phase.attempts
-            )),
+            Phase::Tie(phase) => {
+                let miss = self.tie.last_miss.map(|m| format!("; {}", self.describe(phase, m)));
+                Some(format!(
+                    "tie ({} not tied, attempt {} of {}{})",
+                    phase.knot.name(),
+                    self.tie.attempt,
+                    phase.attempts,
+                    miss.unwrap_or_default()
+                ))
+            }
             _ => Some(self.phase_name().to_string()),
         }
     }

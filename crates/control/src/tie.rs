@@ -10,12 +10,23 @@
 //! after the plan, the plan is tried again from the current shape, up to `attempts` times,
 //! and then the phase fails (the run ends with its own status, never a hang).
 //!
+//! Each crossing is checked as it is made ([`CrossingCheck`]): once a step that makes one has
+//! ended, the tail's crossings seen from above ([`tail_crossings`], from the crossover on)
+//! must begin with the over/under sequence the plan makes. A crossing lost or made the wrong
+//! way (a loop that slipped open, a tail that went round instead of through) abandons the
+//! attempt at once — the plan starts again from the current shape, or the phase fails — and
+//! the miss is kept ([`CrossingMiss`]) for the run's failure message. The knot analysis
+//! stays the judge: a check never abandons an attempt whose knot is shown.
+//!
 //! The plan leaves the knot loose (the tail is not pulled tight): tightening is thigmotaxis'
 //! job. The trefoil (either handedness) and the figure-eight are planned; the Miller
 //! Institute knot is not (`docs/physics.md`).
 
+use std::fmt;
+
 use serde::{Deserialize, Serialize};
 
+use crate::crossings::Layer;
 use crate::forming::{FormingScript, ScriptStep, Waypoint};
 use crate::tail_pd::TailGains;
 
@@ -61,6 +72,90 @@ impl TieKnot {
 
 /// The agreement over closure directions a tied knot must reach.
 pub const MIN_AGREEMENT: f64 = 0.9;
+
+/// A check of the crossings made so far, once step `after_step` of the plan has ended: the
+/// tail's crossings seen from above, from the crossover on, must begin with `expected` (as
+/// planned for the right-handed trefoil and the figure-eight; mirrored for the left-handed
+/// trefoil). Each check runs one step after the move that makes its crossing, since the tail
+/// lags its target (measured on 11 bodies: the sequences below held on every tie that
+/// succeeded).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CrossingCheck {
+    /// The step of the plan after whose end the check runs.
+    pub after_step: usize,
+    /// What the check is of, for messages ("the crossover").
+    pub name: &'static str,
+    /// How the crossings begin, walking from the crossover to the tail.
+    pub expected: &'static [Layer],
+}
+
+const fn check(after_step: usize, name: &'static str, expected: &'static [Layer]) -> CrossingCheck {
+    CrossingCheck { after_step, name, expected }
+}
+
+use Layer::{Over, Under};
+
+/// The trefoil's checks: over the body at the crossover (checked after the first insertion
+/// move), then under the loop's strand and up through the loop (checked after the plan).
+const TREFOIL_CHECKS: [CrossingCheck; 2] =
+    [check(6, "the crossover", &[Over]), check(9, "the insertion", &[Over, Under])];
+
+/// The figure-eight's checks: the crossover, under the loop's strand for the wrap, over it
+/// on the way to above the loop, and still so once down through the loop and after the plan.
+const FIGURE_EIGHT_CHECKS: [CrossingCheck; 4] = [
+    check(6, "the crossover", &[Over]),
+    check(8, "the wrap", &[Over, Under]),
+    check(10, "the threading", &[Over, Under, Over]),
+    check(12, "the insertion", &[Over, Under, Over]),
+];
+
+/// A crossing check that failed: in which attempt, which check, and the crossings found.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct CrossingMiss {
+    /// The attempt it abandoned (1-based).
+    pub attempt: u32,
+    /// Index of the check in the plan's checks.
+    pub check: u32,
+    /// The crossings found.
+    pub found: LayerCode,
+}
+
+/// An over/under sequence of up to 32 crossings as plain data (bit k set: crossing k over),
+/// so that a [`CrossingMiss`] can live in a checkpoint.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct LayerCode {
+    /// Bit k is set when crossing k is [`Layer::Over`].
+    pub over_bits: u32,
+    /// How many crossings (at most 32 are kept).
+    pub len: u32,
+}
+
+impl LayerCode {
+    /// The first 32 layers of `layers`.
+    pub fn of(layers: &[Layer]) -> Self {
+        let kept = &layers[..layers.len().min(32)];
+        let over_bits = kept
+            .iter()
+            .enumerate()
+            .filter(|(_, l)| **l == Over)
+            .fold(0, |bits, (k, _)| bits | 1 << k);
+        Self { over_bits, len: kept.len() as u32 }
+    }
+}
+
+impl fmt::Display for LayerCode {
+    /// "over, under, over", or "none".
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.len == 0 {
+            return f.write_str("none");
+        }
+        for k in 0..self.len {
+            let layer = if self.over_bits >> k & 1 == 1 { "over" } else { "under" };
+            write!(f, "{}{layer}", if k > 0 { ", " } else { "" })?;
+        }
+        Ok(())
+    }
+}
 
 /// A tie phase: which knot, where, and how patiently.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -119,6 +214,34 @@ impl TiePhase {
             hold_s: default_hold(),
             settle_s: default_settle(),
         }
+    }
+
+    /// The crossing checks of the plan ([`TiePhase::script`]), in order.
+    pub fn crossing_checks(&self) -> &'static [CrossingCheck] {
+        match self.knot {
+            TieKnot::Trefoil(_) => &TREFOIL_CHECKS,
+            TieKnot::FigureEight => &FIGURE_EIGHT_CHECKS,
+        }
+    }
+
+    /// Whether the crossings `found` pass `check` for this knot (the left-handed trefoil
+    /// makes the mirror image: every layer flipped).
+    pub fn passes(&self, check: &CrossingCheck, found: &[Layer]) -> bool {
+        let mirrored = self.knot == TieKnot::Trefoil(Handedness::Left);
+        found.len() >= check.expected.len()
+            && check
+                .expected
+                .iter()
+                .zip(found)
+                .all(|(&e, &f)| f == if mirrored { e.flipped() } else { e })
+    }
+
+    /// The expected crossings of `check` for this knot, as a [`LayerCode`] for messages.
+    pub fn expected_code(&self, check: &CrossingCheck) -> LayerCode {
+        let mirrored = self.knot == TieKnot::Trefoil(Handedness::Left);
+        let layers: Vec<Layer> =
+            check.expected.iter().map(|&l| if mirrored { l.flipped() } else { l }).collect();
+        LayerCode::of(&layers)
     }
 
     /// The plan of one attempt as a forming script, in body lengths (crossover at `a = at`,
@@ -190,6 +313,12 @@ pub struct TieProgress {
     pub shown_since: Option<f64>,
     /// True once the last attempt failed.
     pub failed: bool,
+    /// Crossing checks passed in the current attempt.
+    #[serde(default)]
+    pub checks_passed: u32,
+    /// The latest crossing check that failed, in any attempt.
+    #[serde(default)]
+    pub last_miss: Option<CrossingMiss>,
 }
 
 #[cfg(test)]
@@ -278,5 +407,100 @@ mod tests {
         controller.observe_knot(42.0, None);
         let failure = controller.tie_failure().expect("failed");
         assert_eq!((failure.knot, failure.attempts), (TieKnot::Trefoil(Handedness::Right), 2));
+    }
+
+    /// Each check runs after a step of the plan, in order; the first after the crossover's
+    /// move down past the body, the last after the plan's final hold.
+    #[test]
+    fn the_crossing_checks_follow_the_plan() {
+        for knot in [TieKnot::Trefoil(Handedness::Right), TieKnot::FigureEight] {
+            let phase = TiePhase::new(knot, 0.31);
+            let (steps, checks) = (phase.script().steps, phase.crossing_checks());
+            let descent = steps
+                .iter()
+                .position(|s| {
+                    matches!(s, ScriptStep::Move { to: Waypoint::FromArc { at, offset_radii }, .. }
+                        if *at == 0.31 && offset_radii[1] < 0.0 && offset_radii[2] < 0.0)
+                })
+                .expect("the crossover's move down");
+            assert_eq!(checks[0].after_step, descent + 1, "{knot:?}: one step after the crossover");
+            assert!(checks.windows(2).all(|w| w[0].after_step < w[1].after_step));
+            assert!(checks.windows(2).all(|w| w[1].expected.starts_with(w[0].expected)));
+            let last = checks.last().expect("checks");
+            assert_eq!(last.after_step, steps.len() - 1, "{knot:?}: the last after the plan");
+            assert!(matches!(steps[last.after_step], ScriptStep::Hold(_)));
+        }
+    }
+
+    fn tie_controller(knot: TieKnot, attempts: u32) -> PhasedController {
+        let phase = TiePhase { attempts, ..TiePhase::new(knot, 0.31) };
+        PhasedController::new(None, vec![Phase::Tie(phase)])
+    }
+
+    fn at_step(controller: &mut PhasedController, step: usize) {
+        controller.forming.as_mut().expect("a plan").progress.step = step;
+    }
+
+    #[test]
+    fn a_crossing_made_the_wrong_way_abandons_the_attempt_at_once() {
+        use Layer::{Over, Under};
+        let mut controller = tie_controller(TieKnot::Trefoil(Handedness::Right), 2);
+        at_step(&mut controller, 6);
+        controller.observe_crossings(&[Under]);
+        assert_eq!(controller.state().tie.attempt, 1, "not due before its step has ended");
+        at_step(&mut controller, 7);
+        controller.observe_crossings(&[Over, Under]);
+        assert_eq!(controller.state().tie.checks_passed, 1, "a sequence that begins right");
+        at_step(&mut controller, 10);
+        controller.observe_crossings(&[Under, Over]);
+        let tie = controller.state().tie;
+        assert_eq!((tie.attempt, tie.checks_passed, tie.plan_done_at), (2, 0, None), "restarted");
+        let miss = tie.last_miss.expect("kept");
+        assert_eq!((miss.attempt, miss.check), (1, 1));
+        assert_eq!(miss.found, LayerCode::of(&[Under, Over]));
+        assert_eq!(controller.forming.as_ref().map(|f| f.progress().step), Some(0));
+
+        // The last attempt fails, and says where.
+        at_step(&mut controller, 7);
+        controller.observe_crossings(&[]);
+        let failure = controller.tie_failure().expect("failed");
+        assert_eq!(failure.attempts, 2);
+        assert_eq!(
+            failure.to_string(),
+            "3_1 after 2 attempts (attempt 2: after the crossover the tail's crossings seen \
+             from above were none; the plan makes over)"
+        );
+    }
+
+    #[test]
+    fn the_mirror_image_checks_mirrored_crossings_and_a_shown_knot_overrides_a_check() {
+        use Layer::{Over, Under};
+        let mut left = tie_controller(TieKnot::Trefoil(Handedness::Left), 2);
+        at_step(&mut left, 10);
+        left.observe_crossings(&[Under, Over, Over]);
+        assert_eq!(left.state().tie.checks_passed, 2);
+        assert_eq!(left.state().tie.attempt, 1);
+
+        let mut eight = tie_controller(TieKnot::FigureEight, 1);
+        let shown = KnotObservation {
+            name: "4_1",
+            agreement: 1.0,
+            right_handed: None,
+            core_start_l: Some(0.3),
+            core_length_d: Some(17.0),
+        };
+        eight.observe_knot(12.0, Some(shown));
+        at_step(&mut eight, 13);
+        eight.observe_crossings(&[Under]);
+        assert!(eight.tie_failure().is_none(), "the knot analysis is the judge");
+        assert_eq!(eight.state().tie.checks_passed, 4);
+    }
+
+    #[test]
+    fn a_layer_code_keeps_the_sequence_for_messages() {
+        use Layer::{Over, Under};
+        assert_eq!(LayerCode::of(&[Over, Under, Over]).to_string(), "over, under, over");
+        assert_eq!(LayerCode::of(&[]).to_string(), "none");
+        assert_eq!(LayerCode::of(&[Under; 40]).len, 32, "at most 32 kept");
     }
 }

@@ -95,7 +95,7 @@ pub enum SimError {
         cap: u64,
     },
     /// A tie phase did not tie its knot ([`hagfish_control::TiePhase`]).
-    #[error("the tie phase did not tie {} after {} attempts", .0.knot.name(), .0.attempts)]
+    #[error("the tie phase did not tie {0}")]
     TieFailed(hagfish_control::TieFailure),
     /// The controller could not return to a saved state (a retried step, a resume).
     #[error("controller: {0}")]
