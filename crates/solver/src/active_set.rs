@@ -241,30 +241,36 @@ impl ActiveSet {
         }
         zeroed(&mut self.ray, dual.dofs());
         zeroed(&mut self.lift, dual.dofs());
-        self.free.reset(m);
         self.saved.clear();
         self.saved.reserve(m + 1);
         self.implied.clear();
         self.implied.resize(m, usize::MAX);
-        self.version = 0;
-        let w = dual.w();
-        for row in (0..m).filter(|&i| kinds[i] == RowKind::Equality) {
-            if self.try_join(w, row, ROUNDING) == Join::Joined {
-                continue;
-            }
-            self.bound[row] = Bound::Redundant;
-            lambda[row] = 0.0;
-        }
-        // Warm rows join largest impulse first (λᵢ√Wᵢᵢ, the size of M̃⁻¹cᵢλᵢ in the M̃ norm):
-        // when nearly dependent rows share a load, the one dropped is the one that carried
-        // least. Joining by row index instead dropped a row carrying 40× its partner's
-        // impulse, and the re-solve of an unchanged problem took more iterations than the
-        // cold solve (a degenerate case of tests/random_problems.rs, kept as a regression).
-        // The order depends on λ alone, so a run resumed from saved multipliers joins alike.
         self.warm.clear();
         self.warm.extend(
             (0..m).filter(|&i| kinds[i] != RowKind::Equality && self.bound[i] == Bound::Free),
         );
+        let w = dual.w();
+        self.join_equalities(w, kinds, lambda);
+        let mut independent = true;
+        for k in 0..self.warm.len() {
+            let row = self.warm[k];
+            if self.try_join(w, row, DEPENDENCE) != Join::Joined {
+                independent = false;
+                break;
+            }
+        }
+        if independent {
+            return;
+        }
+        // Warm rows that depend on each other (a degenerate vertex: nearly dependent rows
+        // sharing a load) join again, largest impulse first (λᵢ√Wᵢᵢ, the size of M̃⁻¹cᵢλᵢ in
+        // the M̃ norm), so that the one left out is the one that carried least. By row index
+        // alone a row carrying 40× its partner's impulse was left out, and the re-solve of an
+        // unchanged problem took more iterations than the cold solve (a case of
+        // tests/random_problems.rs, kept as a regression). Without a dependence the order
+        // stays the row order, so the factor and every answer are as before, bit for bit; the
+        // order depends on λ alone, so a run resumed from saved multipliers joins alike.
+        self.join_equalities(w, kinds, lambda);
         let impulse = |i: usize| lambda[i] * w[(i, i)].sqrt();
         self.warm.sort_unstable_by(|&a, &b| impulse(b).total_cmp(&impulse(a)).then(a.cmp(&b)));
         for k in 0..self.warm.len() {
@@ -272,6 +278,22 @@ impl ActiveSet {
             if self.try_join(w, row, DEPENDENCE) != Join::Joined {
                 self.fix(lambda, row, Bound::Lower);
             }
+        }
+    }
+
+    /// Starts F afresh with the equalities; one dependent on earlier ones (a pivot at rounding
+    /// level) is set aside as redundant with λ = 0.
+    fn join_equalities(&mut self, w: MatRef<'_, f64>, kinds: &[RowKind], lambda: &mut [f64]) {
+        self.free.reset(kinds.len());
+        self.version = 0;
+        for row in (0..kinds.len()).filter(|&i| kinds[i] == RowKind::Equality) {
+            if self.bound[row] != Bound::Redundant
+                && self.try_join(w, row, ROUNDING) == Join::Joined
+            {
+                continue;
+            }
+            self.bound[row] = Bound::Redundant;
+            lambda[row] = 0.0;
         }
     }
 

@@ -308,7 +308,7 @@ impl SolverWorkspace {
             iterations += outcome.iterations;
         }
         let contradiction =
-            self.active.redundant_violated(&self.row_residuals, self.options.acceptance);
+            self.active.equalities_contradict(&self.row_residuals, self.options.acceptance);
         let status = match outcome.termination {
             Termination::Optimal if contradiction => SolveStatus::Infeasible,
             Termination::Optimal => SolveStatus::Solved,

@@ -47,13 +47,24 @@ impl ActiveSet {
         worst.map(|(found, _)| found)
     }
 
-    /// True when an equality set aside as redundant is violated at the refined q̇ (relative
-    /// residual beyond `tolerance`): the equalities contradict each other. `residuals` as
-    /// for [`violated_bound`](Self::violated_bound).
-    pub(crate) fn redundant_violated(&self, residuals: &[(f64, f64)], tolerance: f64) -> bool {
-        self.bound
-            .iter()
-            .zip(residuals)
-            .any(|(bound, &(v, scale))| *bound == Bound::Redundant && v.abs() > tolerance * scale)
+    /// True when the equalities contradict each other: at the refined q̇ every equality kept
+    /// in F holds (relative residual within `tolerance`) while one set aside as redundant is
+    /// violated beyond it. When a kept equality is violated too, the answer is merely
+    /// inexact (a degenerate vertex the iteration did not resolve) and proves nothing: on a
+    /// feasible random problem with 65 tight rows on 37 DOFs the kept rows' residual was 0.08
+    /// and the redundant one's violation was no contradiction (tests/random_problems.rs).
+    /// `residuals` as for [`violated_bound`](Self::violated_bound).
+    pub(crate) fn equalities_contradict(&self, residuals: &[(f64, f64)], tolerance: f64) -> bool {
+        let violated = |&(v, scale): &(f64, f64)| v.abs() > tolerance * scale;
+        let equalities = self.bound.iter().zip(&self.lower).zip(residuals);
+        let mut redundant_violated = false;
+        for ((bound, lower), residual) in equalities {
+            match bound {
+                Bound::Redundant => redundant_violated |= violated(residual),
+                Bound::Free if lower.is_infinite() && violated(residual) => return false,
+                _ => {}
+            }
+        }
+        redundant_violated
     }
 }
