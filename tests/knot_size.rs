@@ -2,8 +2,9 @@
 //! after the tie, the first contact's strands fed into the knot grow its core by ≥ 25 %, drawn
 //! out of it they shrink it by ≥ 25 %, each ≥ 20 percentage points more than the control run
 //! with the same phases and that phase's targets at zero. On ES103 as written and with the
-//! time step changed by 1 to 7 parts in 10¹² (the phases amplify rounding: a claim must hold
-//! for every such trajectory).
+//! time step changed by 1 to 15 parts in 10¹² (the phases amplify rounding: a claim must hold
+//! for every such trajectory; with the tighten asked for 30 % instead of 28 %, 2 of these 16
+//! failed — docs/physics.md).
 
 mod common;
 
@@ -58,7 +59,7 @@ fn sizes(name: &str, sets: &[String]) -> Sizes {
 fn loosen_and_tighten_change_the_core_because_of_their_targets() {
     let zero = |phase: usize| format!("phases[{phase}].Thigmotaxis.parameters.head=(0.0, 0.0)");
     let jobs: Vec<(u32, Option<usize>)> =
-        (0..8).flat_map(|k| [(k, None), (k, Some(1)), (k, Some(2))]).collect();
+        (0..16).flat_map(|k| [(k, None), (k, Some(1)), (k, Some(2))]).collect();
     let next = std::sync::Mutex::new(jobs.iter());
     let results = std::sync::Mutex::new(Vec::new());
     std::thread::scope(|scope| {
@@ -82,7 +83,7 @@ fn loosen_and_tighten_change_the_core_because_of_their_targets() {
     let find = |k, control| {
         results.iter().find(|(j, c, _)| *j == k && *c == control).map(|(_, _, s)| s).expect("run")
     };
-    for k in 0..8 {
+    for k in 0..16 {
         let (run, loosen_control, tighten_control) =
             (find(k, None), find(k, Some(1)), find(k, Some(2)));
         let label = format!("δh/h = {k}e-12");
