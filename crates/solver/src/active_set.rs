@@ -251,28 +251,44 @@ impl ActiveSet {
         );
         let w = dual.w();
         self.join_equalities(w, kinds, lambda);
-        let mut independent = true;
+        // A warm row that depends on the rows already in F is left at its bound (λ = 0),
+        // unless it carried a larger impulse (λᵢ√Wᵢᵢ, the size of M̃⁻¹cᵢλᵢ in the M̃ norm) than
+        // every warm row that joined before it: then the warm rows join again, largest impulse
+        // first, so that the one left out is the one that carried least. By row order alone a
+        // row carrying 40× its partner's impulse was left out, and the re-solve of an
+        // unchanged problem took more iterations than the cold solve (a case of
+        // tests/random_problems.rs, kept as a regression). Every other start is the row-order
+        // one, bit for bit (so are the shipped scenarios' runs); the order depends on λ
+        // alone, so a run resumed from saved multipliers joins alike.
+        let impulse = |lambda: &[f64], i: usize| lambda[i] * w[(i, i)].sqrt();
+        let mut largest_joined = 0.0_f64;
+        let mut reorder = false;
         for k in 0..self.warm.len() {
             let row = self.warm[k];
-            if self.try_join(w, row, DEPENDENCE) != Join::Joined {
-                independent = false;
+            if self.try_join(w, row, DEPENDENCE) == Join::Joined {
+                largest_joined = largest_joined.max(impulse(lambda, row));
+                continue;
+            }
+            if impulse(lambda, row) > largest_joined {
+                reorder = true;
                 break;
             }
+            // Kept in `saved` so that a reordered start finds λ as it was.
+            self.saved.push((row, lambda[row]));
+            self.fix(lambda, row, Bound::Lower);
         }
-        if independent {
+        if !reorder {
+            self.saved.clear();
             return;
         }
-        // Warm rows that depend on each other (a degenerate vertex: nearly dependent rows
-        // sharing a load) join again, largest impulse first (λᵢ√Wᵢᵢ, the size of M̃⁻¹cᵢλᵢ in
-        // the M̃ norm), so that the one left out is the one that carried least. By row index
-        // alone a row carrying 40× its partner's impulse was left out, and the re-solve of an
-        // unchanged problem took more iterations than the cold solve (a case of
-        // tests/random_problems.rs, kept as a regression). Without a dependence the order
-        // stays the row order, so the factor and every answer are as before, bit for bit; the
-        // order depends on λ alone, so a run resumed from saved multipliers joins alike.
+        for &(row, value) in &self.saved {
+            lambda[row] = value;
+            self.bound[row] = Bound::Free;
+        }
+        self.saved.clear();
         self.join_equalities(w, kinds, lambda);
-        let impulse = |i: usize| lambda[i] * w[(i, i)].sqrt();
-        self.warm.sort_unstable_by(|&a, &b| impulse(b).total_cmp(&impulse(a)).then(a.cmp(&b)));
+        let key = |i: usize| impulse(lambda, i);
+        self.warm.sort_unstable_by(|&a, &b| key(b).total_cmp(&key(a)).then(a.cmp(&b)));
         for k in 0..self.warm.len() {
             let row = self.warm[k];
             if self.try_join(w, row, DEPENDENCE) != Join::Joined {
