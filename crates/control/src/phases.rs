@@ -205,22 +205,22 @@ impl PhasedController {
         (step > check.after_step && !self.tie.failed).then_some((phase, check))
     }
 
-    /// Runs the due crossing checks on the crossings `found`. A failed check abandons the
-    /// attempt, as a late knot does — unless the knot is shown: the knot analysis is the judge.
+    /// Runs the due crossing checks on the crossings `found`. A failed check is recorded
+    /// ([`TieProgress::last_miss`]) and ends the checking of this attempt; the attempt itself
+    /// ends as before, on the knot analysis: a check is a diagnosis, the analysis the judge.
     pub(crate) fn observe_crossings(&mut self, found: &[Layer]) {
         while let Some((phase, check)) = self.crossing_check_due() {
+            let checks = phase.crossing_checks().len() as u32;
             if phase.passes(check, found) || self.tie.shown_since.is_some() {
                 self.tie.checks_passed += 1;
                 continue;
             }
-            let phase = phase.clone();
             self.tie.last_miss = Some(CrossingMiss {
                 attempt: self.tie.attempt,
                 check: self.tie.checks_passed,
                 found: LayerCode::of(found),
             });
-            self.abandon_attempt(phase);
-            return;
+            self.tie.checks_passed = checks;
         }
     }
 
