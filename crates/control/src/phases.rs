@@ -177,7 +177,16 @@ impl PhasedController {
         if shown || !late || self.tie.failed {
             return;
         }
-        self.abandon_attempt(phase.clone());
+        if self.tie.attempt >= phase.attempts {
+            self.tie.failed = true;
+        } else {
+            self.tie = TieProgress {
+                attempt: self.tie.attempt + 1,
+                last_miss: self.tie.last_miss,
+                ..TieProgress::default()
+            };
+            self.forming = Some(FormingController::new(phase.script()));
+        }
     }
 
     /// Runs the tie phase's crossing checks whose step has ended ([`crate::CrossingCheck`])
@@ -224,35 +233,20 @@ impl PhasedController {
         }
     }
 
-    /// Ends the current tie attempt without its knot: the plan starts again from the current
-    /// shape, or the phase fails after its last attempt.
-    fn abandon_attempt(&mut self, phase: TiePhase) {
-        if self.tie.attempt >= phase.attempts {
-            self.tie.failed = true;
-        } else {
-            self.tie = TieProgress {
-                attempt: self.tie.attempt + 1,
-                last_miss: self.tie.last_miss,
-                ..TieProgress::default()
-            };
-            self.forming = Some(FormingController::new(phase.script()));
-        }
-    }
-
     /// The failed tie phase, if the current phase is one.
     pub fn tie_failure(&self) -> Option<TieFailure> {
         match self.phases.get(self.progress.phase) {
             Some(Phase::Tie(phase)) if self.tie.failed => Some(TieFailure {
                 knot: phase.knot,
                 attempts: self.tie.attempt,
-                last_miss: self.tie.last_miss.map(|miss| self.describe(phase, miss)),
+                last_miss: self.tie.last_miss.map(|miss| Self::describe(phase, miss)),
             }),
             _ => None,
         }
     }
 
     /// A crossing miss in words, with the check's name and what the plan makes.
-    fn describe(&self, phase: &TiePhase, miss: CrossingMiss) -> String {
+    fn describe(phase: &TiePhase, miss: CrossingMiss) -> String {
         let check = phase.crossing_checks().get(miss.check as usize);
         let (name, expected) = check
             .map_or(("a check", String::new()), |c| (c.name, phase.expected_code(c).to_string()));
@@ -386,7 +380,7 @@ impl PhasedController {
     pub fn unfinished_phase(&self) -> Option<String> {
         match self.phases.get(self.progress.phase)? {
             Phase::Tie(phase) => {
-                let miss = self.tie.last_miss.map(|m| format!("; {}", self.describe(phase, m)));
+                let miss = self.tie.last_miss.map(|m| format!("; {}", Self::describe(phase, m)));
                 Some(format!(
                     "tie ({} not tied, attempt {} of {}{})",
                     phase.knot.name(),
