@@ -61,6 +61,12 @@ fn a_second_process_is_refused_and_a_killed_ones_lock_is_taken_over() {
     }
     let second = run_into(&scenario, &dir, &["--overwrite"]);
     let resumed = run_hagfish(["run", "--resume", &dir.to_string_lossy(), "--quiet"]);
+    // Killed before its first frame's checkpoint, the run would leave nothing to resume (the
+    // lock is taken before frame 0 is written: on a loaded machine CI once killed it there).
+    while !dir.join("checkpoint.ron").exists() {
+        assert!(started.elapsed() < Duration::from_secs(60), "no checkpoint after 60 s");
+        std::thread::sleep(Duration::from_millis(2));
+    }
     first.kill().expect("SIGKILL");
     first.wait().expect("reaped");
     for output in [second, resumed] {
