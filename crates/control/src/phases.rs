@@ -210,7 +210,7 @@ impl PhasedController {
             return None;
         };
         let step = self.forming.as_ref()?.progress().step;
-        let check = phase.crossing_checks().get(self.tie.checks_passed as usize)?;
+        let check = phase.crossing_checks().get(self.tie.checks_done as usize)?;
         (step > check.after_step && !self.tie.failed).then_some((phase, check))
     }
 
@@ -221,15 +221,15 @@ impl PhasedController {
         while let Some((phase, check)) = self.crossing_check_due() {
             let checks = phase.crossing_checks().len() as u32;
             if phase.passes(check, found) || self.tie.shown_since.is_some() {
-                self.tie.checks_passed += 1;
+                self.tie.checks_done += 1;
                 continue;
             }
             self.tie.last_miss = Some(CrossingMiss {
                 attempt: self.tie.attempt,
-                check: self.tie.checks_passed,
+                check: self.tie.checks_done,
                 found: LayerCode::of(found),
             });
-            self.tie.checks_passed = checks;
+            self.tie.checks_done = checks;
         }
     }
 
