@@ -2,9 +2,10 @@
 //! after the tie, the first contact's strands fed into the knot grow its core by ≥ 25 %, drawn
 //! out of it they shrink it by ≥ 25 %, each ≥ 20 percentage points more than the control run
 //! with the same phases and that phase's targets at zero. On ES103 as written and with the
-//! time step changed by 1 to 15 parts in 10¹² (the phases amplify rounding: a claim must hold
-//! for every such trajectory; with the tighten asked for 30 % instead of 28 %, 2 of these 16
-//! failed — docs/physics.md).
+//! time step changed by 1 to 15 parts in 10¹² (the phases amplify rounding, so the claim is
+//! checked on each of these sixteen trajectories; with the tighten asked for 30 % instead of
+//! 28 %, 2 of them failed. Over 48 the trefoil is lost while tightening in 2 (the tail end, ≈ 1
+//! cm long, slips out of the loop) — docs/physics.md, which has that rate).
 
 mod common;
 
