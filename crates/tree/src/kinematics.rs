@@ -30,7 +30,7 @@ pub fn position_kinematics(model: &Model, q: &[f64], data: &mut Data) {
         for (k, a) in joint.dofs().enumerate() {
             let local_axis = joint.kind.axis(k);
             data.axes[a] = Spatial::revolute_axis(frame.rotation * local_axis, frame.translation);
-            frame = frame.mul(&Transform::from_axis_angle(local_axis, q[a]));
+            frame = frame.rotated(local_axis, q[a]);
         }
         let body = &model.bodies()[i];
         let body_frame = frame.mul(&body.offset);

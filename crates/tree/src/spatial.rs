@@ -34,12 +34,38 @@ impl Transform {
         Self { rotation: DMat3::from_axis_angle(axis, angle), translation: DVec3::ZERO }
     }
 
-    /// Composition `self · other` (apply `other` first).
+    /// Composition `self · other` (apply `other` first). When `other` is a pure translation
+    /// (the joint and body offsets of a chain) `R · 1 = R` is not multiplied out: the same
+    /// numbers, since the skipped terms are products with 0 and 1.
     pub fn mul(&self, other: &Transform) -> Transform {
-        Transform {
-            rotation: self.rotation * other.rotation,
-            translation: self.rotation * other.translation + self.translation,
-        }
+        let rotation = if other.rotation == DMat3::IDENTITY {
+            self.rotation
+        } else {
+            self.rotation * other.rotation
+        };
+        Transform { rotation, translation: self.rotation * other.translation + self.translation }
+    }
+
+    /// `self · Rot(axis, angle)`: this frame turned by `angle` (rad) about the unit `axis` of
+    /// its own coordinates, as `self.mul(&Transform::from_axis_angle(axis, angle))`. About a
+    /// coordinate axis (every joint of the hagfish) only the two columns that turn are
+    /// multiplied out, from the entries `DMat3::from_axis_angle` gives them (cos θ, ±sin θ, and
+    /// (1 − cos θ) + cos θ on the diagonal): the same numbers, since the skipped terms are
+    /// products with 0.
+    pub fn rotated(&self, axis: DVec3, angle: f64) -> Transform {
+        let [x, y, z] = [self.rotation.x_axis, self.rotation.y_axis, self.rotation.z_axis];
+        let (sin, cos) = angle.sin_cos();
+        let diagonal = (1.0 - cos) + cos;
+        let columns = if axis == DVec3::X {
+            [x * diagonal, y * cos + z * sin, y * (0.0 - sin) + z * cos]
+        } else if axis == DVec3::Y {
+            [x * cos + z * (0.0 - sin), y * diagonal, x * sin + z * cos]
+        } else if axis == DVec3::Z {
+            [x * cos + y * sin, x * (0.0 - sin) + y * cos, z * diagonal]
+        } else {
+            return self.mul(&Transform::from_axis_angle(axis, angle));
+        };
+        Transform { rotation: DMat3::from_cols(columns[0], columns[1], columns[2]), ..*self }
     }
 
     /// The inverse `E⁻¹ = (Rᵀ, −Rᵀ p)`.
@@ -289,6 +315,40 @@ mod tests {
         let dots: Vec<f64> = components.dots(2..6, &w).collect();
         let expected: Vec<f64> = vectors[2..6].iter().map(|v| v.dot(&w)).collect();
         assert_eq!(dots, expected);
+    }
+
+    /// The general product `R · Rot(a, θ)` (glam's 3×3 product, every term multiplied out).
+    fn multiplied_out(e: &Transform, axis: DVec3, angle: f64) -> Transform {
+        let r = DMat3::from_axis_angle(axis, angle);
+        Transform {
+            rotation: e.rotation * r,
+            translation: e.rotation * DVec3::ZERO + e.translation,
+        }
+    }
+
+    /// The shortcuts of `rotated` and of `mul` by a pure translation give the numbers of the
+    /// products multiplied out, bit for bit (so runs do not change by taking them).
+    #[test]
+    fn rotations_about_coordinate_axes_and_translations_match_the_full_products_bit_for_bit() {
+        let e = frame();
+        let oblique = DVec3::new(0.3, -0.4, 0.5).normalize();
+        for axis in [DVec3::X, DVec3::Y, DVec3::Z, oblique] {
+            for angle in [0.0, 1e-9, -0.37, 0.8, 2.9, -3.1] {
+                let (short, full) = (e.rotated(axis, angle), multiplied_out(&e, axis, angle));
+                assert_eq!(
+                    short.rotation.to_cols_array(),
+                    full.rotation.to_cols_array(),
+                    "{axis} {angle}"
+                );
+                assert_eq!(short.translation, full.translation, "{axis} {angle}");
+            }
+        }
+        let offset = Transform::from_translation(DVec3::new(0.424, 0.0, 0.0));
+        let full = Transform {
+            rotation: e.rotation * DMat3::IDENTITY,
+            translation: e.rotation * offset.translation + e.translation,
+        };
+        assert_eq!(e.mul(&offset), full);
     }
 
     #[test]
