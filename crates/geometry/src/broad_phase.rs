@@ -36,8 +36,11 @@ use crate::error::GeometryError;
 pub struct BroadPhaseOptions {
     /// Pairs (i, j) are reported only when j − i > `index_gap` (default 8).
     pub index_gap: usize,
-    /// Inflation δ added to every body's own sphere (cm, ≥ 0, default 0.25): room the
-    /// caller wants on top. Contacts within `margin` are covered whatever δ is (module docs).
+    /// Inflation δ added to every body's own sphere (cm, ≥ 0, default 0): room the caller
+    /// wants on top. Contacts within `margin` are covered whatever δ is (module docs), so
+    /// δ only adds pairs that cannot touch: at 1000 bodies of ES103 (bodies 0.04 cm long in
+    /// a tube of radius ≈ 0.9 cm) 0.25 cm of it made the detector test ≈ 7 times the segment
+    /// pairs it needs around a crossing.
     pub inflation: f64,
     /// The speculative margin m of the contacts the pairs are searched for (cm, ≥ 0,
     /// default 0.05): the spheres reach at least m/2 beyond every spline point's tube.
@@ -46,7 +49,7 @@ pub struct BroadPhaseOptions {
 
 impl Default for BroadPhaseOptions {
     fn default() -> Self {
-        BroadPhaseOptions { index_gap: 8, inflation: 0.25, margin: 0.05 }
+        BroadPhaseOptions { index_gap: 8, inflation: 0.0, margin: 0.05 }
     }
 }
 

@@ -41,7 +41,7 @@ pub struct DetectorOptions {
     pub margin: f64,
     /// Records closer than this in both u_a and u_b are one contact (default 1.5).
     pub cluster_radius: f64,
-    /// Inflation of the broad-phase spheres (cm, default 0.25): room on top of the derived
+    /// Inflation of the broad-phase spheres (cm, default 0): room on top of the derived
     /// reach, which alone covers every contact within `margin` ([`BroadPhaseOptions`]).
     pub broad_phase_inflation: f64,
 }
