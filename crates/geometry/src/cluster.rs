@@ -8,8 +8,17 @@
 //! gap. Records within the cluster radius of an already kept record, in both u_a and u_b,
 //! are dropped. Along a line contact (two strands lying side by side) this keeps one
 //! record every ~radius, which is what the solver needs there.
+//!
+//! The suppression runs while the records arrive ([`DeepestPerCluster`]), so that the detector
+//! can skip searches whose record it would drop: fed segment pairs in order of increasing
+//! lower bound on their gap, every record shallower than the next pair's bound is already
+//! known, so its fate is final; and a pair whose whole parameter box lies within the cluster
+//! radius of a kept record shallower than its own bound can only give a record that this
+//! kept one drops. A dropped record suppresses nothing, so skipping it leaves the kept
+//! records exactly as they are with every record present.
 
 use std::cmp::Ordering;
+use std::collections::BinaryHeap;
 
 use crate::narrow_phase::NewtonStatus;
 
@@ -43,27 +52,111 @@ fn anterior_first(x: &Candidate, y: &Candidate) -> Ordering {
     x.u_a.total_cmp(&y.u_a).then(x.u_b.total_cmp(&y.u_b))
 }
 
-/// Reduces `candidates` in place to one per cluster (the one with the smallest gap),
-/// sorted by (u_a, u_b), and returns how many were merged away. Sorting is unstable but
-/// over a total order, so the result does not depend on the input order; nothing
-/// allocates.
-pub(crate) fn keep_deepest_per_cluster(candidates: &mut Vec<Candidate>, radius: f64) -> usize {
-    candidates.sort_unstable_by(deepest_first);
-    let mut kept = 0;
-    for index in 0..candidates.len() {
-        let candidate = candidates[index];
-        let duplicate = candidates[..kept].iter().any(|k| {
-            (k.u_a - candidate.u_a).abs() <= radius && (k.u_b - candidate.u_b).abs() <= radius
-        });
-        if !duplicate {
-            candidates[kept] = candidate;
-            kept += 1;
+/// A candidate ordered so that the deepest is the greatest (the top of a max-heap).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Deepest(Candidate);
+
+impl Eq for Deepest {}
+
+impl Ord for Deepest {
+    fn cmp(&self, other: &Self) -> Ordering {
+        deepest_first(&other.0, &self.0)
+    }
+}
+
+impl PartialOrd for Deepest {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+/// Greedy non-maximum suppression of records as they arrive (module docs): the records not
+/// yet judged (those pushed since the last [`settle_below`](Self::settle_below), and the
+/// others deepest on top) and those kept so far. The result does not depend on the order
+/// records are pushed in (a total order decides), and nothing allocates after
+/// [`reserve`](Self::reserve).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct DeepestPerCluster {
+    radius: f64,
+    arrived: Vec<Candidate>,
+    pending: BinaryHeap<Deepest>,
+    kept: Vec<Candidate>,
+    merged: usize,
+}
+
+impl DeepestPerCluster {
+    /// Room for `records` records.
+    pub(crate) fn reserve(&mut self, records: usize) {
+        self.arrived.reserve(records);
+        self.pending.reserve(records);
+        self.kept.reserve(records);
+    }
+
+    /// Starts afresh, with records closer than `radius` in both parameters one cluster.
+    pub(crate) fn clear(&mut self, radius: f64) {
+        self.radius = radius;
+        self.arrived.clear();
+        self.pending.clear();
+        self.kept.clear();
+        self.merged = 0;
+    }
+
+    /// Adds a record, judged by a later [`settle_below`](Self::settle_below) or
+    /// [`finish`](Self::finish).
+    pub(crate) fn push(&mut self, candidate: Candidate) {
+        self.arrived.push(candidate);
+    }
+
+    /// Judges every pending record with a gap below `gap`, deepest first. Final when no
+    /// record still to come has a gap below `gap`.
+    pub(crate) fn settle_below(&mut self, gap: f64) {
+        self.pending.extend(self.arrived.drain(..).map(Deepest));
+        while let Some(&Deepest(candidate)) = self.pending.peek() {
+            if candidate.gap >= gap {
+                break;
+            }
+            self.pending.pop();
+            self.judge(candidate);
         }
     }
-    let merged = candidates.len() - kept;
-    candidates.truncate(kept);
-    candidates.sort_unstable_by(anterior_first);
-    merged
+
+    /// Keeps `candidate` unless a kept record lies within the radius in both parameters.
+    fn judge(&mut self, candidate: Candidate) {
+        let radius = self.radius;
+        let duplicate = self.kept.iter().any(|k| {
+            (k.u_a - candidate.u_a).abs() <= radius && (k.u_b - candidate.u_b).abs() <= radius
+        });
+        if duplicate {
+            self.merged += 1;
+        } else {
+            self.kept.push(candidate);
+        }
+    }
+
+    /// Whether a kept record lies within the radius, in both parameters, of every point of
+    /// the parameter box `u_a` × `u_b` (closed intervals): then a record from that box that
+    /// is not deeper than the kept one is dropped.
+    pub(crate) fn covers(&self, u_a: [f64; 2], u_b: [f64; 2]) -> bool {
+        let radius = self.radius;
+        let within = |k: f64, [low, high]: [f64; 2]| k - radius <= low && high <= k + radius;
+        self.kept.iter().any(|k| within(k.u_a, u_a) && within(k.u_b, u_b))
+    }
+
+    /// Judges the remaining records and returns the kept ones sorted by (u_a, u_b), with how
+    /// many records were merged away.
+    pub(crate) fn finish(&mut self) -> (&[Candidate], usize) {
+        // All at once: one sort instead of a pop per record (the heap's buffer is reused).
+        let mut records = std::mem::take(&mut self.pending).into_vec();
+        records.extend(self.arrived.drain(..).map(Deepest));
+        records.sort_unstable_by(|x, y| deepest_first(&x.0, &y.0));
+        for &Deepest(candidate) in &records {
+            self.judge(candidate);
+        }
+        records.clear();
+        self.pending = BinaryHeap::from(records);
+        self.kept.sort_unstable_by(anterior_first);
+        (&self.kept, self.merged)
+    }
 }
 
 #[cfg(test)]
@@ -72,6 +165,18 @@ mod tests {
 
     fn candidate(u_a: f64, u_b: f64, gap: f64) -> Candidate {
         Candidate { u_a, u_b, gap, status: NewtonStatus::Converged }
+    }
+
+    /// The kept records of `candidates` pushed all at once, and how many were merged.
+    fn keep_deepest_per_cluster(candidates: &mut Vec<Candidate>, radius: f64) -> usize {
+        let mut clusters = DeepestPerCluster::default();
+        clusters.clear(radius);
+        for &candidate in candidates.iter() {
+            clusters.push(candidate);
+        }
+        let (kept, merged) = clusters.finish();
+        *candidates = kept.to_vec();
+        merged
     }
 
     #[test]
@@ -112,5 +217,45 @@ mod tests {
             keep_deepest_per_cluster(&mut rotated, 1.5);
             assert_eq!(rotated, reference);
         }
+    }
+
+    #[test]
+    fn records_judged_as_they_arrive_are_those_judged_at_the_end() {
+        // Records arrive in batches whose gaps are at least the batch's bound (as a segment
+        // pair's records are at least its gap bound); each batch first settles below its bound.
+        let records: Vec<Candidate> = (0..40)
+            .map(|k| {
+                let x = f64::from(k);
+                candidate((0.37 * x).sin() * 6.0 + 10.0, (0.71 * x).cos() * 6.0 + 30.0, 0.01 * x)
+            })
+            .collect();
+        let mut all_at_once = records.clone();
+        let merged_at_once = keep_deepest_per_cluster(&mut all_at_once, 1.5);
+        let mut clusters = DeepestPerCluster::default();
+        clusters.clear(1.5);
+        for batch in records.chunks(7) {
+            let bound = batch.iter().map(|c| c.gap).fold(f64::INFINITY, f64::min);
+            clusters.settle_below(bound);
+            for &c in batch.iter().rev() {
+                clusters.push(c);
+            }
+        }
+        let (kept, merged) = clusters.finish();
+        assert_eq!(kept, all_at_once.as_slice());
+        assert_eq!(merged, merged_at_once);
+        assert!(merged > 0 && kept.len() > 1, "the case merges some and keeps several");
+    }
+
+    #[test]
+    fn a_box_is_covered_only_when_a_kept_record_reaches_all_of_it() {
+        let mut clusters = DeepestPerCluster::default();
+        clusters.clear(1.5);
+        clusters.push(candidate(10.4, 40.6, -0.1));
+        assert!(!clusters.covers([10.0, 11.0], [40.0, 41.0]), "pending records cover nothing");
+        clusters.settle_below(0.0);
+        assert!(clusters.covers([10.0, 11.0], [40.0, 41.0]));
+        assert!(clusters.covers([9.0, 10.0], [40.0, 41.0]), "u_a 9 is 1.4 away");
+        assert!(!clusters.covers([11.0, 12.0], [40.0, 41.0]), "u_a 12 is 1.6 away");
+        assert!(!clusters.covers([10.0, 11.0], [38.0, 39.0]), "u_b 38 is 2.6 away");
     }
 }
