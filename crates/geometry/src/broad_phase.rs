@@ -129,7 +129,7 @@ impl BroadPhase {
             |(i, ((&c, &r), &l))| {
                 let before = i.checked_sub(1).and_then(|k| reaches.get(k)).copied();
                 let reach = before.into_iter().chain(reaches.get(i).copied()).fold(r, f64::max);
-                let own = r.hypot(0.5 * l) + inflation;
+                let own = (r * r + 0.25 * l * l).sqrt() + inflation;
                 BoundingSphere::new(c, own.max(reach + half_margin))
             },
         ));
