@@ -134,7 +134,7 @@ impl ContactPredictor {
         for ((predicted, q), v) in self.q.iter_mut().zip(&state.q).zip(qdot) {
             *predicted = q + h * v;
         }
-        hagfish_tree::position_kinematics(model, &self.q, &mut self.kinematics);
+        hagfish_tree::frame_kinematics(model, &self.q, &mut self.kinematics);
         for (i, centre) in self.centres.iter_mut().enumerate() {
             *centre = self.kinematics.body_centre(i);
         }

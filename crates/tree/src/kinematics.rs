@@ -24,6 +24,19 @@ pub fn forward_kinematics(model: &Model, q: &[f64], qdot: &[f64], data: &mut Dat
 /// (and `axis_components`) and `inertias` for `q`; enough for positions (such as
 /// [`Data::body_centre`]) where no velocity is needed.
 pub fn position_kinematics(model: &Model, q: &[f64], data: &mut Data) {
+    frame_kinematics(model, q, data);
+    for ((inertia, body), frame) in
+        data.inertias.iter_mut().zip(model.bodies()).zip(&data.body_frames)
+    {
+        *inertia = RigidInertia::from_body(body.mass, body.principal_inertia, frame);
+    }
+    data.axis_components.fill_from(&data.axes);
+}
+
+/// The frames of [`position_kinematics`] alone: `joint_frames`, `body_frames` and `axes` for
+/// `q`, without the bodies' spatial inertias: for body positions only (the contact
+/// predictor's centreline at `q + h q̇`).
+pub fn frame_kinematics(model: &Model, q: &[f64], data: &mut Data) {
     for (i, joint) in model.joints().iter().enumerate() {
         let parent_frame = joint.parent.map_or(Transform::IDENTITY, |p| data.joint_frames[p]);
         let mut frame = parent_frame.mul(&joint.offset);
@@ -32,13 +45,9 @@ pub fn position_kinematics(model: &Model, q: &[f64], data: &mut Data) {
             data.axes[a] = Spatial::revolute_axis(frame.rotation * local_axis, frame.translation);
             frame = frame.rotated(local_axis, q[a]);
         }
-        let body = &model.bodies()[i];
-        let body_frame = frame.mul(&body.offset);
         data.joint_frames[i] = frame;
-        data.body_frames[i] = body_frame;
-        data.inertias[i] = RigidInertia::from_body(body.mass, body.principal_inertia, &body_frame);
+        data.body_frames[i] = frame.mul(&model.bodies()[i].offset);
     }
-    data.axis_components.fill_from(&data.axes);
 }
 
 /// The rate half of [`forward_kinematics`]: `axis_rates`, `velocities` and

@@ -72,7 +72,9 @@ pub use integrator::{
 };
 pub use joint::{DofParams, JointKind};
 pub use joint_wrenches::joint_wrenches;
-pub use kinematics::{forward_kinematics, position_kinematics, velocity_kinematics};
+pub use kinematics::{
+    forward_kinematics, frame_kinematics, position_kinematics, velocity_kinematics,
+};
 pub use mass_matrix::{effective_mass, mass_matrix};
 pub use model::{Body, BodySpec, Joint, Model, ModelBuilder, PathToRoot};
 pub use spatial::{RigidInertia, Spatial, SpatialComponents, Transform};

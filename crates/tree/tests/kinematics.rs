@@ -1,11 +1,12 @@
-//! The rate half of the forward kinematics on random chains: re-evaluated at new rates with
-//! the configuration unchanged, it gives exactly what a whole forward kinematics gives.
+//! The parts of the forward kinematics on random chains: the rate half, re-evaluated at new
+//! rates with the configuration unchanged, and the frames alone each give exactly what a whole
+//! forward kinematics gives.
 
 mod common;
 
 use common::*;
 use glam::DVec3;
-use hagfish_tree::{forward_kinematics, velocity_kinematics};
+use hagfish_tree::{Data, forward_kinematics, frame_kinematics, velocity_kinematics};
 use proptest::prelude::*;
 
 proptest! {
@@ -27,5 +28,21 @@ proptest! {
         prop_assert_eq!(&refreshed.bias_accelerations, &whole.bias_accelerations);
         prop_assert_eq!(&refreshed.axis_rates, &whole.axis_rates);
         prop_assert_eq!(&refreshed.axes, &whole.axes);
+    }
+
+    #[test]
+    fn the_frames_alone_are_those_of_the_whole_kinematics(
+        (spec, q, rates) in chain_spec(1, 60).prop_flat_map(|spec| {
+            let n = build_chain(&spec, DVec3::ZERO, 0.0, 0.0).dof_count();
+            (Just(spec), vector(n, 1.5), vector(n, 2.0))
+        })
+    ) {
+        let model = build_chain(&spec, DVec3::ZERO, 0.0, 0.0);
+        let whole = kinematics_at(&model, &q, &rates);
+        let mut frames = Data::new(&model);
+        frame_kinematics(&model, &q, &mut frames);
+        prop_assert_eq!(&frames.joint_frames, &whole.joint_frames);
+        prop_assert_eq!(&frames.body_frames, &whole.body_frames);
+        prop_assert_eq!(&frames.axes, &whole.axes);
     }
 }
