@@ -43,16 +43,18 @@ struct SearchCounts {
 /// The cluster radius (in segments) from which segment pairs are searched in order of their
 /// gap bounds and skipped when a kept contact covers them (`cluster.rs`). ES103 at 100 bodies
 /// has 1.5: there the order covered 1 of 253 pairs and cost 15 µs of an 85 µs narrow phase
-/// (keeping 233 records in order), while at 1000 bodies (radius 15) it covers most pairs
+/// (keeping 233 records in order), while at 1000 bodies (radius ≈ 16) it covers most pairs
 /// near a crossing (2026-11-26, `docs/performance.md`).
 const MIN_PRUNING_RADIUS: f64 = 2.0;
 
 /// A segment pair that may touch, waiting for its search: the least gap it can give (its
-/// distance bound less the largest tube radii along it) and its chords' closest points.
+/// distance bound less the largest tube radii along it), its reach and its chords' closest
+/// points.
 #[derive(Debug, Clone, Copy)]
 struct QueuedPair {
     gap_bound: f64,
     pair: (usize, usize),
+    reach: f64,
     chord: [f64; 2],
 }
 
@@ -273,26 +275,28 @@ impl ContactDetector {
         // finds no contact and the seed grid cannot rule one out) and keeps its record.
         let (segments, slots) = (&self.segments, &self.slots);
         let mut counts = SearchCounts::default();
-        let search_pair =
-            |clusters: &mut DeepestPerCluster, counts: &mut SearchCounts, pair, chord| {
-                counts.searched += 1;
-                let reach = reach(centreline.radii(), pair, margin);
-                let (a, b) = (&segments[slots[pair.0]], &segments[slots[pair.1]]);
-                let first = search(&a.segment, &b.segment, chord);
-                let found = match candidate(pair, first) {
-                    Some(found) if first.status == NewtonStatus::Converged => Some(found),
-                    _ => closest_points_within_after(a, b, first, reach).and_then(|closest| {
-                        counts.searched_from_grid += 1;
-                        counts.newton_failures +=
-                            usize::from(closest.status != NewtonStatus::Converged);
-                        candidate(pair, closest)
-                    }),
-                };
-                if let Some(found) = found {
-                    counts.raw_contacts += 1;
-                    clusters.push(found);
-                }
+        let search_pair = |clusters: &mut DeepestPerCluster,
+                           counts: &mut SearchCounts,
+                           pair: (usize, usize),
+                           reach,
+                           chord| {
+            counts.searched += 1;
+            let (a, b) = (&segments[slots[pair.0]], &segments[slots[pair.1]]);
+            let first = search(&a.segment, &b.segment, chord);
+            let found = match candidate(pair, first) {
+                Some(found) if first.status == NewtonStatus::Converged => Some(found),
+                _ => closest_points_within_after(a, b, first, reach).and_then(|closest| {
+                    counts.searched_from_grid += 1;
+                    counts.newton_failures +=
+                        usize::from(closest.status != NewtonStatus::Converged);
+                    candidate(pair, closest)
+                }),
             };
+            if let Some(found) = found {
+                counts.raw_contacts += 1;
+                clusters.push(found);
+            }
+        };
         // The pairs that may touch by the chord bound: searched at once in pair order, or,
         // where the cluster radius leaves room to skip some, queued and searched by increasing
         // gap bound, so that every record shallower than the next pair's bound is known and a
@@ -310,20 +314,20 @@ impl ContactDetector {
             }
             if prune {
                 let gap_bound = distance_bound - (reach - margin);
-                self.queue.push(QueuedPair { gap_bound, pair, chord });
+                self.queue.push(QueuedPair { gap_bound, pair, reach, chord });
             } else {
-                search_pair(&mut self.clusters, &mut counts, pair, chord);
+                search_pair(&mut self.clusters, &mut counts, pair, reach, chord);
             }
         }
         self.queue
             .sort_unstable_by(|x, y| x.gap_bound.total_cmp(&y.gap_bound).then(x.pair.cmp(&y.pair)));
-        for &QueuedPair { gap_bound, pair, chord } in &self.queue {
+        for &QueuedPair { gap_bound, pair, reach, chord } in &self.queue {
             self.clusters.settle_below(gap_bound - GAP_BOUND_ROUNDING);
             let (k_a, k_b) = (pair.0 as f64, pair.1 as f64);
             if self.clusters.covers([k_a, k_a + 1.0], [k_b, k_b + 1.0]) {
                 counts.covered += 1;
             } else {
-                search_pair(&mut self.clusters, &mut counts, pair, chord);
+                search_pair(&mut self.clusters, &mut counts, pair, reach, chord);
             }
         }
         let (kept, merged) = self.clusters.finish();
@@ -452,8 +456,8 @@ mod tests {
     }
 
     /// Skipping the pairs a kept contact covers leaves the contacts exactly as searching every
-    /// pair does, on a fine chain (bodies 0.05 cm long in a tube of radius 0.3 cm, cluster
-    /// radius 8 segments) that crosses itself and lies along itself.
+    /// pair does, on fine chains (bodies 0.03–0.07 cm long in a tube of radius 0.26–0.31 cm,
+    /// cluster radius 8 segments) that cross themselves.
     #[test]
     fn skipping_covered_pairs_keeps_the_contacts_bit_for_bit() {
         for (spacing, radius) in [(0.05, 0.3), (0.03, 0.26), (0.07, 0.31)] {
