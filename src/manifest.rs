@@ -101,6 +101,10 @@ pub struct Manifest {
     /// over), e.g. `tie (3_1 not tied, attempt 1 of 2)` when the duration ended first.
     #[serde(default)]
     pub unfinished_phase: Option<String>,
+    /// Where each tie phase made its crossover on this body (fraction of the body length
+    /// from the head), in phase order: its `at`, or head-ward of it by its `min_tail_d`.
+    #[serde(default)]
+    pub tie_crossovers_l: Vec<f64>,
     /// Frame counts at which the run was resumed, in order.
     pub resumed_at_frames: Vec<usize>,
     /// Every other file of the run directory with its size, by name.
@@ -130,6 +134,7 @@ impl Manifest {
             substepped_steps: 0,
             max_substeps: 1,
             unfinished_phase: None,
+            tie_crossovers_l: Vec::new(),
             resumed_at_frames: Vec::new(),
             files: Vec::new(),
         }

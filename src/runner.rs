@@ -181,7 +181,8 @@ fn open(request: &RunRequest<'_>) -> Result<Opened, CliError> {
         (Source::Scenario { path, overrides }, _) => {
             let loaded = LoadedScenario::load_with(path, overrides)?;
             let given = overrides.iter().map(Override::text).collect();
-            let manifest = Manifest::start(path, given, &loaded);
+            let mut manifest = Manifest::start(path, given, &loaded);
+            manifest.tie_crossovers_l = loaded.tie_crossovers_l()?;
             Ok((loaded, None, manifest))
         }
     }

@@ -202,6 +202,14 @@ fn out_of_range_phase_values_are_located_at_their_occurrence() {
         "14:41",
         "body = 100 is out of range: expected a body index below 100 (0 = head)",
     );
+    // A tie asking for more tube tail-ward of its crossover than the whole body has.
+    assert_user_error(
+        "error_min_tail_d",
+        |t| t.replace("Hold(0.5)", "Tie((knot: FigureEight, at: 0.31, min_tail_d: Some(30.0)))"),
+        "18:55",
+        "min_tail_d = 30 is out of range: expected > 0 and less than the body's length, 26.0 \
+         local diameters",
+    );
     assert_user_error(
         "error_zero_speed",
         |t| t.replace("speed: 5.0", "speed: 0.0"),

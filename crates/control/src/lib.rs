@@ -6,7 +6,8 @@
 //!
 //! - [`WaterDrag`]: implicit linear + quadratic drag on every body.
 //! - [`FormingController`]: the scripted knot-forming tail pull (thesis §3.3.1, §5.1).
-//! - [`TiePhase`]: a knot tied by control from the body's current state.
+//! - [`TiePhase`]: a knot tied by control from the body's current state, with the tube it
+//!   plans with kept on any body ([`diameters_tail_ward`]).
 //! - [`PhasedController`]: drag plus a scenario's phases in order.
 //!
 //! CGS units throughout.
@@ -57,6 +58,7 @@ mod phases;
 mod tail_pd;
 mod thigmotaxis;
 mod tie;
+mod tube_length;
 mod until;
 
 pub use controller::{Actuation, ControlContext, Controller, Passive, PointDamper, PointForce};
@@ -78,4 +80,5 @@ pub use tie::{
     CrossingCheck, CrossingMiss, Handedness, LayerCode, MIN_AGREEMENT, TieKnot, TiePhase,
     TieProgress,
 };
+pub use tube_length::{diameters_tail_ward, fraction_leaving};
 pub use until::{Observation, Until};

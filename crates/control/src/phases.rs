@@ -4,6 +4,7 @@
 use std::fmt;
 
 use glam::DVec3;
+use hagfish_tree::Body;
 use serde::{Deserialize, Serialize};
 
 use crate::controller::{Actuation, ControlContext, Controller};
@@ -35,6 +36,15 @@ pub enum Phase {
 }
 
 impl Phase {
+    /// This phase on a body of `bodies` (head to tail): a tie's crossover placed for that body
+    /// ([`TiePhase::on_body`]); any other phase as it is.
+    pub fn on_body(&self, bodies: &[Body]) -> Phase {
+        match self {
+            Phase::Tie(tie) => Phase::Tie(tie.on_body(bodies)),
+            other => other.clone(),
+        }
+    }
+
     /// The forming script this phase drives the tail with, if any (a tie phase's plan).
     pub fn script(&self) -> Option<FormingScript> {
         match self {

@@ -24,11 +24,13 @@
 
 use std::fmt;
 
+use hagfish_tree::Body;
 use serde::{Deserialize, Serialize};
 
 use crate::crossings::Layer;
 use crate::forming::{FormingScript, ScriptStep, Waypoint};
 use crate::tail_pd::TailGains;
+use crate::tube_length::fraction_leaving;
 
 /// Which way a chiral knot turns.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -166,6 +168,13 @@ pub struct TiePhase {
     /// Where the crossover is made: a fraction of the body length from the head (the knot
     /// forms tail-ward of it), in (0, 1).
     pub at: f64,
+    /// The least body to leave tail-ward of the crossover, in local diameters (∫ ds / 2r), if
+    /// any: on a body where `at` would leave less (shorter or thicker than the one the plan
+    /// was made on), the crossover moves head-ward until it leaves this much
+    /// ([`TiePhase::on_body`]). The plan's loop and tail are fractions of the body tail-ward
+    /// of the crossover, so this keeps the knot's size and the tail beyond it in diameters.
+    #[serde(default)]
+    pub min_tail_d: Option<f64>,
     /// Gains of the tail pull.
     #[serde(default)]
     pub gains: TailGains,
@@ -208,12 +217,24 @@ impl TiePhase {
         Self {
             knot,
             at,
+            min_tail_d: None,
             gains: TailGains::default(),
             speed_cm_s: default_speed(),
             attempts: default_attempts(),
             hold_s: default_hold(),
             settle_s: default_settle(),
         }
+    }
+
+    /// This phase on a body of `bodies` (head to tail): the crossover at `at`, or head-ward of
+    /// it where `at` would leave less than `min_tail_d` local diameters of body tail-ward of
+    /// it ([`fraction_leaving`]; at the head if the whole body is shorter).
+    pub fn on_body(&self, bodies: &[Body]) -> TiePhase {
+        let at = match self.min_tail_d {
+            Some(diameters) => self.at.min(fraction_leaving(bodies, diameters)),
+            None => self.at,
+        };
+        TiePhase { at, ..self.clone() }
     }
 
     /// The crossing checks of the plan ([`TiePhase::script`]), in order.
@@ -358,6 +379,31 @@ mod tests {
             _ => None,
         });
         assert!(over.is_some_and(|z| z > 0.0));
+    }
+
+    /// A uniform tube of 40 bodies 0.5 cm long and `radius` cm in radius: 10 / radius diameters.
+    fn tube(radius: f64) -> Vec<Body> {
+        let body = Body {
+            mass: 1.0,
+            principal_inertia: glam::DVec3::ONE,
+            offset: hagfish_tree::Transform::IDENTITY,
+            radius,
+            length: 0.5,
+        };
+        vec![body; 40]
+    }
+
+    #[test]
+    fn the_crossover_moves_head_ward_only_where_the_tail_would_be_too_short() {
+        let tie = TiePhase { min_tail_d: Some(25.0), ..phase(Handedness::Right) };
+        // 0.69 of 40 D = 27.6 D tail-ward of 0.31 L: enough, the crossover stays.
+        assert_eq!(tie.on_body(&tube(0.25)).at, 0.31);
+        // 1.25 × as thick: 32 D in all, 22.1 D tail-ward of 0.31 L; 25 D from 1 − 25/32.
+        let at = tie.on_body(&tube(0.3125)).at;
+        assert!((at - (1.0 - 25.0 / 32.0)).abs() < 1e-12, "{at}");
+        assert_eq!(tie.on_body(&tube(0.5)).at, 0.0, "a body of 20 D: at the head");
+        let plain = phase(Handedness::Right);
+        assert_eq!(plain.on_body(&tube(0.5)), plain, "no min_tail_d: as given");
     }
 
     #[test]

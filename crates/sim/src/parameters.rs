@@ -229,6 +229,12 @@ pub const PARAMETERS: &[Parameter] = &[
         "knot: the overhand knot 3_1, Right or Left (sign of its writhe)",
     ),
     p("Tie.at", "L", "required", "crossover at this fraction of the body length from the head"),
+    p(
+        "Tie.min_tail_d",
+        "D",
+        "None",
+        "Some(d): the crossover moves head-ward where `at` leaves < d local diameters tail-ward",
+    ),
     p("Tie.gains", "-", "(200, 20, 2000)", "gains and cap of the PD tail pull (as Form.gains)"),
     p("Tie.speed_cm_s", "cm/s", "5", "speed of the tail's target"),
     p("Tie.attempts", "-", "2", "plans tried before the phase fails (exit 4, status tie_failed)"),

@@ -16,8 +16,8 @@
 use std::path::{Path, PathBuf};
 
 use hagfish_anatomy::{AnatomyError, Body, DataFile, Field};
-use hagfish_control::{Phase, PhasedController, WaterDrag};
-use hagfish_tree::State;
+use hagfish_control::{Phase, PhasedController, WaterDrag, diameters_tail_ward};
+use hagfish_tree::{Model, State};
 use serde::{Deserialize, Serialize};
 
 use crate::acceptance::StepAcceptance;
@@ -141,7 +141,8 @@ impl LoadedScenario {
             },
             other => SimError::DataFile(other),
         })?;
-        check_scenario(&file, loaded.body_count(), loaded.length_cm())?;
+        let diameters = diameters_tail_ward(loaded.to_model()?.bodies(), 0.0);
+        check_scenario(&file, loaded.body_count(), loaded.length_cm(), diameters)?;
         let bytes = std::fs::read(&body).map_err(|source| SimError::BodyFile {
             at: file.locate(&Field::whole("body")),
             source: Box::new(AnatomyError::Io { path: body.clone(), source }),
@@ -163,6 +164,22 @@ impl LoadedScenario {
         format!("{:016x}", crate::hash::fnv1a64(self.resolved_text().as_bytes()))
     }
 
+    /// The scenario's phases placed on `model`, the model of its body: each tie's crossover
+    /// moved head-ward where its `min_tail_d` asks for more tube ([`Phase::on_body`]).
+    fn phases_on(&self, model: &Model) -> Vec<Phase> {
+        self.scenario.phases.iter().map(|p| p.on_body(model.bodies())).collect()
+    }
+
+    /// Where each tie phase makes its crossover on this body, in phase order (fraction of the
+    /// body length from the head): its `at`, or head-ward of it by its `min_tail_d`.
+    pub fn tie_crossovers_l(&self) -> Result<Vec<f64>, SimError> {
+        let phases = self.phases_on(&self.body.to_model()?);
+        Ok(phases
+            .iter()
+            .filter_map(|p| if let Phase::Tie(tie) = p { Some(tie.at) } else { None })
+            .collect())
+    }
+
     /// The world at rest and the scenario's controller, ready to run.
     pub fn build(&self) -> Result<(World, PhasedController), SimError> {
         let model = self.body.to_model()?;
@@ -176,8 +193,9 @@ impl LoadedScenario {
             acceptance: self.scenario.acceptance,
             ..StepOptions::default()
         };
+        let phases = self.phases_on(&model);
         let world = World::new(model, options, state)?;
-        let controller = PhasedController::new(self.scenario.drag, self.scenario.phases.clone());
+        let controller = PhasedController::new(self.scenario.drag, phases);
         Ok((world, controller))
     }
 

@@ -148,8 +148,21 @@ impl Checker<'_> {
         }
     }
 
-    fn tie(&mut self, phase: &TiePhase) -> Result<(), AnatomyError> {
+    /// A tie on a body `body_diameters` local diameters long: `min_tail_d` must fit in it.
+    fn tie(&mut self, phase: &TiePhase, body_diameters: f64) -> Result<(), AnatomyError> {
         self.check("at", phase.at, Range::Fraction)?;
+        if let Some(diameters) = phase.min_tail_d {
+            self.require(
+                "min_tail_d",
+                diameters,
+                diameters > 0.0 && diameters < body_diameters,
+                || {
+                    format!(
+                        "> 0 and less than the body's length, {body_diameters:.1} local diameters"
+                    )
+                },
+            )?;
+        }
         self.gains(&phase.gains)?;
         self.check("speed_cm_s", phase.speed_cm_s, Range::Positive)?;
         self.check("attempts", f64::from(phase.attempts), Range::Positive)?;
@@ -265,11 +278,13 @@ impl Checker<'_> {
     }
 }
 
-/// Checks every value of the scenario in `file` for a body of `bodies` bodies.
+/// Checks every value of the scenario in `file` for a body of `bodies` bodies,
+/// `body_length_cm` long and `body_diameters` local diameters long (∫ ds / 2r).
 pub(crate) fn check_scenario(
     file: &DataFile<Scenario>,
     bodies: usize,
     body_length_cm: f64,
+    body_diameters: f64,
 ) -> Result<(), AnatomyError> {
     let s = &file.value;
     let mut checker = Checker { file, seen: HashMap::new() };
@@ -301,7 +316,7 @@ pub(crate) fn check_scenario(
             Phase::Form(script) => checker.forming(script, bodies)?,
             Phase::Hold(seconds) => checker.check("Hold", *seconds, Range::NonNegative)?,
             Phase::Thigmotaxis(phase) => checker.thigmotaxis(phase)?,
-            Phase::Tie(phase) => checker.tie(phase)?,
+            Phase::Tie(phase) => checker.tie(phase, body_diameters)?,
             Phase::Load(phase) => checker.load(phase)?,
         }
     }
