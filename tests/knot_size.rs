@@ -6,21 +6,24 @@
 //! changed by 1 to 15 parts in 10¹² (the phases amplify rounding, so the claim is checked on
 //! each of these sixteen trajectories; with the tighten asked for 30 % instead of 28 %, 2 of
 //! them failed). Over 48 the trefoil holds in all; the tighten reaches 24 % instead of 25 % in
-//! one (δh/h = 39e-12) — docs/physics.md, which has those rates.
+//! one (δh/h = 39e-12) — docs/physics.md, which has those rates. And on a body 35 cm long,
+//! on four of these trajectories. A tighten control whose loosened knot comes undone during
+//! that phase (2 of the 4 on the 35 cm body) counts as not tightened.
 
 mod common;
 
 use common::{ROOT, code_and_stderr, fresh_dir, metrics_table, run_hagfish};
 
 /// What one run did: the core's length change over the loosen and the tighten phase (mean of
-/// the phase's last 0.5 s against its first 0.5 s; `None` for a phase of less than 1 s: after
-/// an unloosened knot the tighten phase's end condition holds at once), whether the trefoil
-/// showed on every frame after tying, and the deepest self penetration (fraction of the local
-/// radius).
+/// the phase's last 0.5 s against its first 0.5 s; `None` for a phase of less than 1 s, as
+/// after an unloosened knot the tighten phase's end condition holds at once, or without a
+/// knotted core in those frames), the phase in which the trefoil was first not shown after
+/// tying (`None`: held on every frame), and the deepest self penetration (fraction of the
+/// local radius).
 struct Sizes {
     loosen: Option<f64>,
     tighten: Option<f64>,
-    held: bool,
+    lost_in: Option<String>,
     penetration: f64,
 }
 
@@ -41,10 +44,14 @@ fn sizes(name: &str, sets: &[String]) -> Sizes {
         let frames: Vec<&Vec<String>> =
             rows.iter().filter(|r| r[header["phase"]] == phase).collect();
         let mean = |part: &[&Vec<String>]| {
-            let lengths = part.iter().map(|r| number(r, "knot_core_length_cm").expect("knotted"));
-            lengths.sum::<f64>() / part.len() as f64
+            let lengths: Result<Vec<f64>, _> =
+                part.iter().map(|r| number(r, "knot_core_length_cm")).collect();
+            lengths.ok().map(|l| l.iter().sum::<f64>() / l.len() as f64)
         };
-        (frames.len() >= 10).then(|| mean(&frames[frames.len() - 5..]) / mean(&frames[..5]) - 1.0)
+        if frames.len() < 10 {
+            return None;
+        }
+        Some(mean(&frames[frames.len() - 5..])? / mean(&frames[..5])? - 1.0)
     };
     let tied = rows.iter().position(|r| r[header["phase"]] != "tie").expect("tied");
     let penetration =
@@ -52,19 +59,23 @@ fn sizes(name: &str, sets: &[String]) -> Sizes {
     Sizes {
         loosen: change("loosen"),
         tighten: change("tighten"),
-        held: rows[tied..].iter().all(|r| r[header["knot"]] == "3_1"),
+        lost_in: rows[tied..]
+            .iter()
+            .find(|r| r[header["knot"]] != "3_1")
+            .map(|r| r[header["phase"]].clone()),
         penetration: penetration.fold(0.0, f64::max),
     }
 }
 
-#[test]
-fn loosen_and_tighten_change_the_core_because_of_their_targets() {
+/// Runs `loosen_tighten.ron` with `sets` for δh/h = k·1e-12, k in `perturbations`, with
+/// both controls, and asserts every bound on each; `name` labels the runs.
+fn check_loosen_and_tighten(name: &str, sets: &[String], perturbations: std::ops::Range<u32>) {
     let zero = |phase: usize| {
         ["head", "tail"]
             .map(|end| format!("phases[{phase}].Thigmotaxis.parameters.{end}=(0.0, 0.0)"))
     };
     let jobs: Vec<(u32, Option<usize>)> =
-        (0..16).flat_map(|k| [(k, None), (k, Some(1)), (k, Some(2))]).collect();
+        perturbations.clone().flat_map(|k| [(k, None), (k, Some(1)), (k, Some(2))]).collect();
     let next = std::sync::Mutex::new(jobs.iter());
     let results = std::sync::Mutex::new(Vec::new());
     std::thread::scope(|scope| {
@@ -75,10 +86,11 @@ fn loosen_and_tighten_change_the_core_because_of_their_targets() {
                     let job = next.lock().expect("the queue").next().copied();
                     let Some((k, control)) = job else { break };
                     let h = 0.01 * (1.0 + f64::from(k) * 1e-12);
-                    let mut sets = vec![format!("time_step_s={h:?}")];
-                    sets.extend(control.into_iter().flat_map(zero));
-                    let name = format!("knot_size_{k}_{}", control.map_or(0, |p| p));
-                    let measured = sizes(&name, &sets);
+                    let mut all = sets.to_vec();
+                    all.push(format!("time_step_s={h:?}"));
+                    all.extend(control.into_iter().flat_map(zero));
+                    let run = format!("{name}_{k}_{}", control.map_or(0, |p| p));
+                    let measured = sizes(&run, &all);
                     results.lock().expect("the results").push((k, control, measured));
                 }
             });
@@ -88,28 +100,59 @@ fn loosen_and_tighten_change_the_core_because_of_their_targets() {
     let find = |k, control| {
         results.iter().find(|(j, c, _)| *j == k && *c == control).map(|(_, _, s)| s).expect("run")
     };
-    for k in 0..16 {
+    for k in perturbations {
         let (run, loosen_control, tighten_control) =
             (find(k, None), find(k, Some(1)), find(k, Some(2)));
-        let label = format!("δh/h = {k}e-12");
+        let label = format!("{name}, δh/h = {k}e-12");
         let phase = |sizes: &Sizes, loosen: bool| {
             let change = if loosen { sizes.loosen } else { sizes.tighten };
-            change.unwrap_or_else(|| panic!("{label}: a phase shorter than 1 s"))
+            change.unwrap_or_else(|| panic!("{label}: a phase shorter than 1 s or unknotted"))
         };
-        let (loosen, tighten) = (phase(run, true), phase(run, false));
-        let (loosen_control, tighten_control) =
-            (phase(loosen_control, true), phase(tighten_control, false));
-        assert!(run.held, "{label}: the trefoil was lost");
+        assert_eq!(run.lost_in, None, "{label}: the trefoil was lost");
         assert!(run.penetration < 0.02, "{label}: penetration {} of r", run.penetration);
+        let (loosen, tighten) = (phase(run, true), phase(run, false));
         assert!(loosen >= 0.25, "{label}: loosen changed the core by {loosen}");
         assert!(tighten <= -0.25, "{label}: tighten changed the core by {tighten}");
+        let loosen_control = phase(loosen_control, true);
         assert!(
             loosen - loosen_control >= 0.2,
             "{label}: loosen {loosen} against {loosen_control} without targets"
         );
-        assert!(
-            tighten_control - tighten >= 0.2,
-            "{label}: tighten {tighten} against {tighten_control} without targets"
-        );
+        // Without the tighten targets the loosened knot must not shrink as far; a control
+        // whose knot comes undone while it should be tightening did not tighten it.
+        if tighten_control.lost_in.as_deref() != Some("tighten") {
+            let tighten_control = phase(tighten_control, false);
+            assert!(
+                tighten_control - tighten >= 0.2,
+                "{label}: tighten {tighten} against {tighten_control} without targets"
+            );
+        }
     }
+}
+
+#[test]
+fn loosen_and_tighten_change_the_core_because_of_their_targets() {
+    check_loosen_and_tighten("knot_size", &[], 0..16);
+}
+
+/// The same on a body 35 cm long (mass ∝ length: 21.4 local diameters instead of 26), as
+/// written and with δh/h = 1…3e-12: the tie's `min_tail_d` puts the crossover at ≈ 0.15 L
+/// and the loosen's tail feed keeps the tail end beyond the knot (without the feed the
+/// trefoil was lost while tightening in 6 of 16 perturbations; docs/physics.md).
+#[test]
+fn loosen_and_tighten_carry_over_to_a_shorter_body() {
+    let dir = fresh_dir("knot_size_short_body");
+    let text =
+        std::fs::read_to_string(format!("{ROOT}/data/hagfish/es103.ron")).expect("es103.ron");
+    let short = text
+        .replace("length_cm: 42.4", "length_cm: 35.0")
+        .replace("mass_g: 80.0", &format!("mass_g: {}", 80.0 * 35.0 / 42.4));
+    assert_ne!(short, text, "length and mass edited");
+    let body = dir.join("length_35.ron");
+    std::fs::write(&body, short).expect("write the body");
+    check_loosen_and_tighten(
+        "knot_size_35",
+        &[format!("body={:?}", body.display().to_string())],
+        0..4,
+    );
 }
