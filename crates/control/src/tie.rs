@@ -383,14 +383,7 @@ mod tests {
 
     /// A uniform tube of 40 bodies 0.5 cm long and `radius` cm in radius: 10 / radius diameters.
     fn tube(radius: f64) -> Vec<Body> {
-        let body = Body {
-            mass: 1.0,
-            principal_inertia: glam::DVec3::ONE,
-            offset: hagfish_tree::Transform::IDENTITY,
-            radius,
-            length: 0.5,
-        };
-        vec![body; 40]
+        vec![crate::tube_length::cylinder(0.5, radius); 40]
     }
 
     #[test]

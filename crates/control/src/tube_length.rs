@@ -40,25 +40,25 @@ pub fn fraction_leaving(bodies: &[Body], diameters: f64) -> f64 {
     0.0
 }
 
+/// A cylinder of `length` and `radius` (cm) as a tree body, for tests of body measures.
+#[cfg(test)]
+pub(crate) fn cylinder(length: f64, radius: f64) -> Body {
+    Body {
+        mass: 1.0,
+        principal_inertia: glam::DVec3::ONE,
+        offset: hagfish_tree::Transform::IDENTITY,
+        radius,
+        length,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::DVec3;
-    use hagfish_tree::Transform;
-
-    fn body(length: f64, radius: f64) -> Body {
-        Body {
-            mass: 1.0,
-            principal_inertia: DVec3::ONE,
-            offset: Transform::IDENTITY,
-            radius,
-            length,
-        }
-    }
 
     #[test]
     fn a_uniform_tube_is_its_length_over_its_diameter() {
-        let tube = vec![body(0.5, 0.25); 40];
+        let tube = vec![cylinder(0.5, 0.25); 40];
         assert!((diameters_tail_ward(&tube, 0.0) - 40.0).abs() < 1e-12);
         assert!((diameters_tail_ward(&tube, 0.3) - 28.0).abs() < 1e-12);
         assert!((diameters_tail_ward(&tube, 1.0)).abs() < 1e-12);
@@ -71,7 +71,7 @@ mod tests {
     #[test]
     fn the_fraction_leaving_inverts_the_diameters_on_a_taper() {
         let taper: Vec<Body> =
-            (0..30).map(|k| body(0.4 + 0.01 * k as f64, 1.0 - 0.02 * k as f64)).collect();
+            (0..30).map(|k| cylinder(0.4 + 0.01 * k as f64, 1.0 - 0.02 * k as f64)).collect();
         let total = diameters_tail_ward(&taper, 0.0);
         for d in [0.1, 1.0, 3.7, 10.0, total * 0.5, total - 1e-9] {
             let at = fraction_leaving(&taper, d);
