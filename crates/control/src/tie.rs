@@ -169,7 +169,7 @@ pub struct TiePhase {
     /// forms tail-ward of it), in (0, 1).
     pub at: f64,
     /// The least body to leave tail-ward of the crossover, in local diameters (∫ ds / 2r), if
-    /// any: on a body where `at` would leave less (shorter or thicker than the one the plan
+    /// any (D17): on a body where `at` would leave less (shorter or thicker than the one the plan
     /// was made on), the crossover moves head-ward until it leaves this much
     /// ([`TiePhase::on_body`]). The plan's loop and tail are fractions of the body tail-ward
     /// of the crossover, so this keeps the knot's size and the tail beyond it in diameters.
