@@ -12,7 +12,9 @@
 
 mod common;
 
-use common::{ROOT, code_and_stderr, fresh_dir, metrics_table, run_hagfish};
+use common::{
+    ROOT, code_and_stderr, es103_length, es103_with, fresh_dir, metrics_table, run_hagfish,
+};
 
 /// What one run did: the core's length change over the loosen and the tighten phase (mean of
 /// the phase's last 0.5 s against its first 0.5 s; `None` for a phase of less than 1 s, as
@@ -142,14 +144,7 @@ fn loosen_and_tighten_change_the_core_because_of_their_targets() {
 #[test]
 fn loosen_and_tighten_carry_over_to_a_shorter_body() {
     let dir = fresh_dir("knot_size_short_body");
-    let text =
-        std::fs::read_to_string(format!("{ROOT}/data/hagfish/es103.ron")).expect("es103.ron");
-    let short = text
-        .replace("length_cm: 42.4", "length_cm: 35.0")
-        .replace("mass_g: 80.0", &format!("mass_g: {}", 80.0 * 35.0 / 42.4));
-    assert_ne!(short, text, "length and mass edited");
-    let body = dir.join("length_35.ron");
-    std::fs::write(&body, short).expect("write the body");
+    let body = es103_with(&dir, "length_35", &es103_length(35.0));
     check_loosen_and_tighten(
         "knot_size_35",
         &[format!("body={:?}", body.display().to_string())],

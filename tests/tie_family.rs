@@ -12,23 +12,13 @@
 
 mod common;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::Mutex;
 
-use common::{ROOT, code_and_stderr, fresh_dir, manifest, metrics_table, run_hagfish};
-
-/// ES103's biometrics file with `edits` (text replacements) applied, written into `dir`.
-fn body(dir: &Path, name: &str, edits: &[(&str, String)]) -> PathBuf {
-    let mut text =
-        std::fs::read_to_string(format!("{ROOT}/data/hagfish/es103.ron")).expect("es103.ron");
-    for (from, to) in edits {
-        assert!(text.contains(from), "{from} is in es103.ron");
-        text = text.replace(from, to);
-    }
-    let path = dir.join(format!("{name}.ron"));
-    std::fs::write(&path, text).expect("write a body");
-    path
-}
+use common::{
+    ROOT, code_and_stderr, es103_length, es103_with, fresh_dir, manifest, metrics_table,
+    run_hagfish,
+};
 
 /// One member of the family: a name, body edits, `--set` overrides and the handedness.
 struct Variant {
@@ -47,12 +37,6 @@ fn variant(
 }
 
 fn family() -> Vec<Variant> {
-    let length = |l: f64| {
-        vec![
-            ("length_cm: 42.4", format!("length_cm: {l}")),
-            ("mass_g: 80.0", format!("mass_g: {}", 80.0 * l / 42.4)),
-        ]
-    };
     let circumference = |k: f64| {
         let c: Vec<String> = [5.6, 5.5, 5.6, 4.3].iter().map(|c| format!("{:.3}", c * k)).collect();
         vec![(
@@ -78,8 +62,8 @@ fn family() -> Vec<Variant> {
             right_handed: false,
             ..variant("es103_left", vec![], vec!["phases[0].Tie.knot=Trefoil(Left)"])
         },
-        variant("length_35", length(35.0), vec![]),
-        variant("length_50", length(50.0), vec![]),
+        variant("length_35", es103_length(35.0), vec![]),
+        variant("length_50", es103_length(50.0), vec![]),
         variant("circumference_0.85", circumference(0.85), vec![]),
         variant("circumference_1.15", circumference(1.15), vec![]),
         variant("stiffness_0.1", stiffness(0.1), vec![]),
@@ -105,7 +89,7 @@ fn family() -> Vec<Variant> {
 
 /// Runs `variant` of thesis.ron into `dir` and checks it; returns a failure message, if any.
 fn check(dir: &Path, variant: &Variant) -> Option<String> {
-    let body = body(dir, variant.name, &variant.edits);
+    let body = es103_with(dir, variant.name, &variant.edits);
     let mut extra = vec!["--body".to_string(), body.to_string_lossy().into_owned()];
     for set in &variant.sets {
         extra.extend(["--set".to_string(), set.to_string()]);
@@ -372,7 +356,7 @@ fn the_figure_eight_is_tied_held_and_slid_to_the_head_on_es103() {
 fn the_figure_eight_keeps_its_tube_on_a_thicker_body() {
     let dir = fresh_dir("figure_eight_thicker");
     let circumferences = "circumferences_cm: [5.6, 5.5, 5.6, 4.3]";
-    let thicker = body(
+    let thicker = es103_with(
         &dir,
         "thicker",
         &[(circumferences, "circumferences_cm: [6.44, 6.325, 6.44, 4.945]".into())],
@@ -430,6 +414,35 @@ fn a_run_that_ends_before_its_knot_is_tied_says_so() {
     let manifest = common::manifest(&dir);
     assert_eq!(manifest["status"], "completed");
     assert_eq!(manifest["unfinished_phase"], unfinished);
+}
+
+/// A crossover that `min_tail_d` moved is said: on a body 35 cm long (21.4 local diameters),
+/// `loosen_tighten.ron`'s 0.31 L leaves 14.8 D tail-ward, less than its 18.5, so the tie
+/// crosses over at ≈ 0.15 L; the summary says so and the manifest records where. On ES103
+/// (18.6 D tail-ward of 0.31 L) nothing moves and nothing is said.
+#[test]
+fn a_crossover_moved_for_the_tube_is_said() {
+    let dir = fresh_dir("tie_crossover_moved");
+    let body = es103_with(&dir, "length_35", &es103_length(35.0));
+    let scenario = format!("{ROOT}/data/scenarios/loosen_tighten.ron");
+    let run = |name: &str, extra: &[&str]| {
+        let out = dir.join(name);
+        let out_text = out.to_string_lossy().into_owned();
+        let mut args = vec!["run", &scenario, "--quiet", "--out", &out_text];
+        args.extend(["--set", "duration_s=0.1"]);
+        args.extend(extra);
+        let output = run_hagfish(&args);
+        assert!(output.status.success(), "{}", code_and_stderr(&output).1);
+        let at = common::manifest(&out)["tie_crossovers_l"][0].as_f64().expect("a crossover");
+        (String::from_utf8_lossy(&output.stdout).into_owned(), at)
+    };
+    let (stdout, at) = run("short", &["--body", &body.to_string_lossy()]);
+    assert!((0.14..0.16).contains(&at), "crossover at {at} L");
+    let said = format!("tie crossover at {at:.3} L, not 0.31 L");
+    assert!(stdout.contains(&said), "{stdout}");
+    let (stdout, at) = run("es103", &[]);
+    assert_eq!(at, 0.31);
+    assert!(!stdout.contains("tie crossover at"), "{stdout}");
 }
 
 /// Each crossing is checked as it is made: a crossover planned 0.85 L from the head leaves a

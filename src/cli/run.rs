@@ -9,6 +9,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use clap::Args;
+use hagfish_control::Phase;
 use hagfish_sim::Override;
 
 use super::progress::Reporter;
@@ -178,6 +179,20 @@ fn summarise(finished: &Finished, out: &mut dyn Write) -> Result<(), CliError> {
         .collect();
     if let Some(phase) = summary.unfinished_phase.as_ref().filter(|_| status == Status::Completed) {
         writeln!(out, "the duration ended in phase {phase}: a longer duration_s lets it finish")?;
+    }
+    let ties = loaded.scenario.phases.iter().filter_map(|p| match p {
+        Phase::Tie(tie) => Some(tie),
+        _ => None,
+    });
+    for (tie, &at) in ties.zip(&manifest.tie_crossovers_l) {
+        if let Some(diameters) = tie.min_tail_d.filter(|_| at != tie.at) {
+            writeln!(
+                out,
+                "tie crossover at {at:.3} L, not {} L: on this body {} L leaves less than \
+                 min_tail_d = {diameters} local diameters tail-ward",
+                tie.at, tie.at,
+            )?;
+        }
     }
     if summary.substepped_steps > 0 {
         writeln!(
