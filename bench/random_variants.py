@@ -1,0 +1,159 @@
+#!/usr/bin/env python3
+"""Random hagfish within the family's ranges, every parameter changed at once, run through
+the trefoil scenario and judged by the slide's acceptance checks (issue #14).
+
+`tests/tie_family.rs` changes one parameter at a time. Users will change several: this script
+draws COUNT bodies with, independently and uniformly (log-uniformly for stiffness, damping and
+drag), length 35–50 cm (mass ∝ length), circumferences ×0.85–1.15, stiffness ×0.1–10, damping
+×1–10, 50–300 bodies, h = 0.005–0.02 s and water drag ×0.5–2, and runs `thesis.ron` on each.
+A variant passes when the run completes, the trefoil holds on ≥ 99 % of the frames after
+tying, its core's head-ward end is ≥ 0.35 L from the head when tied, the core's midpoint
+travels ≥ 0.25 L over the slide, its head-ward end comes within 0.05 L of the head, self
+penetration stays below 2 % of the local radius and no joint passes its limit by 0.5°.
+
+Usage (from the workspace root, after `cargo build --release`):
+    python3 bench/random_variants.py [--seed S] [--count N] [--jobs J] [--scenario FILE]
+The draws depend only on the seed. Run directories are made in a temporary directory and
+removed as they are read.
+"""
+
+import argparse
+import csv
+import json
+import math
+import os
+import random
+import subprocess
+import tempfile
+from concurrent.futures import ThreadPoolExecutor
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+TARGET = os.environ.get("CARGO_TARGET_DIR", os.path.join(ROOT, "target"))
+HAGFISH = os.environ.get("HAGFISH_BIN", os.path.join(TARGET, "release", "hagfish"))
+ES103 = os.path.join(ROOT, "data", "hagfish", "es103.ron")
+CIRCUMFERENCES = [5.6, 5.5, 5.6, 4.3]
+BODY_COUNTS = [50, 60, 75, 100, 120, 150, 200, 250, 300]
+
+
+def log_uniform(rng, low, high):
+    return 10 ** rng.uniform(math.log10(low), math.log10(high))
+
+
+def draw(rng):
+    """One variant: the body's edits and the scenario's time step and drag."""
+    return {
+        "length_cm": rng.uniform(35.0, 50.0),
+        "circumference": rng.uniform(0.85, 1.15),
+        "stiffness": log_uniform(rng, 0.1, 10.0),
+        "damping": log_uniform(rng, 1.0, 10.0),
+        "bodies": rng.choice(BODY_COUNTS),
+        "time_step_s": rng.uniform(0.005, 0.02),
+        "drag": log_uniform(rng, 0.5, 2.0),
+    }
+
+
+def body_text(v):
+    """ES103's biometrics file with the variant's edits."""
+    with open(ES103) as f:
+        text = f.read()
+    circumferences = ", ".join(f"{c * v['circumference']:.3f}" for c in CIRCUMFERENCES)
+    edits = [
+        ("length_cm: 42.4", f"length_cm: {v['length_cm']:.2f}"),
+        ("mass_g: 80.0", f"mass_g: {80.0 * v['length_cm'] / 42.4:.3f}"),
+        ("circumferences_cm: [5.6, 5.5, 5.6, 4.3]", f"circumferences_cm: [{circumferences}]"),
+        ("bending_stiffness_dyn_cm_per_rad: 1.0",
+         f"bending_stiffness_dyn_cm_per_rad: {v['stiffness']:.4f}"),
+        ("twist_stiffness_dyn_cm_per_rad: 5.0",
+         f"twist_stiffness_dyn_cm_per_rad: {5.0 * v['stiffness']:.4f}"),
+        ("damping_dyn_cm_s_per_rad: 0.1", f"damping_dyn_cm_s_per_rad: {0.1 * v['damping']:.4f}"),
+        (" body_count: 100", f" body_count: {v['bodies']}"),
+    ]
+    for old, new in edits:
+        if old not in text:
+            raise SystemExit(f"{ES103} no longer contains `{old}`")
+        text = text.replace(old, new)
+    return text
+
+
+def number(row, column):
+    try:
+        return float(row[column])
+    except ValueError:
+        return math.nan
+
+
+def judge(out):
+    """The checks of one run directory, as (passed, description)."""
+    with open(os.path.join(out, "manifest.json")) as f:
+        manifest = json.load(f)
+    with open(os.path.join(out, "metrics.csv")) as f:
+        rows = list(csv.DictReader(f))
+    tied = next((i for i, r in enumerate(rows) if r["phase"] != "tie"), None)
+    if tied is None:
+        return False, f"{manifest['status']}, not tied"
+    after = rows[tied:]
+    held = sum(r["knot"] == "3_1" for r in after) / len(after)
+    slide = [r for r in rows if r["phase"] == "slide"]
+    mids = [m for m in (number(r, "knot_core_mid_L") for r in after) if not math.isnan(m)]
+    travel = number(slide[0], "knot_core_mid_L") - min(mids) if slide and mids else math.nan
+    nearest = min((number(r, "knot_core_start_L") for r in after), default=math.nan)
+    start = number(rows[tied], "knot_core_start_L")
+    penetration = max(number(r, "max_self_penetration_rel") for r in rows)
+    excess = max(number(r, "max_limit_excess_deg") for r in rows)
+    checks = [
+        manifest["status"] == "completed",
+        held >= 0.99,
+        start >= 0.35,
+        travel >= 0.25,
+        nearest <= 0.05,
+        penetration < 0.02,
+        excess < 0.5,
+    ]
+    text = (f"{manifest['status']}, held {held:.3f}, tied at {start:.3f} L, travel {travel:.3f} L,"
+            f" nearest {nearest:.3f} L, penetration {100 * penetration:.2f} %,"
+            f" limit excess {excess:.2f}°")
+    return all(checks), text
+
+
+def run(scenario, work, index, v):
+    body = os.path.join(work, f"body_{index}.ron")
+    with open(body, "w") as f:
+        f.write(body_text(v))
+    out = os.path.join(work, f"run_{index}")
+    subprocess.run(
+        [HAGFISH, "run", scenario, "--body", body, "--out", out, "--quiet",
+         "--set", f"time_step_s={v['time_step_s']:.5f}",
+         "--set", f"drag.quadratic_g_per_cm3={0.5 * v['drag']:.4f}"],
+        capture_output=True, check=False,
+    )
+    passed, text = judge(out)
+    subprocess.run(["rm", "-rf", out, body], check=False)
+    return passed, text
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--count", type=int, default=10)
+    parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--scenario", default=os.path.join(ROOT, "data", "scenarios", "thesis.ron"))
+    args = parser.parse_args()
+    if not os.access(HAGFISH, os.X_OK):
+        raise SystemExit(f"no hagfish binary at {HAGFISH}: run `cargo build --release` (or set "
+                         "HAGFISH_BIN or CARGO_TARGET_DIR)")
+    rng = random.Random(args.seed)
+    variants = [draw(rng) for _ in range(args.count)]
+    with tempfile.TemporaryDirectory() as work, ThreadPoolExecutor(args.jobs) as pool:
+        results = pool.map(lambda iv: run(args.scenario, work, *iv), enumerate(variants))
+        passes = 0
+        for v, (passed, text) in zip(variants, results):
+            passes += passed
+            print(f"L {v['length_cm']:.1f} cm, circumferences ×{v['circumference']:.2f},"
+                  f" stiffness ×{v['stiffness']:.2f}, damping ×{v['damping']:.1f},"
+                  f" {v['bodies']} bodies, h {v['time_step_s']:.4f} s, drag ×{v['drag']:.2f}:"
+                  f" {text} → {'pass' if passed else 'FAIL'}")
+    print(f"{passes} of {args.count} pass (seed {args.seed})")
+
+
+if __name__ == "__main__":
+    main()
