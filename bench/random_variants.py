@@ -13,6 +13,7 @@ penetration stays below 2 % of the local radius and no joint passes its limit by
 
 Usage (from the workspace root, after `cargo build --release`):
     python3 bench/random_variants.py [--seed S] [--count N] [--jobs J] [--scenario FILE]
+                                     [--set PATH=VALUE ...]
 The draws depend only on the seed. Run directories are made in a temporary directory and
 removed as they are read.
 """
@@ -115,7 +116,7 @@ def judge(out):
     return all(checks), text
 
 
-def run(scenario, work, index, v):
+def run(scenario, sets, work, index, v):
     body = os.path.join(work, f"body_{index}.ron")
     with open(body, "w") as f:
         f.write(body_text(v))
@@ -123,7 +124,8 @@ def run(scenario, work, index, v):
     subprocess.run(
         [HAGFISH, "run", scenario, "--body", body, "--out", out, "--quiet",
          "--set", f"time_step_s={v['time_step_s']:.5f}",
-         "--set", f"drag.quadratic_g_per_cm3={0.5 * v['drag']:.4f}"],
+         "--set", f"drag.quadratic_g_per_cm3={0.5 * v['drag']:.4f}",
+         *[arg for s in sets for arg in ("--set", s)]],
         capture_output=True, check=False,
     )
     passed, text = judge(out)
@@ -137,6 +139,8 @@ def main():
     parser.add_argument("--count", type=int, default=10)
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--scenario", default=os.path.join(ROOT, "data", "scenarios", "thesis.ron"))
+    parser.add_argument("--set", action="append", default=[], metavar="PATH=VALUE",
+                        help="a scenario override for every run, as `hagfish run --set`")
     args = parser.parse_args()
     if not os.access(HAGFISH, os.X_OK):
         raise SystemExit(f"no hagfish binary at {HAGFISH}: run `cargo build --release` (or set "
@@ -144,7 +148,7 @@ def main():
     rng = random.Random(args.seed)
     variants = [draw(rng) for _ in range(args.count)]
     with tempfile.TemporaryDirectory() as work, ThreadPoolExecutor(args.jobs) as pool:
-        results = pool.map(lambda iv: run(args.scenario, work, *iv), enumerate(variants))
+        results = pool.map(lambda iv: run(args.scenario, args.set, work, *iv), enumerate(variants))
         passes = 0
         for v, (passed, text) in zip(variants, results):
             passes += passed
