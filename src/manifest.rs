@@ -97,6 +97,10 @@ pub struct Manifest {
     /// The most substeps one step needed (1: none was divided).
     #[serde(default)]
     pub max_substeps: u32,
+    /// Steps rejected whole and taken again whole, accepted, with self contacts at the
+    /// chain's resolution (`acceptance.resolve_contacts`).
+    #[serde(default)]
+    pub resolved_contact_steps: u64,
     /// The scenario phase still running when the run stopped (`null`: every phase was
     /// over), e.g. `tie (3_1 not tied, attempt 1 of 2)` when the duration ended first.
     #[serde(default)]
@@ -133,6 +137,7 @@ impl Manifest {
             error: None,
             substepped_steps: 0,
             max_substeps: 1,
+            resolved_contact_steps: 0,
             unfinished_phase: None,
             tie_crossovers_l: Vec::new(),
             resumed_at_frames: Vec::new(),

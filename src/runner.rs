@@ -311,6 +311,7 @@ fn finish(
     manifest.time_s = outcome.state.t;
     manifest.substepped_steps = outcome.summary.substepped_steps;
     manifest.max_substeps = outcome.summary.max_substeps;
+    manifest.resolved_contact_steps = outcome.summary.resolved_steps;
     manifest.unfinished_phase.clone_from(&outcome.summary.unfinished_phase);
     manifest.final_state_hash = Some(state_hash(&outcome.state));
     manifest.error = error;

@@ -128,3 +128,138 @@ fn a_chain_blowing_up_without_contact_is_stopped_before_it_is_recorded() {
     assert!(fastest <= 100.0, "a recorded frame turns at {fastest} rad/s");
     assert_eq!(manifest(&dir)["status"], "diverged");
 }
+
+/// A fine chain drawn at random from the family's ranges by `bench/random_variants.py` (every
+/// parameter changed at once): ES103's edits, the time step and the quadratic water drag.
+struct FineChain {
+    name: &'static str,
+    edits: Vec<(&'static str, String)>,
+    time_step_s: f64,
+    quadratic_drag: f64,
+}
+
+impl FineChain {
+    /// The chain as `random_variants.py` writes it (same rounding of every value).
+    fn new(name: &'static str, draw: [f64; 7]) -> Self {
+        let [length_cm, circumference, stiffness, damping, bodies, time_step_s, drag] = draw;
+        let circumferences: Vec<String> =
+            [5.6, 5.5, 5.6, 4.3].iter().map(|c| format!("{:.3}", c * circumference)).collect();
+        let edits = vec![
+            ("length_cm: 42.4", format!("length_cm: {length_cm:.2}")),
+            ("mass_g: 80.0", format!("mass_g: {:.3}", 80.0 * length_cm / 42.4)),
+            (
+                "circumferences_cm: [5.6, 5.5, 5.6, 4.3]",
+                format!("circumferences_cm: [{}]", circumferences.join(", ")),
+            ),
+            (
+                "bending_stiffness_dyn_cm_per_rad: 1.0",
+                format!("bending_stiffness_dyn_cm_per_rad: {stiffness:.4}"),
+            ),
+            (
+                "twist_stiffness_dyn_cm_per_rad: 5.0",
+                format!("twist_stiffness_dyn_cm_per_rad: {:.4}", 5.0 * stiffness),
+            ),
+            (
+                "damping_dyn_cm_s_per_rad: 0.1",
+                format!("damping_dyn_cm_s_per_rad: {:.4}", 0.1 * damping),
+            ),
+            (" body_count: 100", format!(" body_count: {bodies}")),
+        ];
+        FineChain { name, edits, time_step_s, quadratic_drag: 0.5 * drag }
+    }
+}
+
+/// Runs `thesis.ron` on `chain` at δh/h = `k`·10⁻¹² with `extra` overrides; returns the status
+/// and the number of steps retried with resolved contacts.
+fn run_fine_chain(dir: &Path, chain: &FineChain, k: u32, extra: &[&str]) -> (String, u64) {
+    let body = common::es103_with(dir, chain.name, &chain.edits);
+    let out = dir.join(format!("{}_{k}_{}", chain.name, extra.len()));
+    let h = chain.time_step_s * (1.0 + f64::from(k) * 1e-12);
+    let mut args = vec![
+        "run".to_owned(),
+        format!("{ROOT}/data/scenarios/thesis.ron"),
+        "--quiet".to_owned(),
+        "--out".to_owned(),
+        out.to_string_lossy().into_owned(),
+        "--body".to_owned(),
+        body.to_string_lossy().into_owned(),
+        "--set".to_owned(),
+        format!("time_step_s={h:?}"),
+        "--set".to_owned(),
+        format!("drag.quadratic_g_per_cm3={:.4}", chain.quadratic_drag),
+    ];
+    for set in extra {
+        args.extend(["--set".to_owned(), (*set).to_owned()]);
+    }
+    let output = run_hagfish(&args);
+    let (code, stderr) = code_and_stderr(&output);
+    assert!(matches!(code, Some(0 | 3)), "{}, k = {k}: exit {code:?}: {stderr}", chain.name);
+    let run = manifest(&out);
+    let status = run["status"].as_str().expect("a status").to_owned();
+    (status, run["resolved_contact_steps"].as_u64().expect("a count"))
+}
+
+#[test]
+fn fine_chains_keep_their_slide_with_contacts_retried_at_their_resolution() {
+    // Two draws of `bench/random_variants.py` (seed 1 index 7, seed 2 index 5), 250 and 200
+    // bodies (bodies 0.19 and 0.21 cm long against a diameter of ≈ 1.8 cm): the
+    // body-relative cluster radius keeps one contact every 3.9 and 3.2 bodies, and between
+    // two of them the chain bends into the other strand (docs/physics.md, "Step acceptance
+    // and substeps"). Measured over δh/h = 0…7·10⁻¹² (2026-11-26): without the retry 11 of
+    // 16 slides diverged, with it none.
+    let chains = [
+        FineChain::new(
+            "fine_250",
+            [
+                47.450535399114905,
+                1.0510916699242212,
+                0.40433098320442823,
+                3.868838545821066,
+                250.0,
+                0.017692961276424692,
+                1.0073518236022059,
+            ],
+        ),
+        FineChain::new(
+            "fine_200",
+            [
+                42.70606100646552,
+                1.017967094887443,
+                9.780371265632052,
+                2.7902146331429125,
+                200.0,
+                0.016016025378409664,
+                1.7570890380819575,
+            ],
+        ),
+    ];
+    let dir = fresh_dir("acceptance_fine_chains");
+    let runs: Vec<(&str, u32, (String, u64), (String, u64))> = std::thread::scope(|scope| {
+        let handles: Vec<_> = chains
+            .iter()
+            .flat_map(|chain| (0..4).map(move |k| (chain, k)))
+            .map(|(chain, k)| {
+                let dir = &dir;
+                scope.spawn(move || {
+                    let with = run_fine_chain(dir, chain, k, &[]);
+                    let without =
+                        run_fine_chain(dir, chain, k, &["acceptance.resolve_contacts=false"]);
+                    (chain.name, k, with, without)
+                })
+            })
+            .collect();
+        handles.into_iter().map(|h| h.join().expect("a run thread")).collect()
+    });
+    for (name, k, with, without) in &runs {
+        eprintln!("{name} k = {k}: with the retry {with:?}, without {without:?}");
+    }
+    for (name, k, (status, resolved), _) in &runs {
+        assert_eq!(status, "completed", "{name}, k = {k}");
+        assert!(*resolved > 0, "{name}, k = {k}: the retry was used");
+    }
+    let diverged_without = runs.iter().filter(|r| r.3.0 == "diverged").count();
+    assert!(diverged_without >= 4, "{diverged_without} of 8 controls diverged: {runs:?}");
+    for (name, k, _, (_, resolved)) in &runs {
+        assert_eq!(*resolved, 0, "{name}, k = {k}: the control never retries");
+    }
+}

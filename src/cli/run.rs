@@ -194,6 +194,15 @@ fn summarise(finished: &Finished, out: &mut dyn Write) -> Result<(), CliError> {
             )?;
         }
     }
+    if summary.resolved_steps > 0 {
+        writeln!(
+            out,
+            "steps rejected whole (acceptance bounds) and taken whole again with self contacts \
+             every {} bodies: {}",
+            hagfish_sim::RESOLVED_CLUSTER_BODIES,
+            summary.resolved_steps
+        )?;
+    }
     if summary.substepped_steps > 0 {
         writeln!(
             out,

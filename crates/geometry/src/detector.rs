@@ -197,7 +197,21 @@ impl ContactDetector {
         self.clusters.reserve(pairs);
     }
 
-    /// The options this detector was built with.
+    /// Changes the cluster radius (as [`DetectorOptions::cluster_radius`]) without rebuilding
+    /// the detector: the runner retries a rejected step with records kept at the chain's own
+    /// resolution (`hagfish_sim::StepOptions::resolved_cluster_radius`).
+    ///
+    /// # Errors
+    /// [`GeometryError::InvalidOption`] if `radius` is negative or not finite; the detector
+    /// is then unchanged.
+    pub fn set_cluster_radius(&mut self, radius: f64) -> Result<(), GeometryError> {
+        GeometryError::require_non_negative(&[("cluster_radius", radius)])?;
+        self.options.cluster_radius = radius;
+        self.prune = radius >= MIN_PRUNING_RADIUS;
+        Ok(())
+    }
+
+    /// The options this detector uses.
     pub fn options(&self) -> &DetectorOptions {
         &self.options
     }
@@ -542,5 +556,13 @@ mod tests {
                 "{options:?}"
             );
         }
+        let mut detector = ContactDetector::new(DetectorOptions::default()).expect("detector");
+        for radius in [-1.0, f64::NAN] {
+            let rejected = detector.set_cluster_radius(radius);
+            assert!(matches!(rejected, Err(GeometryError::InvalidOption { .. })), "{radius}");
+            assert_eq!(detector.options(), &DetectorOptions::default());
+        }
+        detector.set_cluster_radius(4.0).expect("a valid radius");
+        assert_eq!(detector.options().cluster_radius, 4.0);
     }
 }

@@ -1,7 +1,8 @@
 //! Step acceptance: a step's result is kept only if it is physically valid — self and wall
 //! penetration and joint-limit excess within bounds, an inexact velocity solve with a small
 //! residual (`docs/physics.md`). The bounds are scenario options; a rejected step is retried
-//! by the runner with substeps (`run.rs`).
+//! by the runner, with its contacts at the chain's resolution and then with substeps
+//! (`run.rs`).
 
 use serde::{Deserialize, Serialize};
 
@@ -30,6 +31,10 @@ pub struct StepAcceptance {
     /// How many times a rejected step is halved before the run stops as diverged: h/2, h/4,
     /// …, h/2^k (default 4: down to h/16).
     pub max_halvings: u32,
+    /// Whether a rejected step is first retried whole with its self contacts at the chain's
+    /// resolution ([`crate::StepOptions::resolved_cluster_radius`]; default true). Changes
+    /// nothing on chains whose contacts are already that fine (ES103 and coarser).
+    pub resolve_contacts: bool,
 }
 
 impl Default for StepAcceptance {
@@ -41,6 +46,7 @@ impl Default for StepAcceptance {
             max_inexact_residual: 1e-4,
             max_joint_rate_rad_s: 100.0,
             max_halvings: 4,
+            resolve_contacts: true,
         }
     }
 }

@@ -93,6 +93,10 @@ pub struct Checkpoint {
     pub substepped_steps: u64,
     /// The most substeps of one step so far.
     pub max_substeps: u32,
+    /// Steps retried with contacts at the chain's resolution so far
+    /// ([`crate::RunSummary::resolved_steps`]; 0 in checkpoints written before it existed).
+    #[serde(default)]
+    pub resolved_steps: u64,
     /// Output files and their lengths at this frame (empty when not written by a recorder).
     pub files: Vec<RecordedFile>,
 }
@@ -173,6 +177,7 @@ mod tests {
             maxima: IntervalMaxima { self_penetration: 0.1 + 0.2, ..IntervalMaxima::default() },
             substepped_steps: 3,
             max_substeps: 4,
+            resolved_steps: 2,
             files: vec![RecordedFile { name: "q.npy".into(), bytes: 128 }],
         };
         let dir = std::env::temp_dir().join(format!("hagfish-checkpoint-{}", std::process::id()));

@@ -9,6 +9,13 @@ use crate::acceptance::StepAcceptance;
 use crate::backend::DynamicsBackend;
 use crate::error::SimError;
 
+/// Cluster radius, in bodies, of self contacts at the chain's resolution: 1.5, the
+/// body-relative radius of the 100-body ES103 (`contact_exclusion_diameters`). A finer chain
+/// merges contacts over more bodies (4.7 at 300 bodies), and between two kept records of a
+/// line contact it has joints free to bend into the other strand: on fine chains that is
+/// where steps go deep (docs/physics.md, "Step acceptance and substeps").
+pub const RESOLVED_CLUSTER_BODIES: f64 = 1.5;
+
 /// Everything that shapes a step but is not the body itself. Immutable during a run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct StepOptions {
@@ -89,6 +96,14 @@ impl StepOptions {
         let gap = (self.contact_exclusion_diameters * widest / shortest).round();
         let index_gap = if gap.is_finite() { (gap as usize).max(2) } else { 2 };
         DetectorOptions { index_gap, cluster_radius: 0.1875 * index_gap as f64, ..self.contact }
+    }
+
+    /// The cluster radius (in bodies) of a step retried with contacts at the chain's
+    /// resolution: [`RESOLVED_CLUSTER_BODIES`], or the body-relative radius of
+    /// [`StepOptions::detector_options`] where that is not larger (ES103 and chains of up
+    /// to 101 bodies at its proportions, on which the retry changes nothing).
+    pub fn resolved_cluster_radius(&self, model: &Model) -> f64 {
+        self.detector_options(model).cluster_radius.min(RESOLVED_CLUSTER_BODIES)
     }
 
     /// Checks every scalar option.

@@ -139,6 +139,12 @@ pub const PARAMETERS: &[Parameter] = &[
         "a rejected step is retried as 2, 4, … 2^k substeps; then the run stops (exit 3)",
     ),
     p(
+        "acceptance.resolve_contacts",
+        "-",
+        "true",
+        "a rejected step is first retried whole with self contacts kept every 1.5 bodies (fine chains)",
+    ),
+    p(
         "phases[].Form",
         "-",
         "-",

@@ -7,7 +7,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::rows::RowGroup;
 use glam::DVec3;
-use hagfish_control::{KnotObservation, KnotSpan, PhasedController};
+use hagfish_control::{ControllerState, KnotObservation, KnotSpan, PhasedController};
 use hagfish_knots::{KnotAnalyser, KnotOptions, KnotReport};
 use hagfish_tree::State;
 
@@ -67,6 +67,10 @@ pub struct RunSummary {
     pub substepped_steps: u64,
     /// The most substeps one step needed (1 when none was divided).
     pub max_substeps: u32,
+    /// Steps whose whole-step result was rejected and that were taken again whole, accepted,
+    /// with self contacts at the chain's resolution (`acceptance.resolve_contacts`; in the
+    /// whole run).
+    pub resolved_steps: u64,
     /// The phase still running when the run stopped, if any
     /// ([`hagfish_control::PhasedController::unfinished_phase`]): a run whose duration ends
     /// during its tie says that its knot was never tied.
@@ -160,6 +164,7 @@ pub fn run(
         summary.maxima = checkpoint.maxima;
         summary.substepped_steps = checkpoint.substepped_steps;
         summary.max_substeps = checkpoint.max_substeps;
+        summary.resolved_steps = checkpoint.resolved_steps;
     }
     summary.max_substeps = summary.max_substeps.max(1);
     let scenario = &loaded.scenario;
@@ -255,9 +260,11 @@ impl Recording {
         }
     }
 
-    /// Takes one step of h: whole, or — if the whole step fails or its result is rejected —
-    /// as 2, 4, … 2^k substeps (k = `acceptance.max_halvings`), each accepted, from the same
-    /// start (state and controller). The step's forces and maxima are added once it is taken.
+    /// Takes one step of h: whole; if the whole step fails or its result is rejected, whole
+    /// again with the self contacts at the chain's resolution (`acceptance.resolve_contacts`,
+    /// where that changes them); then as 2, 4, … 2^k substeps (k = `acceptance.max_halvings`),
+    /// each accepted, from the same start (state and controller), still with those contacts.
+    /// The step's forces and maxima are added once it is taken.
     fn advance(
         &mut self,
         world: &mut World,
@@ -265,24 +272,63 @@ impl Recording {
         summary: &mut RunSummary,
     ) -> Result<(), SimError> {
         let saved = controller.state();
-        let dofs = world.model().dof_count();
-        let whole = world.step(controller).copied();
-        let first = match whole {
-            Ok(report) => {
-                self.last_report = report;
-                self.forces.add_step(world.data(), dofs);
-                self.maxima.include(&report, world.max_limit_excess());
-                summary.timings.accumulate(&report.timings);
-                return Ok(());
-            }
+        let first = match self.whole_step(world, controller, summary) {
+            Ok(()) => return Ok(()),
             Err(error) => error,
         };
+        let resolved =
+            world.options().acceptance.resolve_contacts && world.set_resolved_contacts(true)?;
+        let outcome = if resolved {
+            controller.restore(&saved)?;
+            match self.whole_step(world, controller, summary) {
+                Ok(()) => {
+                    summary.resolved_steps += 1;
+                    Ok(())
+                }
+                Err(_) => self.subdivide(world, controller, summary, &saved, first),
+            }
+        } else {
+            self.subdivide(world, controller, summary, &saved, first)
+        };
+        if resolved {
+            world.set_resolved_contacts(false)?;
+        }
+        outcome
+    }
+
+    /// One whole step of h; its forces and maxima are added if it is accepted.
+    fn whole_step(
+        &mut self,
+        world: &mut World,
+        controller: &mut PhasedController,
+        summary: &mut RunSummary,
+    ) -> Result<(), SimError> {
+        let report = *world.step(controller)?;
+        self.last_report = report;
+        self.forces.add_step(world.data(), world.model().dof_count());
+        self.maxima.include(&report, world.max_limit_excess());
+        summary.timings.accumulate(&report.timings);
+        Ok(())
+    }
+
+    /// The step as 2, 4, … 2^k substeps (k = `acceptance.max_halvings`) from the same start
+    /// (state and controller `saved`), the first division whose substeps are all accepted;
+    /// `first` is the whole step's error, reported if none is.
+    fn subdivide(
+        &mut self,
+        world: &mut World,
+        controller: &mut PhasedController,
+        summary: &mut RunSummary,
+        saved: &ControllerState,
+        first: SimError,
+    ) -> Result<(), SimError> {
+        let dofs = world.model().dof_count();
         let h = world.options().time_step;
         let start = world.state().clone();
         let mut last = None;
         for halvings in 1..=world.options().acceptance.max_halvings {
             let divisions = 1u32 << halvings;
-            controller.restore(&saved)?;
+            controller.restore(saved)?;
             self.attempt_forces.clear();
             self.attempt_maxima = IntervalMaxima::default();
             match self.substeps(world, controller, summary, divisions, h) {
@@ -301,7 +347,7 @@ impl Recording {
                 }
             }
         }
-        controller.restore(&saved)?;
+        controller.restore(saved)?;
         Err(match last {
             None => first,
             Some((divisions, last)) => SimError::StepFailedWithSubsteps {
@@ -424,6 +470,7 @@ impl Recording {
             maxima,
             substepped_steps: summary.substepped_steps,
             max_substeps: summary.max_substeps,
+            resolved_steps: summary.resolved_steps,
             files: Vec::new(),
         }
     }

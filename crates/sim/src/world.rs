@@ -168,6 +168,28 @@ impl World {
         Ok(&self.data.report)
     }
 
+    /// Switches self-contact detection between the body-relative cluster radius (`false`, as
+    /// built) and the chain's resolution (`true`,
+    /// [`StepOptions::resolved_cluster_radius`]), and detects the current state's contacts
+    /// again. Returns false, doing nothing, on chains whose body-relative radius is already
+    /// that fine (ES103 and coarser).
+    pub fn set_resolved_contacts(&mut self, resolved: bool) -> Result<bool, SimError> {
+        let coarse = self.options.detector_options(&self.model).cluster_radius;
+        let fine = self.options.resolved_cluster_radius(&self.model);
+        if fine >= coarse {
+            return Ok(false);
+        }
+        let (step, time) = (self.steps, self.state.t);
+        let radius = if resolved { fine } else { coarse };
+        self.data.detector.set_cluster_radius(radius).map_err(|source| SimError::Geometry {
+            step,
+            time,
+            source,
+        })?;
+        self.prepare()?;
+        Ok(true)
+    }
+
     /// Counts a step made of substeps ([`World::substep`]) as taken.
     pub fn count_step(&mut self) {
         self.steps += 1;

@@ -27,6 +27,7 @@ fn checkpoint() -> Checkpoint {
         maxima: IntervalMaxima { self_penetration: 0.01, ..IntervalMaxima::default() },
         substepped_steps: 1,
         max_substeps: 2,
+        resolved_steps: 1,
         files: vec![RecordedFile { name: "q.npy".into(), bytes: 128 + 8 * 150 * 42 }],
     }
 }

@@ -7,7 +7,7 @@
 use glam::DVec3;
 use hagfish_control::PhasedController;
 use hagfish_geometry::{Centreline, ContactDetector, DetectorOptions, closest_points};
-use hagfish_sim::{LoadedScenario, StepData, StepOptions, World};
+use hagfish_sim::{LoadedScenario, Override, StepData, StepOptions, World};
 use hagfish_tree::State;
 
 fn forming_world(self_contact: bool) -> (World, PhasedController) {
@@ -163,4 +163,73 @@ fn records_are_as_deep_as_the_search_from_every_start() {
     });
     println!("{contacts} contacts of the full search; records at most {worst:.1e} cm shallower");
     assert!(contacts > 1000, "the trajectory must be tangled: {contacts}");
+}
+
+/// `form.ron` on ES103 at `body_count` bodies, built as [`forming_world`].
+fn forming_world_of(body_count: usize) -> (World, PhasedController) {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
+    let text = std::fs::read_to_string(format!("{root}/data/hagfish/es103.ron")).expect("es103");
+    assert!(text.contains(" body_count: 100"));
+    let body = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("es103_{body_count}_bodies.ron"));
+    let text = text.replace(" body_count: 100", &format!(" body_count: {body_count}"));
+    std::fs::write(&body, text).expect("write the body");
+    let set = Override::parse(&format!("body={:?}", body.to_string_lossy())).expect("override");
+    let loaded = LoadedScenario::load_with(format!("{root}/data/scenarios/form.ron"), &[set])
+        .expect("form.ron loads");
+    let model = loaded.body.to_model().expect("model");
+    let state = State::rest(&model);
+    let world = World::new(model, StepOptions::default(), state).expect("world");
+    let controller = PhasedController::new(loaded.scenario.drag, loaded.scenario.phases.clone());
+    (world, controller)
+}
+
+#[test]
+fn a_fine_chain_resolves_its_contacts_every_one_and_a_half_bodies_on_request() {
+    // ES103's body-relative cluster radius is already 1.5 bodies: nothing to resolve.
+    let (mut es103, _) = forming_world_of(100);
+    assert!(!es103.set_resolved_contacts(true).expect("ES103"));
+    // At 300 bodies it is 4.7 bodies; step the forming knot to 20 s, where strands lie along
+    // each other.
+    let (mut world, mut controller) = forming_world_of(300);
+    let coarse_radius = world.options().detector_options(world.model()).cluster_radius;
+    assert!((coarse_radius - 4.6875).abs() < 1e-12, "{coarse_radius}");
+    while world.state().t < 20.0 {
+        world.step(&mut controller).expect("step");
+    }
+    // The contacts a step from that state works with (detected at its start), with the
+    // body-relative radius, resolved, and body-relative again.
+    let (start, saved) = (world.state().clone(), controller.state());
+    let mut contacts_of_a_step = |world: &mut World, resolved: Option<bool>| {
+        world.set_state(start.clone()).expect("the start state");
+        if let Some(resolved) = resolved {
+            assert!(world.set_resolved_contacts(resolved).expect("switch the radius"));
+        }
+        controller.restore(&saved).expect("the controller");
+        world.step(&mut controller).expect("step");
+        world.data().self_contacts.clone()
+    };
+    let coarse = contacts_of_a_step(&mut world, None);
+    let resolved = contacts_of_a_step(&mut world, Some(true));
+    let coarse_again = contacts_of_a_step(&mut world, Some(false));
+    println!("{} contacts at 4.7 bodies, {} at 1.5", coarse.len(), resolved.len());
+    assert!(resolved.len() > coarse.len());
+    // The same deepest record; every coarse record within the coarse radius of a resolved
+    // one; no two resolved records within 1.5 bodies of each other in both parameters.
+    let deepest =
+        |c: &[hagfish_geometry::SelfContact]| c.iter().map(|c| c.gap).fold(f64::MAX, f64::min);
+    assert_eq!(deepest(&coarse), deepest(&resolved));
+    let within = |a: &hagfish_geometry::SelfContact, b: &hagfish_geometry::SelfContact, r: f64| {
+        (a.u_a - b.u_a).abs() <= r && (a.u_b - b.u_b).abs() <= r
+    };
+    for c in &coarse {
+        assert!(resolved.iter().any(|r| within(c, r, coarse_radius)), "{c:?} is not covered");
+    }
+    for (i, a) in resolved.iter().enumerate() {
+        for b in &resolved[i + 1..] {
+            assert!(!within(a, b, hagfish_sim::RESOLVED_CLUSTER_BODIES), "{a:?} and {b:?}");
+        }
+    }
+    // Back to the body-relative radius: the very same records as before.
+    assert_eq!(coarse_again, coarse);
 }
