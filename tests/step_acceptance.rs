@@ -169,10 +169,16 @@ impl FineChain {
     }
 }
 
-/// Runs `thesis.ron` on `chain` at δh/h = `k`·10⁻¹² with `extra` overrides; returns the status
-/// and the number of steps retried with resolved contacts.
-fn run_fine_chain(dir: &Path, chain: &FineChain, k: u32, extra: &[&str]) -> (String, u64) {
-    let body = common::es103_with(dir, chain.name, &chain.edits);
+/// Runs `thesis.ron` on `chain` (its body file written at `body`) at δh/h = `k`·10⁻¹² with
+/// `extra` overrides; returns the status and the number of steps retried with resolved
+/// contacts.
+fn run_fine_chain(
+    dir: &Path,
+    chain: &FineChain,
+    body: &Path,
+    k: u32,
+    extra: &[&str],
+) -> (String, u64) {
     let out = dir.join(format!("{}_{k}_{}", chain.name, extra.len()));
     let h = chain.time_step_s * (1.0 + f64::from(k) * 1e-12);
     let mut args = vec![
@@ -234,16 +240,19 @@ fn fine_chains_keep_their_slide_with_contacts_retried_at_their_resolution() {
         ),
     ];
     let dir = fresh_dir("acceptance_fine_chains");
+    let bodies: Vec<_> =
+        chains.iter().map(|c| common::es103_with(&dir, c.name, &c.edits)).collect();
     let runs: Vec<(&str, u32, (String, u64), (String, u64))> = std::thread::scope(|scope| {
         let handles: Vec<_> = chains
             .iter()
-            .flat_map(|chain| (0..4).map(move |k| (chain, k)))
-            .map(|(chain, k)| {
+            .zip(&bodies)
+            .flat_map(|(chain, body)| (0..4).map(move |k| (chain, body, k)))
+            .map(|(chain, body, k)| {
                 let dir = &dir;
                 scope.spawn(move || {
-                    let with = run_fine_chain(dir, chain, k, &[]);
+                    let with = run_fine_chain(dir, chain, body, k, &[]);
                     let without =
-                        run_fine_chain(dir, chain, k, &["acceptance.resolve_contacts=false"]);
+                        run_fine_chain(dir, chain, body, k, &["acceptance.resolve_contacts=false"]);
                     (chain.name, k, with, without)
                 })
             })
