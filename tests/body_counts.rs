@@ -16,12 +16,18 @@ fn thesis_with_bodies(dir: &Path, bodies: usize, duration_s: f64) -> PathBuf {
     std::fs::write(&body_path, body).expect("write body");
     let scenario =
         std::fs::read_to_string(format!("{ROOT}/data/scenarios/thesis.ron")).expect("thesis");
+    let duration = line_starting(&scenario, "    duration_s: ");
     let scenario = scenario
         .replace("\"../hagfish/es103.ron\"", &format!("{:?}", body_path.display().to_string()))
-        .replace("duration_s: 30.0,", &format!("duration_s: {duration_s:?},"));
+        .replace(&duration, &format!("    duration_s: {duration_s:?},"));
     let path = dir.join(format!("thesis_{bodies}.ron"));
     std::fs::write(&path, scenario).expect("write scenario");
     path
+}
+
+/// The whole line of `text` that starts with `start`.
+fn line_starting(text: &str, start: &str) -> String {
+    text.lines().find(|l| l.starts_with(start)).unwrap_or_else(|| panic!("no {start:?}")).to_owned()
 }
 
 /// Runs the thesis scenario's first `duration_s` on `bodies` bodies and checks that it
@@ -59,7 +65,7 @@ fn a_thousand_bodies_run_the_thesis_scenario() {
 
 /// 100 000 bodies (the largest count a biometrics file may give) need ≈ 3.6 TB of step
 /// buffers on the dense backend: refused with exit 2 and the estimate, in well under a second
-/// of model building. (The sparse backend, the default, needs memory linear in the bodies.)
+/// of model building. (The sparse backend needs memory linear in the bodies.)
 #[test]
 fn a_body_too_large_for_the_memory_is_refused_with_its_estimate() {
     let dir = fresh_dir("bodies_100000");

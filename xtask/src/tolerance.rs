@@ -7,7 +7,8 @@
 //! (plus 1e-9 of its magnitude, for metrics that rounding does not move at all), so each
 //! tolerance is as wide as rounding makes that metric move in that scenario, and no wider: a
 //! small metric is not checked to ±100 % as a fixed relative rule with a floor would do.
-//! The step count is exact; the final-state digest is exact on the blessed platform only.
+//! The step count is a number like the others (exact where rounding does not move it: a run of
+//! fixed duration); the final-state digest is exact on the blessed platform only.
 
 use crate::metrics::{Value, parse_runs};
 
@@ -39,14 +40,16 @@ pub enum Tolerance {
 
 /// The spread of a metric over perturbed runs: the largest |perturbed − golden| for numbers,
 /// the largest difference of a knot run's frame count for knot sequences, 0 for values that
-/// are missing in every run or for the step count and digest (compared exactly).
+/// are missing in every run or for the digest (compared on the blessed platform only). The
+/// step count is a number like the others: exact (spread 0) for a run of fixed duration, and
+/// spread over the perturbed runs where the run ends with its phases (`end_after_phases`).
 ///
 /// # Errors
 /// A perturbed run whose value is of another kind (a number where the golden has none) or
 /// whose knot sequence has other names: the scenario's behaviour depends on rounding, which
 /// no tolerance can accept honestly.
 pub fn spread(name: &str, golden: &Value, perturbed: &[Value]) -> Result<f64, String> {
-    if matches!(name, "steps" | "digest") {
+    if name == "digest" {
         return Ok(0.0);
     }
     let mut worst = 0.0_f64;
@@ -74,7 +77,6 @@ pub fn spread(name: &str, golden: &Value, perturbed: &[Value]) -> Result<f64, St
 pub fn tolerance(name: &str, golden: &Value, spread: f64) -> Tolerance {
     match (name, golden) {
         ("digest", _) => Tolerance::Digest,
-        ("steps", _) => Tolerance::Exact,
         ("knots", _) => {
             Tolerance::Runs(((SPREAD_FACTOR * spread).ceil() as usize).max(MIN_FRAME_BOUND))
         }
@@ -164,6 +166,18 @@ mod tests {
         assert_eq!(runs.accepts(&golden, &Text("0_1*120 3_1*181".into()), true), Some(false));
         assert_eq!(runs.accepts(&golden, &Text("0_1*301".into()), true), Some(false));
         assert_eq!(runs.accepts(&golden, &Text("0_1*100 4_1*201".into()), true), Some(false));
+    }
+
+    #[test]
+    fn the_step_count_is_exact_unless_the_run_ends_with_its_phases() {
+        let fixed = tolerance("steps", &Number(3000.0), 0.0);
+        assert_eq!(fixed.accepts(&Number(3000.0), &Number(3000.0), true), Some(true));
+        assert_eq!(fixed.accepts(&Number(3000.0), &Number(3001.0), true), Some(false));
+        let golden = Number(2471.0);
+        let spread = spread("steps", &golden, &[Number(2441.0), Number(2421.0)]).expect("spread");
+        let ended = tolerance("steps", &golden, spread);
+        assert_eq!(ended.accepts(&golden, &Number(2400.0), true), Some(true));
+        assert_eq!(ended.accepts(&golden, &Number(2300.0), true), Some(false));
     }
 
     #[test]
