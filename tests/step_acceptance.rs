@@ -169,16 +169,13 @@ impl FineChain {
     }
 }
 
+/// A run's status and its number of steps retried with resolved contacts.
+type Outcome = (String, u64);
+
 /// Runs `thesis.ron` on `chain` (its body file written at `body`) at δh/h = `k`·10⁻¹² with
 /// `extra` overrides; returns the status and the number of steps retried with resolved
 /// contacts.
-fn run_fine_chain(
-    dir: &Path,
-    chain: &FineChain,
-    body: &Path,
-    k: u32,
-    extra: &[&str],
-) -> (String, u64) {
+fn run_fine_chain(dir: &Path, chain: &FineChain, body: &Path, k: u32, extra: &[&str]) -> Outcome {
     let out = dir.join(format!("{}_{k}_{}", chain.name, extra.len()));
     let h = chain.time_step_s * (1.0 + f64::from(k) * 1e-12);
     let mut args = vec![
@@ -202,7 +199,12 @@ fn run_fine_chain(
     assert!(matches!(code, Some(0 | 3)), "{}, k = {k}: exit {code:?}: {stderr}", chain.name);
     let run = manifest(&out);
     let status = run["status"].as_str().expect("a status").to_owned();
-    (status, run["resolved_contact_steps"].as_u64().expect("a count"))
+    let resolved = run["resolved_contact_steps"].as_u64().expect("a count");
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    let said = stdout
+        .contains(&format!("taken whole again with self contacts every 1.5 bodies: {resolved}"));
+    assert_eq!(said, resolved > 0 && status == "completed", "{}, k = {k}: {stdout}", chain.name);
+    (status, resolved)
 }
 
 #[test]
@@ -242,7 +244,7 @@ fn fine_chains_keep_their_slide_with_contacts_retried_at_their_resolution() {
     let dir = fresh_dir("acceptance_fine_chains");
     let bodies: Vec<_> =
         chains.iter().map(|c| common::es103_with(&dir, c.name, &c.edits)).collect();
-    let runs: Vec<(&str, u32, (String, u64), (String, u64))> = std::thread::scope(|scope| {
+    let runs: Vec<(&str, u32, Outcome, Outcome)> = std::thread::scope(|scope| {
         let handles: Vec<_> = chains
             .iter()
             .zip(&bodies)
