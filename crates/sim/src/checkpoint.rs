@@ -192,6 +192,7 @@ mod tests {
         assert_eq!(back.state().t.to_bits(), 0.7000000000000005f64.to_bits());
         assert_eq!(back.maxima, checkpoint.maxima);
         assert_eq!(back.files, checkpoint.files);
+        std::fs::remove_dir_all(&dir).map_err(|source| SimError::Output { path: dir, source })?;
         Ok(())
     }
 }

@@ -167,6 +167,8 @@ mod tests {
         std::fs::write(&path, &bytes)
             .map_err(|source| SimError::Output { path: path.clone(), source })?;
         assert_eq!(read_npy(&path)?.rows, 3);
+        drop(writer);
+        std::fs::remove_dir_all(&dir).map_err(|source| SimError::Output { path: dir, source })?;
         Ok(())
     }
 }

@@ -36,7 +36,7 @@ fn checkpoint() -> Checkpoint {
 fn written() -> &'static [u8] {
     static BYTES: std::sync::OnceLock<Vec<u8>> = std::sync::OnceLock::new();
     BYTES.get_or_init(|| {
-        let dir = std::env::temp_dir().join(format!("hagfish-corruption-{}", std::process::id()));
+        let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("checkpoint_corruption");
         std::fs::create_dir_all(&dir).expect("a temporary directory");
         let path = dir.join(CHECKPOINT_FILE);
         checkpoint().write(&path).expect("written");
@@ -63,8 +63,13 @@ fn damage() -> impl Strategy<Value = Damage> {
     ]
 }
 
+/// Applies `damage` to `bytes`; an earlier truncation may have left nothing to flip, cut or
+/// delete, and then only an insertion changes them.
 fn apply(bytes: &mut Vec<u8>, damage: &Damage) {
     let len = bytes.len();
+    if len == 0 && !matches!(damage, Damage::Insert { .. }) {
+        return;
+    }
     match damage {
         Damage::Flip { at, bit } => bytes[at % len] ^= 1 << bit,
         Damage::Truncate { keep } => bytes.truncate(keep % len),
@@ -89,7 +94,7 @@ proptest! {
             apply(&mut bytes, d);
         }
         prop_assume!(bytes != written());
-        let dir = std::env::temp_dir().join(format!("hagfish-damaged-{}", std::process::id()));
+        let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("checkpoint_damaged");
         std::fs::create_dir_all(&dir).expect("a temporary directory");
         let path = dir.join(CHECKPOINT_FILE);
         std::fs::write(&path, &bytes).expect("write");
