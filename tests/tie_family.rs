@@ -408,7 +408,7 @@ fn a_run_that_ends_before_its_knot_is_tied_says_so() {
     let args = ["run", &scenario, "--quiet", "--out", &out, "--set", "duration_s=3"];
     let output = run_hagfish(args);
     assert!(output.status.success(), "{}", code_and_stderr(&output).1);
-    let unfinished = "tie (3_1 not tied, attempt 1 of 2)";
+    let unfinished = "tie (3_1 not tied, attempt 1 of 3)";
     let stdout = String::from_utf8_lossy(&output.stdout);
     assert!(stdout.contains(&format!("the duration ended in phase {unfinished}")), "{stdout}");
     let manifest = common::manifest(&dir);
