@@ -1,30 +1,76 @@
-//! Test helpers: small files written into a per-process temporary directory, a small
-//! centreline and a small run directory.
+//! Test helpers: small files written into temporary directories that remove themselves, a
+//! small centreline and a small run directory.
 
 use std::fmt::Write as _;
-use std::path::PathBuf;
+use std::ops::Deref;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use hagfish_sim::{CENTRELINE_HEADER, FORCES_HEADER, METRICS_HEADER};
 
 use crate::centreline::Centreline;
 
-/// A fresh directory `name` in this process's temporary test directory.
-pub fn dir(name: &str) -> PathBuf {
-    let dir =
-        std::env::temp_dir().join(format!("hagfish-report-test-{}", std::process::id())).join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
+/// A temporary directory, removed with everything in it when dropped.
+pub struct TestDir(PathBuf);
+
+impl Deref for TestDir {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.0
+    }
 }
 
-/// Writes `text` to `name` in a directory of its own (tests run in parallel and may use the
-/// same file names) and returns its path.
-pub fn write(name: &str, text: &str) -> PathBuf {
-    static WRITTEN: AtomicUsize = AtomicUsize::new(0);
-    let path = dir(&format!("file-{}", WRITTEN.fetch_add(1, Ordering::Relaxed))).join(name);
+impl AsRef<Path> for TestDir {
+    fn as_ref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for TestDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+/// A file in a [`TestDir`] of its own, removed with it.
+pub struct TestFile {
+    path: PathBuf,
+    _dir: TestDir,
+}
+
+impl Deref for TestFile {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.path
+    }
+}
+
+impl AsRef<Path> for TestFile {
+    fn as_ref(&self) -> &Path {
+        &self.path
+    }
+}
+
+/// A fresh directory for `name`, unique to this process and call (tests run in parallel).
+pub fn dir(name: &str) -> TestDir {
+    static MADE: AtomicUsize = AtomicUsize::new(0);
+    let unique = format!(
+        "hagfish-report-test-{}-{}-{name}",
+        std::process::id(),
+        MADE.fetch_add(1, Ordering::Relaxed)
+    );
+    let dir = std::env::temp_dir().join(unique);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    TestDir(dir)
+}
+
+/// Writes `text` to `name` in a directory of its own and returns the file.
+pub fn write(name: &str, text: &str) -> TestFile {
+    let dir = dir("file");
+    let path = dir.join(name);
     std::fs::write(&path, text).expect("write a test file");
-    path
+    TestFile { path, _dir: dir }
 }
 
 /// A centreline of 3 bodies in 2 frames (t = 0 and 0.5 s): straight along x, then bent.
@@ -44,7 +90,7 @@ pub fn two_frames() -> Centreline {
 }
 
 /// A run directory of 3 frames of 4 bodies with the headers `hagfish run` writes.
-pub fn synthetic(name: &str) -> PathBuf {
+pub fn synthetic(name: &str) -> TestDir {
     let dir = dir(name);
     let (mut centreline, mut metrics, mut forces) = (
         format!("{CENTRELINE_HEADER}\n"),
