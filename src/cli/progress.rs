@@ -1,5 +1,5 @@
 //! Progress of `hagfish run` on stderr: a bar on a terminal (simulated time of the duration,
-//! phase, knot, steps per second), plain lines otherwise (one per simulated second, or after
+//! or of its cap for a run that ends with its phases; phase, knot, steps per second), plain lines otherwise (one per simulated second, or after
 //! 2 s of wall time), nothing with `--quiet`.
 
 use std::io::{IsTerminal, Write};
@@ -50,11 +50,7 @@ impl Reporter {
         let first = *self.first_steps.get_or_insert(p.steps);
         let elapsed = self.started.elapsed().as_secs_f64();
         let rate = if elapsed > 0.0 { (p.steps - first) as f64 / elapsed } else { 0.0 };
-        let knot = p.knot.map_or("?".to_string(), |k| format!("{} ({:.2})", k.knot, k.agreement));
-        let message = format!(
-            "t = {:6.2} / {:.2} s  phase {:6}  knot {knot}  {rate:.0} steps/s",
-            p.time, p.duration, p.phase
-        );
+        let message = message(p, rate);
         match &mut self.mode {
             Mode::Quiet => {}
             Mode::Bar(bar) => {
@@ -78,5 +74,42 @@ impl Reporter {
         if let Mode::Bar(bar) = &self.mode {
             bar.finish_and_clear();
         }
+    }
+}
+
+/// One progress line: simulated time against the duration (or its cap, for a run that ends
+/// with its phases), phase, knot and steps per second.
+fn message(p: &Progress<'_>, rate: f64) -> String {
+    let knot = p.knot.map_or("?".to_string(), |k| format!("{} ({:.2})", k.knot, k.agreement));
+    let horizon = if p.ends_with_phases {
+        format!("(ends with its phases, at most {:.2} s)", p.duration)
+    } else {
+        format!("/ {:.2} s", p.duration)
+    };
+    format!("t = {:6.2} {horizon}  phase {:6}  knot {knot}  {rate:.0} steps/s", p.time, p.phase)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_run_that_ends_with_its_phases_shows_its_duration_as_a_cap() {
+        let mut p = Progress {
+            time: 12.3,
+            duration: 90.0,
+            ends_with_phases: true,
+            frames: 123,
+            steps: 1230,
+            knot: None,
+            phase: "slide",
+        };
+        let capped = message(&p, 900.0);
+        assert_eq!(
+            capped,
+            "t =  12.30 (ends with its phases, at most 90.00 s)  phase slide   knot ?  900 steps/s"
+        );
+        p.ends_with_phases = false;
+        assert!(message(&p, 900.0).starts_with("t =  12.30 / 90.00 s  phase slide"));
     }
 }

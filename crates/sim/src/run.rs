@@ -18,7 +18,7 @@ use crate::forces::{GroupForces, dof_labels};
 use crate::knot_core::KnotCore;
 use crate::recorder::{Frame, FrameSink, IntervalMaxima};
 use crate::report::{StageTimings, StepReport};
-use crate::scenario::LoadedScenario;
+use crate::scenario::{LoadedScenario, Scenario};
 use crate::world::World;
 
 /// Progress of a run, given to the caller after every recorded frame.
@@ -26,8 +26,11 @@ use crate::world::World;
 pub struct Progress<'a> {
     /// Simulated time (s).
     pub time: f64,
-    /// Total simulated time of the run (s).
+    /// Total simulated time of the run (s); at most that when `ends_with_phases`.
     pub duration: f64,
+    /// Whether the run ends once its phases have (`end_after_phases`), `duration` being only
+    /// a cap.
+    pub ends_with_phases: bool,
     /// Frames recorded so far (in the whole run, before a resume included).
     pub frames: usize,
     /// Steps taken so far (in the whole run).
@@ -180,14 +183,7 @@ pub fn run(
     let mut record = options.resume.is_none();
     let end = loop {
         if record {
-            recording.frame(
-                &mut world,
-                &mut controller,
-                &mut summary,
-                sink,
-                progress,
-                scenario.duration_s,
-            )?;
+            recording.frame(&mut world, &mut controller, &mut summary, sink, progress, scenario)?;
             let stop = options.stop_after_frame.is_some_and(|k| summary.frames > k)
                 || options.stop.is_some_and(|flag| flag.load(Ordering::Relaxed));
             if stop && world.steps() < steps {
@@ -388,7 +384,7 @@ impl Recording {
         summary: &mut RunSummary,
         sink: &mut dyn FrameSink,
         progress: &mut dyn FnMut(&Progress<'_>),
-        duration: f64,
+        scenario: &Scenario,
     ) -> Result<(), SimError> {
         world.body_centres(&mut self.centres);
         let knot = self.knots.analyse(&self.centres, &self.knot_options).ok();
@@ -436,7 +432,8 @@ impl Recording {
         sink.checkpoint(&mut self.checkpoint(world, controller, summary))?;
         progress(&Progress {
             time: world.state().t,
-            duration,
+            duration: scenario.duration_s,
+            ends_with_phases: scenario.end_after_phases,
             frames: summary.frames,
             steps: world.steps(),
             knot: knot.as_ref(),
