@@ -46,9 +46,6 @@ const MAX_JOINT_DOFS: usize = 6;
 /// ([`TreeFactor::solve_lower_lanes`]): the factor is read once for all of them.
 pub(crate) const LANES: usize = 4;
 
-/// A spatial vector per lane: component c (in the order of [`to_array`]) of lane k at `[c][k]`.
-type SpatialLanes = [[f64; LANES]; 6];
-
 /// The factor of one step's maximal-coordinate system. Create once per model with
 /// [`TreeFactor::new`] (the symbolic part), then per step [`TreeFactor::assemble`] and
 /// [`TreeFactor::factor`]; it never allocates after construction.
@@ -77,8 +74,11 @@ pub struct TreeFactor {
     factored: bool,
     /// Per-body spatial scratch of the passes.
     scratch: RefCell<Vec<Spatial>>,
-    /// Per-body scratch of the batched leaf-to-root pass (the bias `p` of each lane).
-    lane_bias: RefCell<Vec<SpatialLanes>>,
+    /// Per-body scratch of the batched leaf-to-root pass: the bias `p` of each of its K
+    /// lanes, component c (in the order of [`to_array`]) of lane k of body i at
+    /// `[(6i + c)K + k]`; a pass of K lanes uses (and clears) only its first 6·bodies·K
+    /// entries, so a single column does not sweep the room of [`LANES`].
+    lane_bias: RefCell<Vec<f64>>,
     /// Interleaved columns of the batched pass, n × [`LANES`] (see `operator.rs`).
     lane_columns: RefCell<Vec<f64>>,
 }
@@ -108,7 +108,7 @@ impl TreeFactor {
             pivots: vec![[0.0; MAX_JOINT_DOFS]; n],
             factored: false,
             scratch: RefCell::new(vec![Spatial::ZERO; nb]),
-            lane_bias: RefCell::new(vec![[[0.0; LANES]; 6]; nb]),
+            lane_bias: RefCell::new(vec![0.0; 6 * nb * LANES]),
             lane_columns: RefCell::new(vec![0.0; n * LANES]),
         })
     }
@@ -220,8 +220,10 @@ impl TreeFactor {
     pub(crate) fn solve_lower_lanes<const K: usize>(&self, x: &mut [[f64; K]], support: usize) {
         const { assert!(K <= LANES) };
         let bodies = support.checked_sub(1).map_or(0, |last| self.dof_bodies[last] + 1);
-        let mut bias = self.lane_bias.borrow_mut();
-        bias[..bodies].fill([[0.0; LANES]; 6]);
+        let mut storage = self.lane_bias.borrow_mut();
+        let (bias, _) = storage[..6 * bodies * K].as_chunks_mut::<K>();
+        let (bias, _) = bias.as_chunks_mut::<6>();
+        bias.fill([[0.0; K]; 6]);
         for body in (0..bodies).rev() {
             let range = self.dofs[body].clone();
             let p = bias[body];
