@@ -1,6 +1,7 @@
 //! Progress of `hagfish run` on stderr: a bar on a terminal (simulated time of the duration,
-//! or of its cap for a run that ends with its phases; phase, knot, steps per second), plain lines otherwise (one per simulated second, or after
-//! 2 s of wall time), nothing with `--quiet`.
+//! or of its cap for a run that ends with its phases; phase, knot, steps per second), plain
+//! lines otherwise (one per simulated second, or after 2 s of wall time), nothing with
+//! `--quiet`.
 
 use std::io::{IsTerminal, Write};
 use std::time::{Duration, Instant};

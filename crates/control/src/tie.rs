@@ -273,8 +273,9 @@ impl TiePhase {
     ///   (writhe ≈ +2.3 on ES103); the left-handed one is the mirror image in z (under first);
     /// - figure-eight: wrap the loop's own strand tail-ward of the crossover, at
     ///   `a + FIGURE_EIGHT_WRAP` (under it to 4.7 r on the first side, up to 3.5 r above),
-    ///   then thread the loop from above (3.5 r above its centroid, 3.5 r below, 6 r further). Wrapping the standing part
-    ///   head-ward of the crossover instead ties a trefoil (measured at `a − 0.04`, `a − 0.08`);
+    ///   then thread the loop from above (3.5 r above its centroid, 3.5 r below, 6 r
+    ///   further). Wrapping the standing part head-ward of the crossover instead ties a
+    ///   trefoil (measured at `a − 0.04`, `a − 0.08`);
     /// - then hold 1 s.
     pub fn script(&self) -> FormingScript {
         let z = match self.knot {
