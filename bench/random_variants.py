@@ -101,19 +101,22 @@ def judge(out):
     start = number(rows[tied], "knot_core_start_L")
     penetration = max(number(r, "max_self_penetration_rel") for r in rows)
     excess = max(number(r, "max_limit_excess_deg") for r in rows)
-    checks = [
-        manifest["status"] == "completed",
-        held >= 0.99,
-        start >= 0.35,
-        travel >= 0.25,
-        nearest <= 0.05,
-        penetration < 0.02,
-        excess < 0.5,
-    ]
+    checks = {
+        "completed": manifest["status"] == "completed",
+        "held": held >= 0.99,
+        "tied at": start >= 0.35,
+        "travel": travel >= 0.25,
+        "nearest": nearest <= 0.05,
+        "penetration": penetration < 0.02,
+        "limit excess": excess < 0.5,
+    }
+    failed = [name for name, passed in checks.items() if not passed]
     text = (f"{manifest['status']}, held {held:.3f}, tied at {start:.3f} L, travel {travel:.3f} L,"
-            f" nearest {nearest:.3f} L, penetration {100 * penetration:.2f} %,"
+            f" nearest {nearest:.3f} L, penetration {100 * penetration:.4f} %,"
             f" limit excess {excess:.2f}°")
-    return all(checks), text
+    if failed:
+        text += f" (failed: {', '.join(failed)})"
+    return not failed, text
 
 
 def run(scenario, sets, work, index, v):
