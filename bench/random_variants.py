@@ -9,7 +9,8 @@ drag), length 35–50 cm (mass ∝ length), circumferences ×0.85–1.15, stiffn
 A variant passes when the run completes, the trefoil holds on ≥ 99 % of the frames after
 tying, its core's head-ward end is ≥ 0.35 L from the head when tied, the core's midpoint
 travels ≥ 0.25 L over the slide, its head-ward end comes within 0.05 L of the head, self
-penetration stays below 2 % of the local radius and no joint passes its limit by 0.5°.
+penetration stays below 2 % of the local radius and no joint passes its limit by 0.5°; a
+failing variant's line names the checks it fails.
 
 Usage (from the workspace root, after `cargo build --release`):
     python3 bench/random_variants.py [--seed S] [--count N] [--jobs J] [--scenario FILE]
