@@ -1,6 +1,7 @@
 //! The thesis scenario on bodies of other sizes (issue 16, scale limits): every index rule is
 //! body-relative, so 200 and 1000 bodies start and run its first second; a body too large for
-//! the machine's memory is refused with exit 2 before anything large is allocated.
+//! the machine's memory is refused with exit 2 before anything large is allocated. On the
+//! dense backend (the default) the summary of such a run names the sparse backend.
 
 mod common;
 
@@ -51,6 +52,8 @@ fn runs_first_second(bodies: usize, duration_s: f64) {
     assert_eq!(rows.len(), frames * bodies, "{bodies} bodies: every body of every frame");
     let summary = String::from_utf8_lossy(&output.stdout).into_owned();
     assert!(summary.contains("max wall penetration 0.0000 cm"), "{summary}");
+    let hint = format!("{bodies} bodies on the dense backend");
+    assert!(summary.contains(&hint), "the summary names the sparse backend: {summary}");
 }
 
 #[test]

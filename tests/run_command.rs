@@ -11,12 +11,14 @@ fn run_form(name: &str) -> PathBuf {
     let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
     let _ = std::fs::remove_dir_all(&out);
     let scenario = concat!(env!("CARGO_MANIFEST_DIR"), "/data/scenarios/form.ron");
-    let status = Command::new(env!("CARGO_BIN_EXE_hagfish"))
+    let output = Command::new(env!("CARGO_BIN_EXE_hagfish"))
         .args(["run", scenario, "--quiet", "--out"])
         .arg(&out)
-        .status()
+        .output()
         .expect("hagfish runs");
-    assert!(status.success(), "exit status {status}");
+    assert!(output.status.success(), "exit status {}", output.status);
+    let summary = String::from_utf8_lossy(&output.stdout);
+    assert!(!summary.contains("dense backend"), "no backend hint at 100 bodies: {summary}");
     out
 }
 
