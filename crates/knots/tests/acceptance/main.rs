@@ -7,4 +7,5 @@ mod errors;
 mod hagfish;
 mod hagfish_curve;
 mod invariance;
+mod plat_path;
 mod unknots;
