@@ -45,12 +45,9 @@ pub fn code_and_stderr(output: &Output) -> (Option<i32>, String) {
 /// ES103's biometrics file with `edits` (text replacements) applied, written into `dir` as
 /// `name.ron`.
 pub fn es103_with(dir: &Path, name: &str, edits: &[(&str, String)]) -> PathBuf {
-    let mut text =
+    let es103 =
         std::fs::read_to_string(format!("{ROOT}/data/hagfish/es103.ron")).expect("es103.ron");
-    for (from, to) in edits {
-        assert!(text.contains(from), "{from} is in es103.ron");
-        text = text.replace(from, to);
-    }
+    let text = hagfish_bench_support::edited(&es103, edits).unwrap_or_else(|e| panic!("{e}"));
     let path = dir.join(format!("{name}.ron"));
     std::fs::write(&path, text).expect("write a body");
     path
@@ -58,10 +55,7 @@ pub fn es103_with(dir: &Path, name: &str, edits: &[(&str, String)]) -> PathBuf {
 
 /// The edits of ES103 to a body `length_cm` long, its mass in proportion.
 pub fn es103_length(length_cm: f64) -> Vec<(&'static str, String)> {
-    vec![
-        ("length_cm: 42.4", format!("length_cm: {length_cm}")),
-        ("mass_g: 80.0", format!("mass_g: {}", 80.0 * length_cm / 42.4)),
-    ]
+    hagfish_bench_support::length_edits(length_cm)
 }
 
 /// `manifest.json` of a run directory.

@@ -10,6 +10,7 @@
 //! - `validate`: runs the checks against elastic-rod theory (`hagfish-validation`) and prints
 //!   the table of `docs/validation.md`; fails if a check is outside its tolerance.
 
+mod family;
 mod golden;
 mod knotted;
 mod metrics;
@@ -72,6 +73,26 @@ enum Task {
     },
     /// Runs the checks against elastic-rod theory and prints their table (Markdown).
     Validate,
+    /// Runs a knot scenario on the family of bodies and time steps (ES103 and 15 variants)
+    /// and prints its knot table (Markdown), as in docs/physics.md.
+    Family {
+        /// The scenario (tie → tighten → slide); a relative path not found from here is taken
+        /// from the workspace root.
+        #[arg(long, default_value = "data/scenarios/thesis.ron")]
+        scenario: PathBuf,
+        /// The knot it ties (its Rolfsen name: 3_1, 4_1).
+        #[arg(long, default_value = "3_1")]
+        knot: String,
+        /// An override for every run, as `hagfish run --set` (repeatable).
+        #[arg(long = "set", value_name = "PATH=VALUE")]
+        sets: Vec<String>,
+        /// Runs at a time.
+        #[arg(long, default_value_t = 2)]
+        jobs: usize,
+        /// Only these members (their names in the table; repeatable); all when none is given.
+        #[arg(long, value_name = "NAME")]
+        only: Vec<String>,
+    },
 }
 
 /// The workspace root (the parent of this package's directory).
@@ -98,6 +119,19 @@ fn main() -> ExitCode {
             knotted::run(&workspace_root(), &request).map(|()| true)
         }
         Task::Validate => validate::run(&workspace_root()),
+        Task::Family { scenario, knot, sets, jobs, only } => {
+            // A relative path that is not there from here is taken from the workspace root.
+            let scenario =
+                if scenario.exists() { scenario } else { workspace_root().join(scenario) };
+            let request = family::Request {
+                scenario: &scenario,
+                knot: &knot,
+                sets: &sets,
+                jobs,
+                only: &only,
+            };
+            family::run(&workspace_root(), &request).map(|()| true)
+        }
     };
     match result {
         Ok(true) => ExitCode::SUCCESS,

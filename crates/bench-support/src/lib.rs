@@ -1,7 +1,8 @@
 //! Scaffolding of the hagfish workspace's benchmarks and tests, kept out of the simulator's
 //! public API: the knotted benchmark state (a scenario file found relative to the workspace
-//! root), the same animal knotted at 1000 bodies, and uniform long chains for the scaling
-//! benchmarks.
+//! root), the same animal knotted at 1000 bodies, uniform long chains for the scaling
+//! benchmarks, and the family of bodies the knot scenarios are judged on with the measures of
+//! a knot run (`tests/tie_family.rs`, `cargo xtask family`).
 //!
 //! ```
 //! let chain = hagfish_bench_support::segment_chain(20)?;
@@ -9,8 +10,13 @@
 //! # Ok::<(), hagfish_tree::TreeError>(())
 //! ```
 
+mod family;
+mod knot_run;
 mod knotted_state;
 mod segment_chain;
+
+pub use family::{Variant, edited, family, length_edits};
+pub use knot_run::{KnotRun, TABLE_HEADER};
 
 pub use knotted_state::{
     KNOTTED_SCENARIO, KNOTTED_TIME_S, LONG_KNOTTED_BODIES, LONG_KNOTTED_TIME_S, knotted_world,

@@ -1,0 +1,184 @@
+//! What one run of a tie → tighten → slide scenario did, read from the `metrics.csv` of its
+//! run directory: the measures of the knot tables of `docs/physics.md`, asserted on by
+//! `tests/tie_family.rs` and tabulated by `cargo xtask family`.
+
+use std::collections::HashMap;
+use std::path::Path;
+
+/// The measures of one run (fractions of the body length L unless stated).
+#[derive(Clone, Debug, PartialEq)]
+pub struct KnotRun {
+    /// The knot type and the core's writhe of every frame after tying.
+    pub after_tying: Vec<(String, f64)>,
+    /// The first frame after the tie phase (s).
+    pub tied_s: f64,
+    /// The core's head-ward end in that frame.
+    pub tied_core_start: f64,
+    /// The slide phase's first and last frames (s).
+    pub slide_s: (f64, f64),
+    /// The core midpoint's travel toward the head during the slide: from the slide's first
+    /// frame to its nearest in the slide (a passive drift after the slide does not count).
+    pub travel: f64,
+    /// The core's nearest head-ward end during the slide.
+    pub nearest: f64,
+    /// The core's length change over the slide: the mean of its last 0.5 s against the mean
+    /// of its first 0.5 s (single frames jump by ±15 % as the core's ends move by a body).
+    pub change: f64,
+    /// The midpoint's speed toward the head over the middle 80 % of the slide's frames (cm/s):
+    /// the least-squares slope (the difference of two single frames carries the core's
+    /// frame-to-frame noise: 1.38 against 2.22 cm/s on the two mirror-image ES103 runs, 1.87
+    /// against 1.93 fitted; docs/physics.md).
+    pub speed: f64,
+    /// The deepest self penetration of the run (fraction of the local radius).
+    pub penetration: f64,
+    /// The largest joint-limit excess of the run (deg).
+    pub limit_excess_deg: f64,
+}
+
+/// Frames of 0.1 s in the half-second means of [`KnotRun::change`].
+const HALF_SECOND_FRAMES: usize = 5;
+/// Fewest slide frames for the measures to mean anything.
+const MIN_SLIDE_FRAMES: usize = 10;
+
+/// The Markdown header of [`KnotRun::table_row`]'s table.
+pub const TABLE_HEADER: &str = "| variant | tied at (s) | held | core start when tied (L) | \
+     slide (s) | travel (L) | nearest core end (L) | core length change | speed (cm/s) | \
+     max penetration (% r) |\n|---|---|---|---|---|---|---|---|---|---|";
+
+impl KnotRun {
+    /// Reads the run in `dir`, or says why it has no such measures (no file, not tied, too
+    /// short a slide).
+    pub fn read(dir: &Path) -> Result<Self, String> {
+        let path = dir.join("metrics.csv");
+        let text =
+            std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let mut lines = text.lines();
+        let header: HashMap<&str, usize> =
+            lines.next().ok_or("an empty metrics.csv")?.split(',').zip(0..).collect();
+        let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+        let column = |name: &str| header.get(name).copied().ok_or(format!("no column {name}"));
+        let (phase, knot, writhe) = (column("phase")?, column("knot")?, column("knot_writhe")?);
+        let (time, start, mid) =
+            (column("time_s")?, column("knot_core_start_L")?, column("knot_core_mid_L")?);
+        let (length_cm, length_l) = (column("knot_core_length_cm")?, column("knot_core_length_L")?);
+        let (penetration, excess) =
+            (column("max_self_penetration_rel")?, column("max_limit_excess_deg")?);
+        let number = |row: &[&str], k: usize| row[k].parse::<f64>().unwrap_or(f64::NAN);
+        let tied = rows.iter().position(|r| r[phase] != "tie").ok_or("not tied")?;
+        let after = &rows[tied..];
+        let slide: Vec<&Vec<&str>> = rows.iter().filter(|r| r[phase] == "slide").collect();
+        if slide.len() < MIN_SLIDE_FRAMES {
+            return Err(format!("{} slide frames", slide.len()));
+        }
+        // The body length, from the core's length in cm and in L.
+        let body_cm = number(&rows[tied], length_cm) / number(&rows[tied], length_l);
+        let half_second = |frames: &[&Vec<&str>]| {
+            frames.iter().map(|r| number(r, length_cm)).sum::<f64>() / frames.len() as f64
+        };
+        let middle = &slide[slide.len() / 10..slide.len() * 9 / 10];
+        let path: Vec<(f64, f64)> =
+            middle.iter().map(|r| (number(r, time), number(r, mid) * body_cm)).collect();
+        let maximum = |k: usize| rows.iter().map(|r| number(r, k)).fold(0.0, f64::max);
+        let last = slide.len() - 1;
+        Ok(Self {
+            after_tying: after.iter().map(|r| (r[knot].to_owned(), number(r, writhe))).collect(),
+            tied_s: number(&rows[tied], time),
+            tied_core_start: number(&rows[tied], start),
+            slide_s: (number(slide[0], time), number(slide[last], time)),
+            travel: number(slide[0], mid)
+                - slide.iter().map(|r| number(r, mid)).fold(f64::INFINITY, f64::min),
+            nearest: slide.iter().map(|r| number(r, start)).fold(1.0, f64::min),
+            change: half_second(&slide[slide.len() - HALF_SECOND_FRAMES..])
+                / half_second(&slide[..HALF_SECOND_FRAMES])
+                - 1.0,
+            speed: -slope(&path),
+            penetration: maximum(penetration),
+            limit_excess_deg: maximum(excess),
+        })
+    }
+
+    /// The fraction of the frames after tying that show `knot`, and with `writhe_sign` its
+    /// handedness (writhe of that sign, beyond 0.5).
+    pub fn held(&self, knot: &str, writhe_sign: Option<f64>) -> f64 {
+        let shown = self.after_tying.iter().filter(|(name, writhe)| {
+            name == knot && writhe_sign.is_none_or(|sign| sign * writhe > 0.5)
+        });
+        shown.count() as f64 / self.after_tying.len() as f64
+    }
+
+    /// This run as a row of the table under [`TABLE_HEADER`], `held` as in [`KnotRun::held`].
+    pub fn table_row(&self, name: &str, knot: &str, writhe_sign: Option<f64>) -> String {
+        format!(
+            "| {name} | {:.1} | {:.0} % | {:.3} | {:.1}–{:.1} | {:.3} | {:.3} | {:+.0} % | {:.2} | \
+             {:.2} |",
+            self.tied_s,
+            100.0 * self.held(knot, writhe_sign),
+            self.tied_core_start,
+            self.slide_s.0,
+            self.slide_s.1,
+            self.travel,
+            self.nearest,
+            100.0 * self.change,
+            self.speed,
+            100.0 * self.penetration,
+        )
+    }
+}
+
+/// The least-squares slope of `points` (x, y).
+fn slope(points: &[(f64, f64)]) -> f64 {
+    let n = points.len() as f64;
+    let (mx, my) = points.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n));
+    let covariance: f64 = points.iter().map(|(x, y)| (x - mx) * (y - my)).sum();
+    let variance: f64 = points.iter().map(|(x, _)| (x - mx).powi(2)).sum();
+    covariance / variance
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A metrics.csv of a knot tied at 1.0 s and slid from 2.0 s at 1 cm/s on a 10 cm body,
+    /// its core 4 cm long throughout.
+    fn metrics() -> String {
+        let mut text = String::from(
+            "time_s,phase,knot,knot_writhe,knot_core_start_L,knot_core_mid_L,\
+             knot_core_length_cm,knot_core_length_L,max_self_penetration_rel,\
+             max_limit_excess_deg\n",
+        );
+        for k in 0..=40 {
+            let t = 0.1 * f64::from(k);
+            let phase = if t < 0.95 {
+                "tie"
+            } else if t < 1.95 {
+                "tighten"
+            } else {
+                "slide"
+            };
+            let start = if t < 1.95 { 0.5 } else { 0.5 - 0.1 * (t - 2.0) };
+            text += &format!("{t},{phase},3_1,2.0,{start},{},4.0,0.4,0.01,0.0\n", start + 0.2);
+        }
+        text
+    }
+
+    #[test]
+    fn a_steady_slide_is_read_as_its_speed_travel_and_times() {
+        let dir = std::env::temp_dir().join(format!("hagfish-knot-run-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("a directory");
+        std::fs::write(dir.join("metrics.csv"), metrics()).expect("write");
+        let run = KnotRun::read(&dir);
+        std::fs::remove_dir_all(&dir).expect("remove");
+        let run = run.expect("measured");
+        assert_eq!((run.tied_s, run.slide_s), (1.0, (2.0, 4.0)));
+        assert!((run.speed - 1.0).abs() < 1e-9, "1 cm/s: {}", run.speed);
+        assert!((run.travel - 0.2).abs() < 1e-9, "0.2 L: {}", run.travel);
+        assert!((run.nearest - 0.3).abs() < 1e-9 && run.change.abs() < 1e-12);
+        assert_eq!(run.held("3_1", Some(1.0)), 1.0);
+        assert_eq!(run.held("3_1", Some(-1.0)), 0.0);
+        let row = run.table_row("test", "3_1", None);
+        assert_eq!(
+            row,
+            "| test | 1.0 | 100 % | 0.500 | 2.0–4.0 | 0.200 | 0.300 | +0 % | 1.00 | 1.00 |"
+        );
+    }
+}
