@@ -12,25 +12,11 @@
 
 mod common;
 
-use common::{
-    ROOT, code_and_stderr, es103_length, es103_with, fresh_dir, metrics_table, run_hagfish,
-};
-
-/// What one run did: the core's length change over the loosen and the tighten phase (mean of
-/// the phase's last 0.5 s against its first 0.5 s; `None` for a phase of less than 1 s, as
-/// after an unloosened knot the tighten phase's end condition holds at once, or without a
-/// knotted core in those frames), the phase in which the trefoil was first not shown after
-/// tying (`None`: held on every frame), and the deepest self penetration (fraction of the
-/// local radius).
-struct Sizes {
-    loosen: Option<f64>,
-    tighten: Option<f64>,
-    lost_in: Option<String>,
-    penetration: f64,
-}
+use common::{ROOT, code_and_stderr, es103_length, es103_with, fresh_dir, run_hagfish};
+use hagfish_bench_support::LoosenTighten;
 
 /// Runs `loosen_tighten.ron` into a fresh directory `name` with `--set` values `sets`.
-fn sizes(name: &str, sets: &[String]) -> Sizes {
+fn sizes(name: &str, sets: &[String]) -> LoosenTighten {
     let dir = fresh_dir(name);
     let scenario = format!("{ROOT}/data/scenarios/loosen_tighten.ron");
     let out = dir.to_string_lossy();
@@ -40,33 +26,7 @@ fn sizes(name: &str, sets: &[String]) -> Sizes {
     }
     let output = run_hagfish(&args);
     assert!(output.status.success(), "{name}: {}", code_and_stderr(&output).1);
-    let (header, rows) = metrics_table(&dir);
-    let number = |row: &[String], column: &str| row[header[column]].parse::<f64>();
-    let change = |phase: &str| {
-        let frames: Vec<&Vec<String>> =
-            rows.iter().filter(|r| r[header["phase"]] == phase).collect();
-        let mean = |part: &[&Vec<String>]| {
-            let lengths: Result<Vec<f64>, _> =
-                part.iter().map(|r| number(r, "knot_core_length_cm")).collect();
-            lengths.ok().map(|l| l.iter().sum::<f64>() / l.len() as f64)
-        };
-        if frames.len() < 10 {
-            return None;
-        }
-        Some(mean(&frames[frames.len() - 5..])? / mean(&frames[..5])? - 1.0)
-    };
-    let tied = rows.iter().position(|r| r[header["phase"]] != "tie").expect("tied");
-    let penetration =
-        rows.iter().map(|r| number(r, "max_self_penetration_rel").unwrap_or(f64::NAN));
-    Sizes {
-        loosen: change("loosen"),
-        tighten: change("tighten"),
-        lost_in: rows[tied..]
-            .iter()
-            .find(|r| r[header["knot"]] != "3_1")
-            .map(|r| r[header["phase"]].clone()),
-        penetration: penetration.fold(0.0, f64::max),
-    }
+    LoosenTighten::read(&dir, "3_1").unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 
 /// Runs `loosen_tighten.ron` with `sets` for δh/h = k·1e-12, k in `perturbations`, with
@@ -106,7 +66,7 @@ fn check_loosen_and_tighten(name: &str, sets: &[String], perturbations: std::ops
         let (run, loosen_control, tighten_control) =
             (find(k, None), find(k, Some(1)), find(k, Some(2)));
         let label = format!("{name}, δh/h = {k}e-12");
-        let phase = |sizes: &Sizes, loosen: bool| {
+        let phase = |sizes: &LoosenTighten, loosen: bool| {
             let change = if loosen { sizes.loosen } else { sizes.tighten };
             change.unwrap_or_else(|| panic!("{label}: a phase shorter than 1 s or unknotted"))
         };

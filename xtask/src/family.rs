@@ -1,15 +1,24 @@
-//! `cargo xtask family`: runs a knot scenario (tie → tighten → slide) on the family of bodies
-//! and time steps of `hagfish_bench_support::family` and prints its knot table, as in
-//! `docs/physics.md`: when tied, how long held, where the core was, the slide's travel,
-//! speed and length change, the deepest penetration. The runs use the release `hagfish`
-//! binary (built first) and their directories stay under `<target>/family/` for a closer
-//! look; several run at once.
+//! `cargo xtask family`: runs a knot scenario on the family of bodies and time steps of
+//! `hagfish_bench_support::family` and prints its table, as in `docs/physics.md`:
+//! - `--measure slide` (tie → tighten → slide): when tied, how long held, where the core was,
+//!   the slide's travel, speed and length change, the deepest penetration;
+//! - `--measure loosen-tighten` (tie → loosen → tighten): the core's length change over the
+//!   loosen and the tighten phase, each beside its control run (the same scenario with that
+//!   phase's head and tail targets at zero), and whether both effects are the targets' doing
+//!   (≥ 25 % and ≥ 20 points past the control, the knot held, penetration below 2 %).
+//!
+//! The runs use the release `hagfish` binary (built first) and their directories stay under
+//! `<target>/family/` for a closer look; several run at once.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::Mutex;
 
-use hagfish_bench_support::{KnotRun, TABLE_HEADER, Variant, family};
+use hagfish_bench_support::{
+    KnotRun, LoosenTighten, TABLE_HEADER, Variant, family, signed_percent,
+};
+use hagfish_control::Phase;
+use hagfish_sim::LoadedScenario;
 
 use crate::python::target_directory;
 
@@ -25,7 +34,23 @@ pub struct Request<'a> {
     pub jobs: usize,
     /// Only the members of these names (all when empty).
     pub only: &'a [String],
+    /// What to measure.
+    pub measure: Measure,
 }
+
+/// What a table measures of each member.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Measure {
+    /// The slide of a tie → tighten → slide scenario ([`KnotRun`]).
+    Slide,
+    /// The loosen and tighten of a tie → loosen → tighten scenario ([`LoosenTighten`]),
+    /// each against its control run.
+    LoosenTighten,
+}
+
+/// The header of the loosen/tighten table.
+const LOOSEN_TIGHTEN_HEADER: &str = "| variant | loosen (control) | tighten (control) | both ≥ 25 % \
+     and ≥ 20 points past the control |\n|---|---|---|---|";
 
 /// Builds `hagfish`, runs every member and prints the table (a row for each member, in the
 /// family's order; a run that fails says how in its row).
@@ -55,6 +80,10 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
         let names: Vec<&str> = family().iter().map(|v| v.name).collect();
         return Err(format!("no member {unknown} in the family ({})", names.join(", ")));
     }
+    let controls = match request.measure {
+        Measure::Slide => [0, 0],
+        Measure::LoosenTighten => control_phases(request.scenario)?,
+    };
     let queue = Mutex::new(members.iter().enumerate());
     let rows = Mutex::new(vec![String::new(); members.len()]);
     std::thread::scope(|scope| {
@@ -62,7 +91,11 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
             scope.spawn(|| {
                 let next = || queue.lock().map(|mut q| q.next()).ok().flatten();
                 while let Some((index, variant)) = next() {
-                    let row = member_row(&hagfish, &work, &es103, variant, request);
+                    let runner = Runner { hagfish: &hagfish, work: &work, es103: &es103, request };
+                    let row = match request.measure {
+                        Measure::Slide => runner.slide_row(variant),
+                        Measure::LoosenTighten => runner.loosen_tighten_row(variant, controls),
+                    };
                     eprintln!("{row}");
                     if let Ok(mut rows) = rows.lock() {
                         rows[index] = row;
@@ -72,8 +105,13 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
         }
     });
     let rows = rows.into_inner().map_err(|_| "a run panicked")?;
+    let (measure, header) = match request.measure {
+        Measure::Slide => ("slide", TABLE_HEADER),
+        Measure::LoosenTighten => ("loosen-tighten", LOOSEN_TIGHTEN_HEADER),
+    };
     println!(
-        "`cargo xtask family --scenario {} --knot {}{}{}` ({} members):\n\n{TABLE_HEADER}",
+        "`cargo xtask family --scenario {} --knot {} --measure {measure}{}{}` ({} members):\n\n\
+         {header}",
         request.scenario.display(),
         request.knot,
         request.sets.iter().map(|s| format!(" --set {s}")).collect::<String>(),
@@ -86,42 +124,115 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
     Ok(())
 }
 
-/// The table row of `variant`: its run measured, or what stopped it.
-fn member_row(
-    hagfish: &Path,
-    work: &Path,
-    es103: &str,
-    variant: &Variant,
-    request: &Request<'_>,
-) -> String {
-    let failed = |why: &str| format!("| {} | — ({why}) | | | | | | | | |", variant.name);
-    let body = match variant.body(es103) {
-        Ok(body) => body,
-        Err(e) => return failed(&e),
+/// The indices of the phases named `loosen` and `tighten` in `scenario`.
+fn control_phases(scenario: &Path) -> Result<[usize; 2], String> {
+    let loaded = LoadedScenario::load(scenario).map_err(|e| e.to_string())?;
+    let index = |name: &str| {
+        loaded
+            .scenario
+            .phases
+            .iter()
+            .position(|p| matches!(p, Phase::Thigmotaxis(t) if t.name == name))
+            .ok_or(format!("{} has no thigmotaxis phase named {name}", scenario.display()))
     };
-    let body_path: PathBuf = work.join(format!("{}.ron", variant.name));
-    if let Err(e) = std::fs::write(&body_path, body) {
-        return failed(&format!("{}: {e}", body_path.display()));
-    }
-    let out = work.join(variant.name);
-    let mut command = Command::new(hagfish);
-    command.arg("run").arg(request.scenario).arg("--body").arg(&body_path);
-    command.arg("--out").arg(&out).args(["--quiet", "--overwrite"]);
-    for set in variant.sets.iter().copied().chain(request.sets.iter().map(String::as_str)) {
-        command.args(["--set", set]);
-    }
-    let output = match command.output() {
-        Ok(output) => output,
-        Err(e) => return failed(&format!("could not start hagfish: {e}")),
-    };
-    if !output.status.success() {
+    Ok([index("loosen")?, index("tighten")?])
+}
+
+/// Runs members of the family.
+struct Runner<'a> {
+    hagfish: &'a Path,
+    work: &'a Path,
+    es103: &'a str,
+    request: &'a Request<'a>,
+}
+
+impl Runner<'_> {
+    /// Runs `variant` with the `extra` overrides into `<work>/<name><suffix>`; the directory,
+    /// or what stopped the run (its exit code and error line).
+    fn run(&self, variant: &Variant, suffix: &str, extra: &[String]) -> Result<PathBuf, String> {
+        let body = variant.body(self.es103)?;
+        let body_path = self.work.join(format!("{}.ron", variant.name));
+        std::fs::write(&body_path, body).map_err(|e| format!("{}: {e}", body_path.display()))?;
+        let out = self.work.join(format!("{}{suffix}", variant.name));
+        let mut command = Command::new(self.hagfish);
+        command.arg("run").arg(self.request.scenario).arg("--body").arg(&body_path);
+        command.arg("--out").arg(&out).args(["--quiet", "--overwrite"]);
+        let sets = variant.sets.iter().copied().chain(self.request.sets.iter().map(String::as_str));
+        for set in sets.chain(extra.iter().map(String::as_str)) {
+            command.args(["--set", set]);
+        }
+        let output = command.output().map_err(|e| format!("could not start hagfish: {e}"))?;
+        if output.status.success() {
+            return Ok(out);
+        }
         let stderr = String::from_utf8_lossy(&output.stderr);
         let last = stderr.lines().rfind(|l| l.starts_with("error")).unwrap_or("");
-        return failed(&format!("exit {}: {last}", output.status.code().unwrap_or(-1)));
+        Err(format!("exit {}: {last}", output.status.code().unwrap_or(-1)))
     }
-    let sign = (request.knot == "3_1").then_some(if variant.right_handed { 1.0 } else { -1.0 });
-    match KnotRun::read(&out) {
-        Ok(run) => run.table_row(variant.name, request.knot, sign),
-        Err(e) => failed(&e),
+
+    /// The slide table's row of `variant`.
+    fn slide_row(&self, variant: &Variant) -> String {
+        let knot = self.request.knot;
+        let sign = (knot == "3_1").then_some(if variant.right_handed { 1.0 } else { -1.0 });
+        let measured = self.run(variant, "", &[]).and_then(|out| KnotRun::read(&out));
+        match measured {
+            Ok(run) => run.table_row(variant.name, knot, sign),
+            Err(why) => format!("| {} | — ({why}) | | | | | | | | |", variant.name),
+        }
+    }
+
+    /// The loosen/tighten table's row of `variant`: the run, and a control run for each of
+    /// the phases `controls` (loosen, tighten) with that phase's targets at zero.
+    fn loosen_tighten_row(&self, variant: &Variant, controls: [usize; 2]) -> String {
+        let zero = |phase: usize| {
+            ["head", "tail"]
+                .map(|end| format!("phases[{phase}].Thigmotaxis.parameters.{end}=(0.0, 0.0)"))
+        };
+        let measure = |suffix: &str, extra: &[String]| {
+            let out = self.run(variant, suffix, extra)?;
+            LoosenTighten::read(&out, self.request.knot)
+        };
+        let runs = (
+            measure("", &[]),
+            measure("_loosen_control", &zero(controls[0])),
+            measure("_tighten_control", &zero(controls[1])),
+        );
+        let (run, loosen_control, tighten_control) = match runs {
+            (Ok(run), Ok(loosen), Ok(tighten)) => (run, loosen, tighten),
+            (Err(why), _, _) => return format!("| {} | — ({why}) | | no |", variant.name),
+            (_, Err(why), _) | (_, _, Err(why)) => {
+                return format!("| {} | — (a control: {why}) | | no |", variant.name);
+            }
+        };
+        let percent = |change: Option<f64>| signed_percent(change.unwrap_or(f64::NAN));
+        let lost = |sizes: &LoosenTighten| {
+            sizes
+                .lost_in
+                .as_ref()
+                .map_or(String::new(), |phase| format!(", knot lost in the {phase}"))
+        };
+        let loosened = run
+            .loosen
+            .zip(loosen_control.loosen)
+            .is_some_and(|(c, control)| c >= 0.25 && c - control >= 0.2);
+        // A control whose knot comes undone while it should be tightening did not tighten it.
+        let control_tightened = tighten_control.lost_in.as_deref() != Some("tighten");
+        let tightened = run.tighten.is_some_and(|c| {
+            c <= -0.25
+                && (!control_tightened || tighten_control.tighten.is_some_and(|t| t - c >= 0.2))
+        });
+        let passed = loosened && tightened && run.lost_in.is_none() && run.penetration < 0.02;
+        format!(
+            "| {} | {} ({}{}) | {} ({}{}) | {}{} |",
+            variant.name,
+            percent(run.loosen),
+            percent(loosen_control.loosen),
+            lost(&loosen_control),
+            percent(run.tighten),
+            percent(tighten_control.tighten),
+            lost(&tighten_control),
+            if passed { "yes" } else { "no" },
+            lost(&run),
+        )
     }
 }

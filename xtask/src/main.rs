@@ -92,6 +92,10 @@ enum Task {
         /// Only these members (their names in the table; repeatable); all when none is given.
         #[arg(long, value_name = "NAME")]
         only: Vec<String>,
+        /// What to measure: `slide` (tie → tighten → slide) or `loosen-tighten` (tie →
+        /// loosen → tighten, each phase against a control run with its targets at zero).
+        #[arg(long, value_parser = ["slide", "loosen-tighten"], default_value = "slide")]
+        measure: String,
     },
 }
 
@@ -119,16 +123,21 @@ fn main() -> ExitCode {
             knotted::run(&workspace_root(), &request).map(|()| true)
         }
         Task::Validate => validate::run(&workspace_root()),
-        Task::Family { scenario, knot, sets, jobs, only } => {
+        Task::Family { scenario, knot, sets, jobs, only, measure } => {
             // A relative path that is not there from here is taken from the workspace root.
             let scenario =
                 if scenario.exists() { scenario } else { workspace_root().join(scenario) };
+            let measure = match measure.as_str() {
+                "loosen-tighten" => family::Measure::LoosenTighten,
+                _ => family::Measure::Slide,
+            };
             let request = family::Request {
                 scenario: &scenario,
                 knot: &knot,
                 sets: &sets,
                 jobs,
                 only: &only,
+                measure,
             };
             family::run(&workspace_root(), &request).map(|()| true)
         }

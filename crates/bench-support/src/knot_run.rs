@@ -2,8 +2,9 @@
 //! run directory: the measures of the knot tables of `docs/physics.md`, asserted on by
 //! `tests/tie_family.rs` and tabulated by `cargo xtask family`.
 
-use std::collections::HashMap;
 use std::path::Path;
+
+use crate::metrics_csv::{MetricsCsv, first_after_tie, number};
 
 /// The measures of one run (fractions of the body length L unless stated).
 #[derive(Clone, Debug, PartialEq)]
@@ -35,8 +36,9 @@ pub struct KnotRun {
     pub limit_excess_deg: f64,
 }
 
-/// Frames of 0.1 s in the half-second means of [`KnotRun::change`].
-const HALF_SECOND_FRAMES: usize = 5;
+/// Frames of 0.1 s in half a second: the means of [`KnotRun::change`] and
+/// [`crate::LoosenTighten`].
+pub(crate) const HALF_SECOND_FRAMES: usize = 5;
 /// Fewest slide frames for the measures to mean anything.
 const MIN_SLIDE_FRAMES: usize = 10;
 
@@ -49,30 +51,28 @@ impl KnotRun {
     /// Reads the run in `dir`, or says why it has no such measures (no file, not tied, too
     /// short a slide).
     pub fn read(dir: &Path) -> Result<Self, String> {
-        let path = dir.join("metrics.csv");
-        let text =
-            std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
-        let mut lines = text.lines();
-        let header: HashMap<&str, usize> =
-            lines.next().ok_or("an empty metrics.csv")?.split(',').zip(0..).collect();
-        let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
-        let column = |name: &str| header.get(name).copied().ok_or(format!("no column {name}"));
-        let (phase, knot, writhe) = (column("phase")?, column("knot")?, column("knot_writhe")?);
-        let (time, start, mid) =
-            (column("time_s")?, column("knot_core_start_L")?, column("knot_core_mid_L")?);
-        let (length_cm, length_l) = (column("knot_core_length_cm")?, column("knot_core_length_L")?);
+        let csv = MetricsCsv::read(dir)?;
+        let (phase, knot, writhe) =
+            (csv.column("phase")?, csv.column("knot")?, csv.column("knot_writhe")?);
+        let (time, start, mid) = (
+            csv.column("time_s")?,
+            csv.column("knot_core_start_L")?,
+            csv.column("knot_core_mid_L")?,
+        );
+        let (length_cm, length_l) =
+            (csv.column("knot_core_length_cm")?, csv.column("knot_core_length_L")?);
         let (penetration, excess) =
-            (column("max_self_penetration_rel")?, column("max_limit_excess_deg")?);
-        let number = |row: &[&str], k: usize| row[k].parse::<f64>().unwrap_or(f64::NAN);
-        let tied = rows.iter().position(|r| r[phase] != "tie").ok_or("not tied")?;
+            (csv.column("max_self_penetration_rel")?, csv.column("max_limit_excess_deg")?);
+        let rows = &csv.rows;
+        let tied = first_after_tie(rows, phase).ok_or("not tied")?;
         let after = &rows[tied..];
-        let slide: Vec<&Vec<&str>> = rows.iter().filter(|r| r[phase] == "slide").collect();
+        let slide: Vec<&Vec<String>> = rows.iter().filter(|r| r[phase] == "slide").collect();
         if slide.len() < MIN_SLIDE_FRAMES {
             return Err(format!("{} slide frames", slide.len()));
         }
         // The body length, from the core's length in cm and in L.
         let body_cm = number(&rows[tied], length_cm) / number(&rows[tied], length_l);
-        let half_second = |frames: &[&Vec<&str>]| {
+        let half_second = |frames: &[&Vec<String>]| {
             frames.iter().map(|r| number(r, length_cm)).sum::<f64>() / frames.len() as f64
         };
         let middle = &slide[slide.len() / 10..slide.len() * 9 / 10];
@@ -81,7 +81,7 @@ impl KnotRun {
         let maximum = |k: usize| rows.iter().map(|r| number(r, k)).fold(0.0, f64::max);
         let last = slide.len() - 1;
         Ok(Self {
-            after_tying: after.iter().map(|r| (r[knot].to_owned(), number(r, writhe))).collect(),
+            after_tying: after.iter().map(|r| (r[knot].clone(), number(r, writhe))).collect(),
             tied_s: number(&rows[tied], time),
             tied_core_start: number(&rows[tied], start),
             slide_s: (number(slide[0], time), number(slide[last], time)),
@@ -109,7 +109,7 @@ impl KnotRun {
     /// This run as a row of the table under [`TABLE_HEADER`], `held` as in [`KnotRun::held`].
     pub fn table_row(&self, name: &str, knot: &str, writhe_sign: Option<f64>) -> String {
         format!(
-            "| {name} | {:.1} | {:.0} % | {:.3} | {:.1}–{:.1} | {:.3} | {:.3} | {:+.0} % | {:.2} | \
+            "| {name} | {:.1} | {:.0} % | {:.3} | {:.1}–{:.1} | {:.3} | {:.3} | {} | {:.2} | \
              {:.2} |",
             self.tied_s,
             100.0 * self.held(knot, writhe_sign),
@@ -118,10 +118,25 @@ impl KnotRun {
             self.slide_s.1,
             self.travel,
             self.nearest,
-            100.0 * self.change,
+            signed_percent(self.change),
             self.speed,
             100.0 * self.penetration,
         )
+    }
+}
+
+/// A change as a signed whole percentage, "+26 %", "−4 %", "0 %" when it rounds to zero,
+/// "—" when it is not a number.
+pub fn signed_percent(change: f64) -> String {
+    let percent = (100.0 * change).round();
+    if !percent.is_finite() {
+        "—".into()
+    } else if percent == 0.0 {
+        "0 %".into()
+    } else if percent > 0.0 {
+        format!("+{percent} %")
+    } else {
+        format!("−{} %", -percent)
     }
 }
 
@@ -178,7 +193,9 @@ mod tests {
         let row = run.table_row("test", "3_1", None);
         assert_eq!(
             row,
-            "| test | 1.0 | 100 % | 0.500 | 2.0–4.0 | 0.200 | 0.300 | +0 % | 1.00 | 1.00 |"
+            "| test | 1.0 | 100 % | 0.500 | 2.0–4.0 | 0.200 | 0.300 | 0 % | 1.00 | 1.00 |"
         );
+        let signed = [0.26, -0.04, -0.004, f64::NAN].map(signed_percent);
+        assert_eq!(signed, ["+26 %", "−4 %", "0 %", "—"].map(String::from));
     }
 }

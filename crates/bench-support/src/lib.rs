@@ -2,7 +2,8 @@
 //! public API: the knotted benchmark state (a scenario file found relative to the workspace
 //! root), the same animal knotted at 1000 bodies, uniform long chains for the scaling
 //! benchmarks, and the family of bodies the knot scenarios are judged on with the measures of
-//! a knot run (`tests/tie_family.rs`, `cargo xtask family`).
+//! a knot run: its slide, and its loosen and tighten (`tests/tie_family.rs`,
+//! `tests/knot_size.rs`, `cargo xtask family`).
 //!
 //! ```
 //! let chain = hagfish_bench_support::segment_chain(20)?;
@@ -13,10 +14,13 @@
 mod family;
 mod knot_run;
 mod knotted_state;
+mod loosen_tighten;
+mod metrics_csv;
 mod segment_chain;
 
 pub use family::{Variant, edited, family, length_edits};
-pub use knot_run::{KnotRun, TABLE_HEADER};
+pub use knot_run::{KnotRun, TABLE_HEADER, signed_percent};
+pub use loosen_tighten::LoosenTighten;
 
 pub use knotted_state::{
     KNOTTED_SCENARIO, KNOTTED_TIME_S, LONG_KNOTTED_BODIES, LONG_KNOTTED_TIME_S, knotted_world,
