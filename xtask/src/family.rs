@@ -80,9 +80,11 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
         let names: Vec<&str> = family().iter().map(|v| v.name).collect();
         return Err(format!("no member {unknown} in the family ({})", names.join(", ")));
     }
+    // Read once here, so that a scenario that cannot run is said once, not by every member.
+    let loaded = LoadedScenario::load(request.scenario).map_err(|e| e.to_string())?;
     let controls = match request.measure {
         Measure::Slide => [0, 0],
-        Measure::LoosenTighten => control_phases(request.scenario)?,
+        Measure::LoosenTighten => control_phases(&loaded, request.scenario)?,
     };
     let queue = Mutex::new(members.iter().enumerate());
     let rows = Mutex::new(vec![String::new(); members.len()]);
@@ -124,9 +126,8 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
     Ok(())
 }
 
-/// The indices of the phases named `loosen` and `tighten` in `scenario`.
-fn control_phases(scenario: &Path) -> Result<[usize; 2], String> {
-    let loaded = LoadedScenario::load(scenario).map_err(|e| e.to_string())?;
+/// The indices of the phases named `loosen` and `tighten` in `loaded`, read from `scenario`.
+fn control_phases(loaded: &LoadedScenario, scenario: &Path) -> Result<[usize; 2], String> {
     let index = |name: &str| {
         loaded
             .scenario
