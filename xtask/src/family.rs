@@ -212,17 +212,7 @@ impl Runner<'_> {
                 .as_ref()
                 .map_or(String::new(), |phase| format!(", knot lost in the {phase}"))
         };
-        let loosened = run
-            .loosen
-            .zip(loosen_control.loosen)
-            .is_some_and(|(c, control)| c >= 0.25 && c - control >= 0.2);
-        // A control whose knot comes undone while it should be tightening did not tighten it.
-        let control_tightened = tighten_control.lost_in.as_deref() != Some("tighten");
-        let tightened = run.tighten.is_some_and(|c| {
-            c <= -0.25
-                && (!control_tightened || tighten_control.tighten.is_some_and(|t| t - c >= 0.2))
-        });
-        let passed = loosened && tightened && run.lost_in.is_none() && run.penetration < 0.02;
+        let passed = run.failures(&loosen_control, &tighten_control).is_empty();
         format!(
             "| {} | {} ({}{}) | {} ({}{}) | {}{} |",
             variant.name,

@@ -55,4 +55,77 @@ impl LoosenTighten {
             penetration: rows.iter().map(|r| number(r, penetration)).fold(0.0, f64::max),
         })
     }
+
+    /// Why this run does not show both effects as its targets' doing, against the control
+    /// runs with the loosen's and the tighten's targets at zero (empty: it does): the knot
+    /// held on every frame after tying, penetration below 2 % of the radius, the loosen
+    /// grows the core by ≥ 25 % and ≥ 20 points more than its control, the tighten shrinks it
+    /// by ≥ 25 % and ≥ 20 points more than its control (a control whose knot comes undone
+    /// while it should be tightening did not tighten it).
+    pub fn failures(&self, loosen_control: &Self, tighten_control: &Self) -> Vec<String> {
+        let mut failures = Vec::new();
+        let mut fail = |holds: bool, why: String| {
+            if !holds {
+                failures.push(why);
+            }
+        };
+        fail(self.lost_in.is_none(), format!("the knot was lost in the {:?}", self.lost_in));
+        fail(self.penetration < 0.02, format!("penetration {} of r", self.penetration));
+        match (self.loosen, loosen_control.loosen) {
+            (Some(loosen), Some(control)) => {
+                fail(loosen >= 0.25, format!("loosen changed the core by {loosen}"));
+                fail(loosen - control >= 0.2, format!("loosen {loosen} against {control}"));
+            }
+            (loosen, control) => {
+                fail(false, format!("no loosen to compare: {loosen:?}, {control:?}"))
+            }
+        }
+        // A control whose knot comes undone while it should be tightening did not tighten it.
+        let control_undone = tighten_control.lost_in.as_deref() == Some("tighten");
+        match (self.tighten, tighten_control.tighten) {
+            (None, _) => fail(false, "no tighten (shorter than 1 s or unknotted)".into()),
+            (Some(tighten), control) => {
+                fail(tighten <= -0.25, format!("tighten changed the core by {tighten}"));
+                match control {
+                    _ if control_undone => {}
+                    Some(control) => {
+                        fail(
+                            control - tighten >= 0.2,
+                            format!("tighten {tighten} against {control}"),
+                        );
+                    }
+                    None => fail(false, "no tighten in the control to compare".into()),
+                }
+            }
+        }
+        failures
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sizes(loosen: f64, tighten: f64, lost_in: Option<&str>) -> LoosenTighten {
+        LoosenTighten {
+            loosen: Some(loosen),
+            tighten: Some(tighten),
+            lost_in: lost_in.map(str::to_owned),
+            penetration: 0.01,
+        }
+    }
+
+    #[test]
+    fn both_effects_count_only_past_their_controls() {
+        let run = sizes(0.32, -0.30, None);
+        assert!(run.failures(&sizes(-0.02, 0.0, None), &sizes(0.3, 0.06, None)).is_empty());
+        // 19.98 points past the loosen's control: short of 20.
+        let failures = run.failures(&sizes(0.1202, 0.0, None), &sizes(0.3, 0.06, None));
+        assert_eq!(failures.len(), 1, "{failures:?}");
+        // A tighten control that loses its knot while tightening did not tighten it.
+        let undone = LoosenTighten { tighten: None, ..sizes(0.3, 0.0, Some("tighten")) };
+        assert!(run.failures(&sizes(0.0, 0.0, None), &undone).is_empty());
+        let lost = sizes(0.32, -0.30, Some("loosen"));
+        assert_eq!(lost.failures(&sizes(0.0, 0.0, None), &sizes(0.3, 0.06, None)).len(), 1);
+    }
 }
