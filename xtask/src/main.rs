@@ -76,8 +76,9 @@ enum Task {
     /// Runs a knot scenario on the family of bodies and time steps (ES103 and 15 variants)
     /// and prints its knot table (Markdown), as in docs/physics.md.
     Family {
-        /// The scenario (tie → tighten → slide); a relative path not found from here is taken
-        /// from the workspace root.
+        /// The scenario (tie → tighten → slide; tie → loosen → tighten for `--measure
+        /// loosen-tighten`); a relative path not found from here is taken from the workspace
+        /// root.
         #[arg(long, default_value = "data/scenarios/thesis.ron")]
         scenario: PathBuf,
         /// The knot it ties (its Rolfsen name: 3_1, 4_1).
