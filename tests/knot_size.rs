@@ -12,8 +12,8 @@
 
 mod common;
 
-use common::{ROOT, code_and_stderr, es103_length, es103_with, fresh_dir, run_hagfish};
-use hagfish_bench_support::LoosenTighten;
+use common::{ROOT, code_and_stderr, es103_with, fresh_dir, run_hagfish};
+use hagfish_bench_support::{LoosenTighten, length_edits};
 
 /// Runs `loosen_tighten.ron` into a fresh directory `name` with `--set` values `sets`.
 fn sizes(name: &str, sets: &[String]) -> LoosenTighten {
@@ -83,7 +83,7 @@ fn loosen_and_tighten_change_the_core_because_of_their_targets() {
 #[test]
 fn loosen_and_tighten_carry_over_to_a_shorter_body() {
     let dir = fresh_dir("knot_size_short_body");
-    let body = es103_with(&dir, "length_35", &es103_length(35.0));
+    let body = es103_with(&dir, "length_35", &length_edits(35.0));
     check_loosen_and_tighten(
         "knot_size_35",
         &[format!("body={:?}", body.display().to_string())],

@@ -15,8 +15,8 @@ mod common;
 use std::path::Path;
 use std::sync::Mutex;
 
-use common::{ROOT, code_and_stderr, es103_length, es103_with, fresh_dir, manifest, run_hagfish};
-use hagfish_bench_support::{KnotRun, Variant, family};
+use common::{ROOT, code_and_stderr, es103_with, fresh_dir, manifest, run_hagfish};
+use hagfish_bench_support::{KnotRun, Variant, family, length_edits};
 
 /// Runs `variant` of thesis.ron into `dir` and checks it; returns a failure message, if any.
 fn check(dir: &Path, variant: &Variant) -> Option<String> {
@@ -279,7 +279,7 @@ fn a_run_that_ends_before_its_knot_is_tied_says_so() {
 #[test]
 fn a_crossover_moved_for_the_tube_is_said() {
     let dir = fresh_dir("tie_crossover_moved");
-    let body = es103_with(&dir, "length_35", &es103_length(35.0));
+    let body = es103_with(&dir, "length_35", &length_edits(35.0));
     let scenario = format!("{ROOT}/data/scenarios/loosen_tighten.ron");
     let run = |name: &str, extra: &[&str]| {
         let out = dir.join(name);

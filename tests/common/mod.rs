@@ -53,11 +53,6 @@ pub fn es103_with(dir: &Path, name: &str, edits: &[(&str, String)]) -> PathBuf {
     path
 }
 
-/// The edits of ES103 to a body `length_cm` long, its mass in proportion.
-pub fn es103_length(length_cm: f64) -> Vec<(&'static str, String)> {
-    hagfish_bench_support::length_edits(length_cm)
-}
-
 /// `manifest.json` of a run directory.
 pub fn manifest(dir: &Path) -> serde_json::Value {
     let text = std::fs::read_to_string(dir.join("manifest.json")).expect("manifest.json");

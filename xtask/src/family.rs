@@ -21,6 +21,7 @@ use hagfish_control::Phase;
 use hagfish_sim::LoadedScenario;
 
 use crate::python::target_directory;
+use crate::test_all::cargo;
 
 /// What to tabulate.
 pub struct Request<'a> {
@@ -55,7 +56,7 @@ const LOOSEN_TIGHTEN_HEADER: &str = "| variant | loosen (control) | tighten (con
 /// Builds `hagfish`, runs every member and prints the table (a row for each member, in the
 /// family's order; a run that fails says how in its row).
 pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
-    let status = Command::new(std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into()))
+    let status = Command::new(cargo())
         .args(["build", "--release", "--bin", "hagfish"])
         .current_dir(root)
         .status()
@@ -83,9 +84,10 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
     // Read once here, so that a scenario that cannot run is said once, not by every member.
     let loaded = LoadedScenario::load(request.scenario).map_err(|e| e.to_string())?;
     let controls = match request.measure {
-        Measure::Slide => [0, 0],
-        Measure::LoosenTighten => control_phases(&loaded, request.scenario)?,
+        Measure::Slide => None,
+        Measure::LoosenTighten => Some(control_phases(&loaded, request.scenario)?),
     };
+    let runner = Runner { hagfish: &hagfish, work: &work, es103: &es103, request };
     let queue = Mutex::new(members.iter().enumerate());
     let rows = Mutex::new(vec![String::new(); members.len()]);
     std::thread::scope(|scope| {
@@ -93,10 +95,9 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
             scope.spawn(|| {
                 let next = || queue.lock().map(|mut q| q.next()).ok().flatten();
                 while let Some((index, variant)) = next() {
-                    let runner = Runner { hagfish: &hagfish, work: &work, es103: &es103, request };
-                    let row = match request.measure {
-                        Measure::Slide => runner.slide_row(variant),
-                        Measure::LoosenTighten => runner.loosen_tighten_row(variant, controls),
+                    let row = match controls {
+                        None => runner.slide_row(variant),
+                        Some(controls) => runner.loosen_tighten_row(variant, controls),
                     };
                     eprintln!("{row}");
                     if let Ok(mut rows) = rows.lock() {
@@ -148,15 +149,27 @@ struct Runner<'a> {
 }
 
 impl Runner<'_> {
-    /// Runs `variant` with the `extra` overrides into `<work>/<name><suffix>`; the directory,
-    /// or what stopped the run (its exit code and error line).
-    fn run(&self, variant: &Variant, suffix: &str, extra: &[String]) -> Result<PathBuf, String> {
-        let body = variant.body(self.es103)?;
-        let body_path = self.work.join(format!("{}.ron", variant.name));
-        std::fs::write(&body_path, body).map_err(|e| format!("{}: {e}", body_path.display()))?;
+    /// Writes `variant`'s body file into `<work>/<name>.ron` and returns its path.
+    fn body(&self, variant: &Variant) -> Result<PathBuf, String> {
+        let path = self.work.join(format!("{}.ron", variant.name));
+        std::fs::write(&path, variant.body(self.es103)?)
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        Ok(path)
+    }
+
+    /// Runs `variant` on its body file `body` with the `extra` overrides into
+    /// `<work>/<name><suffix>`; the directory, or what stopped the run (its exit code and
+    /// error line).
+    fn run(
+        &self,
+        variant: &Variant,
+        body: &Path,
+        suffix: &str,
+        extra: &[String],
+    ) -> Result<PathBuf, String> {
         let out = self.work.join(format!("{}{suffix}", variant.name));
         let mut command = Command::new(self.hagfish);
-        command.arg("run").arg(self.request.scenario).arg("--body").arg(&body_path);
+        command.arg("run").arg(self.request.scenario).arg("--body").arg(body);
         command.arg("--out").arg(&out).args(["--quiet", "--overwrite"]);
         let sets = variant.sets.iter().copied().chain(self.request.sets.iter().map(String::as_str));
         for set in sets.chain(extra.iter().map(String::as_str)) {
@@ -175,7 +188,10 @@ impl Runner<'_> {
     fn slide_row(&self, variant: &Variant) -> String {
         let knot = self.request.knot;
         let sign = (knot == "3_1").then_some(if variant.right_handed { 1.0 } else { -1.0 });
-        let measured = self.run(variant, "", &[]).and_then(|out| KnotRun::read(&out));
+        let measured = self
+            .body(variant)
+            .and_then(|body| self.run(variant, &body, "", &[]))
+            .and_then(|out| KnotRun::read(&out));
         match measured {
             Ok(run) => run.table_row(variant.name, knot, sign),
             Err(why) => format!("| {} | — ({why}) | | | | | | | | |", variant.name),
@@ -189,8 +205,12 @@ impl Runner<'_> {
             ["head", "tail"]
                 .map(|end| format!("phases[{phase}].Thigmotaxis.parameters.{end}=(0.0, 0.0)"))
         };
+        let body = match self.body(variant) {
+            Ok(body) => body,
+            Err(why) => return format!("| {} | — ({why}) | | no |", variant.name),
+        };
         let measure = |suffix: &str, extra: &[String]| {
-            let out = self.run(variant, suffix, extra)?;
+            let out = self.run(variant, &body, suffix, extra)?;
             LoosenTighten::read(&out, self.request.knot)
         };
         let runs = (

@@ -48,7 +48,7 @@ pub fn run(root: &Path) -> Result<(), String> {
 }
 
 /// The `cargo` that runs this task (Cargo sets `CARGO` for the programs it runs).
-fn cargo() -> OsString {
+pub fn cargo() -> OsString {
     std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into())
 }
 
