@@ -100,9 +100,14 @@ enum Task {
     },
 }
 
-/// The workspace root (the parent of this package's directory).
+/// The workspace root (the parent of this package's directory). `cargo xtask` (a `cargo run`)
+/// sets `CARGO_MANIFEST_DIR` for the process, which is read first: the path compiled in is
+/// that of whichever checkout built the binary, and a checkout sharing a target directory
+/// with another one (same sources, so cargo does not rebuild) would otherwise run the other's
+/// files or fail on a directory that is gone.
 fn workspace_root() -> PathBuf {
-    let manifest = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let manifest = std::env::var_os("CARGO_MANIFEST_DIR")
+        .map_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")), PathBuf::from);
     manifest.parent().map_or(manifest.clone(), PathBuf::from)
 }
 

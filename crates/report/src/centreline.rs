@@ -21,7 +21,7 @@ impl Centreline {
     /// a last frame with fewer bodies than the others (a run stopped while writing it) is
     /// dropped.
     pub fn read(path: &Path) -> Result<Self, ReportError> {
-        let file = CsvFile::read(path)?;
+        let file = CsvFile::open(path)?;
         let [frame, time, body, x, y, z] =
             ["frame", "time_s", "body", "x_cm", "y_cm", "z_cm"].map(|c| file.column(c));
         let (frame, time, body, x, y, z) = (frame?, time?, body?, x?, y?, z?);
@@ -29,8 +29,7 @@ impl Centreline {
         let mut points = Vec::new();
         let mut bodies = None;
         let mut current = Vec::new();
-        for record in file.records() {
-            let record = record?;
+        file.for_each_record(|record| {
             let f = record.index(frame)?;
             if times.len().checked_sub(1) != Some(f) {
                 if !times.is_empty() {
@@ -57,7 +56,8 @@ impl Centreline {
                 return Err(record.error(body, &format!("is not the next body, {}", current.len())));
             }
             current.push([record.number(x)?, record.number(y)?, record.number(z)?]);
-        }
+            Ok(())
+        })?;
         let count = *bodies.get_or_insert(current.len());
         if current.len() == count {
             points.append(&mut current);

@@ -4,6 +4,7 @@ use std::path::Path;
 
 use crate::csv::CsvFile;
 use crate::error::ReportError;
+use crate::joint_series::JointSeries;
 
 /// The axes of `forces.csv`, in the order of [`ThigmoForces::values`].
 pub const AXES: [&str; 3] = ["X", "Y", "Z"];
@@ -23,35 +24,24 @@ pub struct ThigmoForces {
 impl ThigmoForces {
     /// Reads the `thigmo` rows of `forces.csv`; frames must be numbered from 0 without gaps.
     pub fn read(path: &Path) -> Result<Self, ReportError> {
-        let file = CsvFile::read(path)?;
+        let file = CsvFile::open(path)?;
         let [frame, time, joint, axis, group, value] =
             ["frame", "time_s", "joint", "axis", "group", "value_dyn_cm"].map(|c| file.column(c));
         let (frame, time, joint, axis, group, value) =
             (frame?, time?, joint?, axis?, group?, value?);
-        let mut times: Vec<f64> = Vec::new();
-        let mut entries = Vec::new();
-        for record in file.records() {
-            let record = record?;
+        let mut series = JointSeries::new();
+        file.for_each_record(|record| {
             if record.text(group) != "thigmo" {
-                continue;
-            }
-            let f = record.index(frame)?;
-            if f == times.len() {
-                times.push(record.number(time)?);
-            } else if f + 1 != times.len() {
-                return Err(record.error(frame, "is not the current or the next frame"));
+                return Ok(());
             }
             let a = AXES
                 .iter()
                 .position(|name| *name == record.text(axis))
                 .ok_or_else(|| record.error(axis, "is not X, Y or Z"))?;
-            entries.push((f, record.index(joint)?, a, record.number(value)?));
-        }
-        let joints = entries.iter().map(|e| e.1 + 1).max().unwrap_or(0);
-        let mut values = [(); 3].map(|()| vec![0.0; times.len() * joints]);
-        for (f, j, a, v) in entries {
-            values[a][f * joints + j] = v;
-        }
+            let at = (record.index(frame)?, record.number(time)?);
+            series.set(record, frame, at, (record.index(joint)?, a), record.number(value)?)
+        })?;
+        let JointSeries { times, joints, values } = series;
         Ok(Self { times, joints, values })
     }
 

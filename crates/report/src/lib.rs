@@ -50,6 +50,7 @@ mod font;
 mod forces;
 mod glb;
 mod html;
+mod joint_series;
 mod metrics;
 mod outputs;
 mod plots;

@@ -2,8 +2,37 @@
 
 use std::path::Path;
 
-use crate::csv::{CsvFile, Record};
+use crate::csv::CsvFile;
 use crate::error::ReportError;
+
+/// The text columns read, in the order of [`Metrics::read`]'s destructuring.
+const TEXT: [&str; 3] = ["phase", "knot", "solver_status"];
+/// The number columns read (a value in every frame).
+const NUMBER: [&str; 6] = [
+    "time_s",
+    "self_contacts",
+    "wall_contacts",
+    "max_self_penetration_rel",
+    "max_wall_penetration_cm",
+    "max_limit_excess_deg",
+];
+/// The number columns that may be empty in a frame.
+const OPTIONAL: [&str; 6] = [
+    "knot_agreement",
+    "knot_position_cm",
+    "contacts_start_cm",
+    "contacts_end_cm",
+    "first_contact_cm",
+    "last_contact_cm",
+];
+/// Columns added after the first runs: all empty when a run directory lacks them.
+const LATER: [&str; 5] = [
+    "knot_core_start_cm",
+    "knot_core_end_cm",
+    "knot_core_start_L",
+    "knot_core_mid_L",
+    "knot_core_length_D",
+];
 
 /// The columns of `metrics.csv` used here, one entry per frame. Empty fields (e.g. no knot
 /// stretch, no contact) are `None`.
@@ -54,51 +83,69 @@ pub struct Metrics {
 impl Metrics {
     /// Reads `metrics.csv`; at least one frame is required.
     pub fn read(path: &Path) -> Result<Self, ReportError> {
-        let file = CsvFile::read(path)?;
-        let records: Vec<Record<'_>> = file.records().collect::<Result<_, _>>()?;
-        if records.is_empty() {
+        let file = CsvFile::open(path)?;
+        let columns = |names: &[&str]| -> Result<Vec<usize>, ReportError> {
+            names.iter().map(|name| file.column(name)).collect()
+        };
+        let (text, number, optional) = (columns(&TEXT)?, columns(&NUMBER)?, columns(&OPTIONAL)?);
+        // Columns added later: empty for run directories written before them.
+        let later: Vec<Option<usize>> = LATER.iter().map(|name| file.column(name).ok()).collect();
+        let mut texts = [(); TEXT.len()].map(|()| Vec::new());
+        let mut numbers = [(); NUMBER.len()].map(|()| Vec::new());
+        let mut optionals = [(); OPTIONAL.len() + LATER.len()].map(|()| Vec::new());
+        file.for_each_record(|record| {
+            for (values, &c) in texts.iter_mut().zip(&text) {
+                values.push(record.text(c).to_string());
+            }
+            for (values, &c) in numbers.iter_mut().zip(&number) {
+                values.push(record.number(c)?);
+            }
+            let optional = optional.iter().map(|&c| Some(c)).chain(later.iter().copied());
+            for (values, c) in optionals.iter_mut().zip(optional) {
+                values.push(c.map(|c| record.optional(c)).transpose()?.flatten());
+            }
+            Ok(())
+        })?;
+        let [time, self_contacts, wall_contacts, self_penetration_rel, wall_penetration, limit] =
+            numbers;
+        if time.is_empty() {
             return Err(ReportError::Invalid { path: path.to_path_buf(), what: "no frame".into() });
         }
-        let text = |name| -> Result<Vec<String>, ReportError> {
-            let c = file.column(name)?;
-            Ok(records.iter().map(|r| r.text(c).to_string()).collect())
-        };
-        let number = |name| -> Result<Vec<f64>, ReportError> {
-            let c = file.column(name)?;
-            records.iter().map(|r| r.number(c)).collect()
-        };
-        let optional = |name| -> Result<Vec<Option<f64>>, ReportError> {
-            let c = file.column(name)?;
-            records.iter().map(|r| r.optional(c)).collect()
-        };
-        // Columns added later: empty for run directories written before them.
-        let later = |name| -> Result<Vec<Option<f64>>, ReportError> {
-            match file.column(name) {
-                Ok(c) => records.iter().map(|r| r.optional(c)).collect(),
-                Err(_) => Ok(vec![None; records.len()]),
-            }
-        };
+        let [phase, knot, solver_status] = texts;
+        let [
+            knot_agreement,
+            knot_position,
+            contacts_start,
+            contacts_end,
+            first_contact,
+            last_contact,
+            knot_core_start,
+            knot_core_end,
+            knot_core_start_l,
+            knot_core_mid_l,
+            knot_core_length_d,
+        ] = optionals;
         Ok(Self {
-            time: number("time_s")?,
-            phase: text("phase")?,
-            knot: text("knot")?,
-            knot_agreement: optional("knot_agreement")?,
-            solver_status: text("solver_status")?,
-            self_contacts: number("self_contacts")?,
-            wall_contacts: number("wall_contacts")?,
-            knot_position: optional("knot_position_cm")?,
-            knot_core_start: later("knot_core_start_cm")?,
-            knot_core_end: later("knot_core_end_cm")?,
-            knot_core_start_l: later("knot_core_start_L")?,
-            knot_core_mid_l: later("knot_core_mid_L")?,
-            knot_core_length_d: later("knot_core_length_D")?,
-            contacts_start: optional("contacts_start_cm")?,
-            contacts_end: optional("contacts_end_cm")?,
-            first_contact: optional("first_contact_cm")?,
-            last_contact: optional("last_contact_cm")?,
-            self_penetration_rel: number("max_self_penetration_rel")?,
-            wall_penetration: number("max_wall_penetration_cm")?,
-            limit_excess_deg: number("max_limit_excess_deg")?,
+            time,
+            phase,
+            knot,
+            knot_agreement,
+            solver_status,
+            self_contacts,
+            wall_contacts,
+            knot_position,
+            knot_core_start,
+            knot_core_end,
+            knot_core_start_l,
+            knot_core_mid_l,
+            knot_core_length_d,
+            contacts_start,
+            contacts_end,
+            first_contact,
+            last_contact,
+            self_penetration_rel,
+            wall_penetration,
+            limit_excess_deg: limit,
         })
     }
 

@@ -73,8 +73,8 @@ fn read_optional(path: &Path) -> Result<Option<String>, ReportError> {
 
 /// "N rows; columns a, b, c", or the error that reading it gave.
 fn describe_csv(path: &Path) -> String {
-    let described = CsvFile::read(path).and_then(|file| {
-        let rows = file.records().collect::<Result<Vec<_>, _>>()?.len();
+    let described = CsvFile::open(path).and_then(|file| {
+        let rows = file.count_records()?;
         Ok(format!("{rows} rows; columns {}", file.header().join(", ")))
     });
     described.unwrap_or_else(|e| e.to_string())

@@ -5,6 +5,7 @@ use std::path::Path;
 
 use crate::csv::CsvFile;
 use crate::error::ReportError;
+use crate::joint_series::JointSeries;
 
 /// The `tension_dyn` column of `internal.csv` as a frames × joints matrix, frame-major
 /// (`values[f * joints + j]`).
@@ -21,27 +22,16 @@ pub struct Tension {
 impl Tension {
     /// Reads `internal.csv`; frames must be numbered from 0 without gaps and list every joint.
     pub fn read(path: &Path) -> Result<Self, ReportError> {
-        let file = CsvFile::read(path)?;
+        let file = CsvFile::open(path)?;
         let [frame, time, joint, tension] =
             ["frame", "time_s", "joint", "tension_dyn"].map(|c| file.column(c));
         let (frame, time, joint, tension) = (frame?, time?, joint?, tension?);
-        let mut times: Vec<f64> = Vec::new();
-        let mut entries = Vec::new();
-        for record in file.records() {
-            let record = record?;
-            let f = record.index(frame)?;
-            if f == times.len() {
-                times.push(record.number(time)?);
-            } else if f + 1 != times.len() {
-                return Err(record.error(frame, "is not the current or the next frame"));
-            }
-            entries.push((f, record.index(joint)?, record.number(tension)?));
-        }
-        let joints = entries.iter().map(|e| e.1 + 1).max().unwrap_or(0);
-        let mut values = vec![0.0; times.len() * joints];
-        for (f, j, v) in entries {
-            values[f * joints + j] = v;
-        }
+        let mut series = JointSeries::new();
+        file.for_each_record(|record| {
+            let at = (record.index(frame)?, record.number(time)?);
+            series.set(record, frame, at, (record.index(joint)?, 0), record.number(tension)?)
+        })?;
+        let JointSeries { times, joints, values: [values] } = series;
         Ok(Self { times, joints, values })
     }
 

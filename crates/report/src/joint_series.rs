@@ -1,0 +1,113 @@
+//! Per-joint values over the frames of a run, built from CSV rows that come frame by frame
+//! (`forces.csv`, `internal.csv`): K frames × joints matrices, frame-major.
+
+use crate::csv::Record;
+use crate::error::ReportError;
+
+/// K matrices of frames × joints, frame-major (`values[k][f * joints + j]`), with the time
+/// of each frame. `joints` is one more than the largest joint seen; an entry no row gave
+/// is 0.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct JointSeries<const K: usize> {
+    /// Simulation time of each frame (s).
+    pub(crate) times: Vec<f64>,
+    /// Joints per frame (0 = head).
+    pub(crate) joints: usize,
+    /// One matrix per component.
+    pub(crate) values: [Vec<f64>; K],
+}
+
+impl<const K: usize> JointSeries<K> {
+    /// No frame yet.
+    pub(crate) fn new() -> Self {
+        Self { times: Vec::new(), joints: 0, values: [(); K].map(|()| Vec::new()) }
+    }
+
+    /// Sets component `k` of joint `joint` in frame `frame` (at `time` s) to `value`. The
+    /// frame must be the current one or the next (frames numbered from 0 without gaps);
+    /// otherwise the error names `record`'s field `frame_column`.
+    pub(crate) fn set(
+        &mut self,
+        record: &Record<'_>,
+        frame_column: usize,
+        (frame, time): (usize, f64),
+        (joint, k): (usize, usize),
+        value: f64,
+    ) -> Result<(), ReportError> {
+        if frame == self.times.len() {
+            self.times.push(time);
+            let len = self.times.len() * self.joints;
+            self.values.iter_mut().for_each(|v| v.resize(len, 0.0));
+        } else if frame + 1 != self.times.len() {
+            return Err(record.error(frame_column, "is not the current or the next frame"));
+        }
+        if joint >= self.joints {
+            self.widen(joint + 1);
+        }
+        self.values[k][frame * self.joints + joint] = value;
+        Ok(())
+    }
+
+    /// Re-lays the matrices out with `joints` columns, the new entries 0. Within the first
+    /// frame (where the joints are first seen, one by one) this is a resize.
+    fn widen(&mut self, joints: usize) {
+        let (frames, old) = (self.times.len(), self.joints);
+        for values in &mut self.values {
+            if frames <= 1 {
+                values.resize(frames * joints, 0.0);
+                continue;
+            }
+            let mut wider = vec![0.0; frames * joints];
+            for (row, old_row) in wider.chunks_mut(joints).zip(values.chunks(old.max(1))) {
+                row[..old].copy_from_slice(&old_row[..old]);
+            }
+            *values = wider;
+        }
+        self.joints = joints;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::csv::CsvFile;
+
+    /// The series of a `frame,time_s,joint,k,value` file.
+    fn read(text: &str) -> Result<JointSeries<2>, ReportError> {
+        let path = crate::test_files::write("series.csv", text);
+        let file = CsvFile::open(&path)?;
+        let mut series = JointSeries::new();
+        file.for_each_record(|r| {
+            let at = (r.index(0)?, r.number(1)?);
+            series.set(r, 0, at, (r.index(2)?, r.index(3)?), r.number(4)?)
+        })?;
+        Ok(series)
+    }
+
+    #[test]
+    fn rows_fill_frames_by_joint_and_component_and_absent_entries_are_zero() {
+        let series =
+            read("f,t,j,k,v\n0,0,0,0,1\n0,0,1,1,2\n1,0.5,1,0,3\n2,1,0,1,4\n").expect("reads");
+        assert_eq!(series.times, [0.0, 0.5, 1.0]);
+        assert_eq!(series.joints, 2);
+        assert_eq!(series.values[0], [1.0, 0.0, 0.0, 3.0, 0.0, 0.0]);
+        assert_eq!(series.values[1], [0.0, 2.0, 0.0, 0.0, 4.0, 0.0]);
+    }
+
+    #[test]
+    fn a_joint_first_seen_in_a_later_frame_widens_every_frame() {
+        let series =
+            read("f,t,j,k,v\n0,0,0,0,1\n1,1,0,0,2\n1,1,2,1,3\n2,2,1,0,4\n").expect("reads");
+        assert_eq!(series.joints, 3);
+        assert_eq!(series.values[0], [1.0, 0.0, 0.0, 2.0, 0.0, 0.0, 0.0, 4.0, 0.0]);
+        assert_eq!(series.values[1], [0.0, 0.0, 0.0, 0.0, 0.0, 3.0, 0.0, 0.0, 0.0]);
+    }
+
+    #[test]
+    fn a_frame_out_of_order_is_an_error_at_its_line() {
+        let error = read("f,t,j,k,v\n0,0,0,0,1\n2,1,0,0,2\n").expect_err("frame 1 skipped");
+        assert!(error.to_string().contains("series.csv:3:"), "{error}");
+        let error = read("f,t,j,k,v\n0,0,0,0,1\n1,1,0,0,2\n0,0,1,0,3\n").expect_err("back");
+        assert!(error.to_string().contains("series.csv:4:"), "{error}");
+    }
+}
