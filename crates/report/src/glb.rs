@@ -273,7 +273,8 @@ pub fn encode(centreline: &Centreline, radii: &[f64]) -> Vec<u8> {
         scene: 0,
         scenes: json!([{ "name": "hagfish", "nodes": (0..bodies).collect::<Vec<_>>() }]),
     };
-    let mut json_bytes = serde_json::to_vec(&document).expect("JSON values and string keys always serialize");
+    let mut json_bytes =
+        serde_json::to_vec(&document).expect("JSON values and string keys always serialize");
     pad(&mut json_bytes, b' ');
     let total = 12 + 8 + json_bytes.len() + 8 + buffer.len();
     let mut glb = Vec::with_capacity(total);
