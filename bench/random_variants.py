@@ -12,11 +12,13 @@ travels ≥ 0.25 L over the slide, its head-ward end comes within 0.05 L of the 
 penetration stays below 2 % of the local radius and no joint passes its limit by 0.5°; a
 failing variant's line names the checks it fails.
 
-Usage (from the workspace root, after `cargo build --release`):
+Usage (from anywhere in the workspace):
     python3 bench/random_variants.py [--seed S] [--count N] [--jobs J] [--scenario FILE]
                                      [--set PATH=VALUE ...]
-The draws depend only on the seed. Run directories are made in a temporary directory and
-removed as they are read.
+It builds `hagfish` with `cargo build --release` first and runs the binary cargo's target
+directory holds (so never a stale one); set HAGFISH_BIN to run another binary instead. The
+draws depend only on the seed. Run directories are made in a temporary directory and removed
+as they are read.
 """
 
 import argparse
@@ -30,8 +32,6 @@ import tempfile
 from concurrent.futures import ThreadPoolExecutor
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-TARGET = os.environ.get("CARGO_TARGET_DIR", os.path.join(ROOT, "target"))
-HAGFISH = os.environ.get("HAGFISH_BIN", os.path.join(TARGET, "release", "hagfish"))
 ES103 = os.path.join(ROOT, "data", "hagfish", "es103.ron")
 CIRCUMFERENCES = [5.6, 5.5, 5.6, 4.3]
 BODY_COUNTS = [50, 60, 75, 100, 120, 150, 200, 250, 300]
@@ -121,13 +121,13 @@ def judge(out):
     return not failed, text
 
 
-def run(scenario, sets, work, index, v):
+def run(hagfish, scenario, sets, work, index, v):
     body = os.path.join(work, f"body_{index}.ron")
     with open(body, "w") as f:
         f.write(body_text(v))
     out = os.path.join(work, f"run_{index}")
     subprocess.run(
-        [HAGFISH, "run", scenario, "--body", body, "--out", out, "--quiet",
+        [hagfish, "run", scenario, "--body", body, "--out", out, "--quiet",
          "--set", f"time_step_s={v['time_step_s']:.5f}",
          "--set", f"drag.quadratic_g_per_cm3={0.5 * v['drag']:.4f}",
          *[arg for s in sets for arg in ("--set", s)]],
@@ -136,6 +136,17 @@ def run(scenario, sets, work, index, v):
     passed, text = judge(out)
     subprocess.run(["rm", "-rf", out, body], check=False)
     return passed, text
+
+
+def hagfish_binary():
+    """HAGFISH_BIN if set; else builds `hagfish` in release and returns the binary in cargo's
+    target directory (as `cargo metadata` reports it, CARGO_TARGET_DIR included)."""
+    if "HAGFISH_BIN" in os.environ:
+        return os.environ["HAGFISH_BIN"]
+    subprocess.run(["cargo", "build", "--release", "--bin", "hagfish"], cwd=ROOT, check=True)
+    metadata = subprocess.run(["cargo", "metadata", "--format-version", "1", "--no-deps"],
+                              cwd=ROOT, check=True, capture_output=True, text=True)
+    return os.path.join(json.loads(metadata.stdout)["target_directory"], "release", "hagfish")
 
 
 def main():
@@ -147,13 +158,14 @@ def main():
     parser.add_argument("--set", action="append", default=[], metavar="PATH=VALUE",
                         help="a scenario override for every run, as `hagfish run --set`")
     args = parser.parse_args()
-    if not os.access(HAGFISH, os.X_OK):
-        raise SystemExit(f"no hagfish binary at {HAGFISH}: run `cargo build --release` (or set "
-                         "HAGFISH_BIN or CARGO_TARGET_DIR)")
+    hagfish = hagfish_binary()
+    if not os.access(hagfish, os.X_OK):
+        raise SystemExit(f"no hagfish binary at {hagfish} (HAGFISH_BIN)")
     rng = random.Random(args.seed)
     variants = [draw(rng) for _ in range(args.count)]
     with tempfile.TemporaryDirectory() as work, ThreadPoolExecutor(args.jobs) as pool:
-        results = pool.map(lambda iv: run(args.scenario, args.set, work, *iv), enumerate(variants))
+        results = pool.map(lambda iv: run(hagfish, args.scenario, args.set, work, *iv),
+                           enumerate(variants))
         passes = 0
         for v, (passed, text) in zip(variants, results):
             passes += passed
