@@ -154,3 +154,44 @@ impl Metrics {
         self.time.len()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A `metrics.csv` of the columns read here, without the later ones unless `later`.
+    fn file(rows: &[&str], later: bool) -> crate::test_files::TestFile {
+        let mut names: Vec<&str> = [&TEXT[..], &NUMBER, &OPTIONAL].concat();
+        if later {
+            names.extend(LATER);
+        }
+        let mut text = names.join(",") + "\n";
+        for row in rows {
+            text += row;
+            text += "\n";
+        }
+        crate::test_files::write("metrics.csv", &text)
+    }
+
+    #[test]
+    fn columns_by_name_with_empty_fields_as_none_and_later_columns_optional() {
+        let old = file(&["slide,3_1,ok,0.5,2,1,0.01,0,0.2,0.9,,,,,"], false);
+        let m = Metrics::read(&old).expect("reads");
+        assert_eq!((m.phase[0].as_str(), m.knot[0].as_str()), ("slide", "3_1"));
+        assert_eq!((m.time[0], m.self_contacts[0], m.limit_excess_deg[0]), (0.5, 2.0, 0.2));
+        assert_eq!((m.knot_agreement[0], m.knot_position[0]), (Some(0.9), None));
+        assert_eq!(m.knot_core_mid_l, [None], "a run directory written before the column");
+        let new = file(&["tie,0_1,ok,0,0,0,0,0,0,,,,,,,1,2,0.1,0.2,3.5"], true);
+        let m = Metrics::read(&new).expect("reads");
+        assert_eq!((m.knot_core_start[0], m.knot_core_length_d[0]), (Some(1.0), Some(3.5)));
+    }
+
+    #[test]
+    fn no_frame_or_a_bad_number_is_an_error_naming_the_file() {
+        let empty = Metrics::read(&file(&[], true)).expect_err("no frame").to_string();
+        assert!(empty.contains("metrics.csv: no frame"), "{empty}");
+        let bad = file(&["tie,0_1,ok,0,x,0,0,0,0,,,,,,,,,,,"], true);
+        let error = Metrics::read(&bad).expect_err("x").to_string();
+        assert!(error.contains("metrics.csv:2:") && error.contains("\"x\""), "{error}");
+    }
+}
