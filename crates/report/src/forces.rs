@@ -39,7 +39,7 @@ impl ThigmoForces {
                 .position(|name| *name == record.text(axis))
                 .ok_or_else(|| record.error(axis, "is not X, Y or Z"))?;
             let at = (record.index(frame)?, record.number(time)?);
-            series.set(record, frame, at, (record.index(joint)?, a), record.number(value)?)
+            series.set(record, [frame, joint], at, (record.index(joint)?, a), record.number(value)?)
         })?;
         let JointSeries { times, joints, values } = series;
         Ok(Self { times, joints, values })

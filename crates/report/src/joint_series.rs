@@ -1,6 +1,8 @@
 //! Per-joint values over the frames of a run, built from CSV rows that come frame by frame
 //! (`forces.csv`, `internal.csv`): K frames × joints matrices, frame-major.
 
+use hagfish_anatomy::MAX_BODY_COUNT;
+
 use crate::csv::Record;
 use crate::error::ReportError;
 
@@ -24,16 +26,22 @@ impl<const K: usize> JointSeries<K> {
     }
 
     /// Sets component `k` of joint `joint` in frame `frame` (at `time` s) to `value`. The
-    /// frame must be the current one or the next (frames numbered from 0 without gaps);
-    /// otherwise the error names `record`'s field `frame_column`.
+    /// frame must be the current one or the next (frames numbered from 0 without gaps),
+    /// and the joint one that a body can have (below [`MAX_BODY_COUNT`]: a corrupt index must
+    /// not size the matrices); otherwise the error names `record`'s field `frame_column` or
+    /// `joint_column`.
     pub(crate) fn set(
         &mut self,
         record: &Record<'_>,
-        frame_column: usize,
+        [frame_column, joint_column]: [usize; 2],
         (frame, time): (usize, f64),
         (joint, k): (usize, usize),
         value: f64,
     ) -> Result<(), ReportError> {
+        if joint >= MAX_BODY_COUNT {
+            let what = format!("is beyond the joints a body can have ({MAX_BODY_COUNT})");
+            return Err(record.error(joint_column, &what));
+        }
         if frame == self.times.len() {
             self.times.push(time);
             let len = self.times.len() * self.joints;
@@ -79,7 +87,7 @@ mod tests {
         let mut series = JointSeries::new();
         file.for_each_record(|r| {
             let at = (r.index(0)?, r.number(1)?);
-            series.set(r, 0, at, (r.index(2)?, r.index(3)?), r.number(4)?)
+            series.set(r, [0, 2], at, (r.index(2)?, r.index(3)?), r.number(4)?)
         })?;
         Ok(series)
     }
@@ -109,5 +117,7 @@ mod tests {
         assert!(error.to_string().contains("series.csv:3:"), "{error}");
         let error = read("f,t,j,k,v\n0,0,0,0,1\n1,1,0,0,2\n0,0,1,0,3\n").expect_err("back");
         assert!(error.to_string().contains("series.csv:4:"), "{error}");
+        let error = read("f,t,j,k,v\n0,0,99999999999,0,1\n").expect_err("a corrupt joint");
+        assert!(error.to_string().contains("series.csv:2: field 3"), "{error}");
     }
 }

@@ -29,7 +29,13 @@ impl Tension {
         let mut series = JointSeries::new();
         file.for_each_record(|record| {
             let at = (record.index(frame)?, record.number(time)?);
-            series.set(record, frame, at, (record.index(joint)?, 0), record.number(tension)?)
+            series.set(
+                record,
+                [frame, joint],
+                at,
+                (record.index(joint)?, 0),
+                record.number(tension)?,
+            )
         })?;
         let JointSeries { times, joints, values: [values] } = series;
         Ok(Self { times, joints, values })
