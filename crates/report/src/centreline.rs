@@ -1,9 +1,11 @@
 //! `centreline.csv`: the body centres of every recorded frame.
 
+use std::ops::ControlFlow;
 use std::path::Path;
 
 use crate::csv::CsvFile;
 use crate::error::ReportError;
+use crate::frame_selection::FrameSelection;
 
 /// Body centres per frame (cm), frame-major: frame f, body b is `points[f * bodies + b]`.
 #[derive(Clone, Debug, PartialEq)]
@@ -21,6 +23,12 @@ impl Centreline {
     /// a last frame with fewer bodies than the others (a run stopped while writing it) is
     /// dropped.
     pub fn read(path: &Path) -> Result<Self, ReportError> {
+        Self::read_selected(path, FrameSelection::all())
+    }
+
+    /// [`Centreline::read`] keeping only the frames `selection` keeps (every frame is
+    /// checked all the same).
+    pub fn read_selected(path: &Path, selection: FrameSelection) -> Result<Self, ReportError> {
         let file = CsvFile::open(path)?;
         let [frame, time, body, x, y, z] =
             ["frame", "time_s", "body", "x_cm", "y_cm", "z_cm"].map(|c| file.column(c));
@@ -28,40 +36,48 @@ impl Centreline {
         let mut times = Vec::new();
         let mut points = Vec::new();
         let mut bodies = None;
-        let mut current = Vec::new();
+        // The frame being read: its index, its bodies so far, and its centres if kept.
+        let (mut current_frame, mut current_bodies, mut current) = (None, 0, Vec::new());
         file.for_each_record(|record| {
             let f = record.index(frame)?;
-            if times.len().checked_sub(1) != Some(f) {
-                if !times.is_empty() {
-                    let count = *bodies.get_or_insert(current.len());
-                    if current.len() != count {
+            if current_frame != Some(f) {
+                if let Some(previous) = current_frame {
+                    let count = *bodies.get_or_insert(current_bodies);
+                    if current_bodies != count {
                         return Err(record.error(
                             frame,
                             &format!(
-                                "starts a frame after one of {} bodies, not {count}",
-                                current.len()
+                                "starts a frame after one of {current_bodies} bodies, not {count}"
                             ),
                         ));
                     }
                     points.append(&mut current);
+                    if f != previous + 1 {
+                        let next = previous + 1;
+                        return Err(record.error(frame, &format!("is not the next frame, {next}")));
+                    }
+                } else if f != 0 {
+                    return Err(record.error(frame, "is not the next frame, 0"));
                 }
-                if f != times.len() {
-                    return Err(
-                        record.error(frame, &format!("is not the next frame, {}", times.len()))
-                    );
+                if selection.keeps(f) {
+                    times.push(record.number(time)?);
                 }
-                times.push(record.number(time)?);
+                (current_frame, current_bodies) = (Some(f), 0);
             }
-            if record.index(body)? != current.len() {
-                return Err(record.error(body, &format!("is not the next body, {}", current.len())));
+            if record.index(body)? != current_bodies {
+                let what = format!("is not the next body, {current_bodies}");
+                return Err(record.error(body, &what));
             }
-            current.push([record.number(x)?, record.number(y)?, record.number(z)?]);
+            current_bodies += 1;
+            if current_frame.is_some_and(|f| selection.keeps(f)) {
+                current.push([record.number(x)?, record.number(y)?, record.number(z)?]);
+            }
             Ok(())
         })?;
-        let count = *bodies.get_or_insert(current.len());
-        if current.len() == count {
+        let count = *bodies.get_or_insert(current_bodies);
+        if current_bodies == count {
             points.append(&mut current);
-        } else {
+        } else if current_frame.is_some_and(|f| selection.keeps(f)) {
             times.pop();
         }
         if times.is_empty() || count < 2 {
@@ -71,6 +87,22 @@ impl Centreline {
             });
         }
         Ok(Self { times, bodies: count, points })
+    }
+
+    /// The bodies of the first frame of `centreline.csv` (read up to the second frame).
+    pub fn first_frame_bodies(path: &Path) -> Result<usize, ReportError> {
+        let file = CsvFile::open(path)?;
+        let frame = file.column("frame")?;
+        let mut bodies = 0;
+        file.scan(|record| {
+            Ok(if record.index(frame)? == 0 {
+                bodies += 1;
+                ControlFlow::Continue(())
+            } else {
+                ControlFlow::Break(())
+            })
+        })?;
+        Ok(bodies)
     }
 
     /// Number of frames.

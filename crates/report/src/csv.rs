@@ -9,7 +9,7 @@
 
 use std::fs::File;
 use std::io::{BufRead, BufReader};
-use std::ops::Range;
+use std::ops::{ControlFlow, Range};
 use std::path::{Path, PathBuf};
 
 use crate::error::ReportError;
@@ -72,6 +72,14 @@ impl CsvFile {
         &self,
         mut each: impl FnMut(&Record<'_>) -> Result<(), ReportError>,
     ) -> Result<(), ReportError> {
+        self.scan(|record| each(record).map(|()| ControlFlow::Continue(())))
+    }
+
+    /// [`CsvFile::for_each_record`] that also stops, without error, when `each` breaks.
+    pub fn scan(
+        &self,
+        mut each: impl FnMut(&Record<'_>) -> Result<ControlFlow<()>, ReportError>,
+    ) -> Result<(), ReportError> {
         let mut reader = Self::reader(&self.path)?;
         let width = self.header.len();
         let (mut text, mut fields) = (String::new(), Vec::with_capacity(width));
@@ -103,7 +111,9 @@ impl CsvFile {
                     what: format!("{} fields where the header has {width}", fields.len()),
                 });
             }
-            each(&Record { path: &self.path, line, text: &text, fields: &fields })?;
+            if each(&Record { path: &self.path, line, text: &text, fields: &fields })?.is_break() {
+                return Ok(());
+            }
         }
         Ok(())
     }

@@ -4,6 +4,7 @@ use std::path::Path;
 
 use crate::csv::CsvFile;
 use crate::error::ReportError;
+use crate::frame_selection::FrameSelection;
 use crate::joint_series::JointSeries;
 
 /// The axes of `forces.csv`, in the order of [`ThigmoForces::values`].
@@ -24,12 +25,18 @@ pub struct ThigmoForces {
 impl ThigmoForces {
     /// Reads the `thigmo` rows of `forces.csv`; frames must be numbered from 0 without gaps.
     pub fn read(path: &Path) -> Result<Self, ReportError> {
+        Self::read_selected(path, FrameSelection::all())
+    }
+
+    /// [`ThigmoForces::read`] keeping only the frames `selection` keeps (every frame is
+    /// checked all the same).
+    pub fn read_selected(path: &Path, selection: FrameSelection) -> Result<Self, ReportError> {
         let file = CsvFile::open(path)?;
         let [frame, time, joint, axis, group, value] =
             ["frame", "time_s", "joint", "axis", "group", "value_dyn_cm"].map(|c| file.column(c));
         let (frame, time, joint, axis, group, value) =
             (frame?, time?, joint?, axis?, group?, value?);
-        let mut series = JointSeries::new();
+        let mut series = JointSeries::new(selection);
         file.for_each_record(|record| {
             if record.text(group) != "thigmo" {
                 return Ok(());
@@ -41,7 +48,7 @@ impl ThigmoForces {
             let at = (record.index(frame)?, record.number(time)?);
             series.set(record, [frame, joint], at, (record.index(joint)?, a), record.number(value)?)
         })?;
-        let JointSeries { times, joints, values } = series;
+        let JointSeries { times, joints, values, .. } = series;
         Ok(Self { times, joints, values })
     }
 

@@ -59,7 +59,8 @@ fn fill(template: &str, values: &HashMap<&str, String>) -> String {
 }
 
 /// The run data the viewer reads: frames, bodies, times, radii, the body centres as
-/// base64 little-endian f32 (frame-major, x y z), and per metrics frame its phase and knot.
+/// base64 little-endian f32 (frame-major, x y z), and per frame its phase and knot (of the
+/// frames the run directory was read with, [`RunDir::frames`]).
 ///
 /// The centres are the bulk (32 MB of base64 for 201 frames of 10 000 bodies), so they are
 /// encoded straight into the returned text where the rest of the JSON leaves room for them,
@@ -68,11 +69,10 @@ fn fill(template: &str, values: &HashMap<&str, String>) -> String {
 fn run_data(run: &RunDir) -> String {
     let c = &run.centreline;
     let m = &run.metrics;
-    let states: Vec<String> = m
-        .phase
-        .iter()
-        .zip(&m.knot)
-        .map(|(phase, knot)| format!("phase {phase}, knot {knot}"))
+    let states: Vec<String> = run
+        .frames
+        .kept(m.frames())
+        .map(|f| format!("phase {}, knot {}", m.phase[f], m.knot[f]))
         .collect();
     let rest = serde_json::json!({
         "frames": c.frames(),
@@ -128,11 +128,22 @@ pub fn page(run: &RunDir, plots: &[Plot], gif: &[u8]) -> String {
         escape(run.contacts.as_deref().unwrap_or("absent"))
     );
     let shown = animation::shown_frames(run.centreline.frames()).len();
-    let caption = format!(
+    let mut caption = format!(
         "{shown} of {} frames at {} × real time (animation.gif).",
         run.centreline.frames(),
         animation::SPEED_UP
     );
+    if run.frames.stride > 1 {
+        let _ = write!(
+            caption,
+            " The 3-D view, the animation, the kymographs, run.glb and vtk/ hold one frame in {} \
+             of the run's {} and its last (a run of more frames × bodies than {} would not fit \
+             the report's memory; every frame is in centreline.csv).",
+            run.frames.stride,
+            run.metrics.frames(),
+            crate::frame_selection::BODY_FRAME_BUDGET,
+        );
+    }
     let values = HashMap::from([
         ("title", escape(&run.dir.display().to_string())),
         ("errors_js", ERRORS_JS.to_string()),

@@ -5,13 +5,18 @@ use hagfish_anatomy::MAX_BODY_COUNT;
 
 use crate::csv::Record;
 use crate::error::ReportError;
+use crate::frame_selection::FrameSelection;
 
 /// K matrices of frames × joints, frame-major (`values[k][f * joints + j]`), with the time
-/// of each frame. `joints` is one more than the largest joint seen; an entry no row gave
-/// is 0.
+/// of each frame, for the frames a [`FrameSelection`] keeps. `joints` is one more than the
+/// largest joint seen; an entry no row gave is 0.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct JointSeries<const K: usize> {
-    /// Simulation time of each frame (s).
+    /// The frames kept.
+    selection: FrameSelection,
+    /// Frames seen, kept or not.
+    frames_seen: usize,
+    /// Simulation time of each kept frame (s).
     pub(crate) times: Vec<f64>,
     /// Joints per frame (0 = head).
     pub(crate) joints: usize,
@@ -20,9 +25,10 @@ pub(crate) struct JointSeries<const K: usize> {
 }
 
 impl<const K: usize> JointSeries<K> {
-    /// No frame yet.
-    pub(crate) fn new() -> Self {
-        Self { times: Vec::new(), joints: 0, values: [(); K].map(|()| Vec::new()) }
+    /// No frame yet; `selection` says which frames to keep.
+    pub(crate) fn new(selection: FrameSelection) -> Self {
+        let values = [(); K].map(|()| Vec::new());
+        Self { selection, frames_seen: 0, times: Vec::new(), joints: 0, values }
     }
 
     /// Sets component `k` of joint `joint` in frame `frame` (at `time` s) to `value`. The
@@ -42,17 +48,25 @@ impl<const K: usize> JointSeries<K> {
             let what = format!("is beyond the joints a body can have ({MAX_BODY_COUNT})");
             return Err(record.error(joint_column, &what));
         }
-        if frame == self.times.len() {
-            self.times.push(time);
-            let len = self.times.len() * self.joints;
-            self.values.iter_mut().for_each(|v| v.resize(len, 0.0));
-        } else if frame + 1 != self.times.len() {
+        let kept = self.selection.keeps(frame);
+        if frame == self.frames_seen {
+            self.frames_seen += 1;
+            if kept {
+                self.times.push(time);
+                let len = self.times.len() * self.joints;
+                self.values.iter_mut().for_each(|v| v.resize(len, 0.0));
+            }
+        } else if frame + 1 != self.frames_seen {
             return Err(record.error(frame_column, "is not the current or the next frame"));
+        }
+        if !kept {
+            return Ok(());
         }
         if joint >= self.joints {
             self.widen(joint + 1);
         }
-        self.values[k][frame * self.joints + joint] = value;
+        let row = self.times.len() - 1;
+        self.values[k][row * self.joints + joint] = value;
         Ok(())
     }
 
@@ -82,9 +96,13 @@ mod tests {
 
     /// The series of a `frame,time_s,joint,k,value` file.
     fn read(text: &str) -> Result<JointSeries<2>, ReportError> {
+        read_selected(text, FrameSelection::all())
+    }
+
+    fn read_selected(text: &str, selection: FrameSelection) -> Result<JointSeries<2>, ReportError> {
         let path = crate::test_files::write("series.csv", text);
         let file = CsvFile::open(&path)?;
-        let mut series = JointSeries::new();
+        let mut series = JointSeries::new(selection);
         file.for_each_record(|r| {
             let at = (r.index(0)?, r.number(1)?);
             series.set(r, [0, 2], at, (r.index(2)?, r.index(3)?), r.number(4)?)
@@ -109,6 +127,20 @@ mod tests {
         assert_eq!(series.joints, 3);
         assert_eq!(series.values[0], [1.0, 0.0, 0.0, 2.0, 0.0, 0.0, 0.0, 4.0, 0.0]);
         assert_eq!(series.values[1], [0.0, 0.0, 0.0, 0.0, 0.0, 3.0, 0.0, 0.0, 0.0]);
+    }
+
+    #[test]
+    fn only_the_selected_frames_are_kept_and_every_frame_is_checked() {
+        let text = "f,t,j,k,v\n0,0,0,0,1\n1,1,0,0,2\n2,2,1,1,3\n3,3,0,0,4\n4,4,0,0,5\n";
+        let series =
+            read_selected(text, FrameSelection { stride: 2, last: Some(4) }).expect("reads");
+        assert_eq!((series.times.clone(), series.joints), (vec![0.0, 2.0, 4.0], 2));
+        assert_eq!(series.values[0], [1.0, 0.0, 0.0, 0.0, 5.0, 0.0]);
+        assert_eq!(series.values[1], [0.0, 0.0, 0.0, 3.0, 0.0, 0.0]);
+        let skipped = "f,t,j,k,v\n0,0,0,0,1\n1,1,0,0,2\n3,3,0,0,4\n";
+        let error = read_selected(skipped, FrameSelection { stride: 2, last: Some(3) })
+            .expect_err("frame 2 is missing, though not kept");
+        assert!(error.to_string().contains("series.csv:4:"), "{error}");
     }
 
     #[test]

@@ -48,6 +48,7 @@ mod csv;
 mod error;
 mod font;
 mod forces;
+mod frame_selection;
 mod glb;
 mod html;
 mod joint_series;
@@ -67,6 +68,7 @@ mod wcon;
 pub use centreline::Centreline;
 pub use error::ReportError;
 pub use forces::{AXES, ThigmoForces};
+pub use frame_selection::{BODY_FRAME_BUDGET, FrameSelection};
 pub use metrics::Metrics;
 pub use outputs::{
     ANIMATION, GLB, PLOTS, REPORT, VTK, Written, own_files, render, report, write_all,

@@ -7,6 +7,7 @@ use crate::centreline::Centreline;
 use crate::csv::CsvFile;
 use crate::error::ReportError;
 use crate::forces::ThigmoForces;
+use crate::frame_selection::{BODY_FRAME_BUDGET, FrameSelection};
 use crate::metrics::Metrics;
 use crate::radii::Radii;
 use crate::tension::Tension;
@@ -34,20 +35,32 @@ pub struct RunDir {
     /// The tension column of `internal.csv`, if present (runs made before it existed lack
     /// it).
     pub tension: Option<Tension>,
+    /// The frames `centreline`, `forces` and `tension` hold (`metrics` holds every frame):
+    /// all of them unless frames × bodies exceed [`BODY_FRAME_BUDGET`].
+    pub frames: FrameSelection,
 }
 
 impl RunDir {
     /// Reads the run directory `dir`. The three CSV files are required; the optional files
     /// may be absent, and an unreadable `contacts.csv` is described rather than an error.
     pub fn read(dir: &Path) -> Result<Self, ReportError> {
-        let centreline = Centreline::read(&dir.join("centreline.csv"))?;
+        Self::read_within(dir, BODY_FRAME_BUDGET)
+    }
+
+    /// [`RunDir::read`] holding about `budget` body centres at most ([`FrameSelection`]).
+    pub(crate) fn read_within(dir: &Path, budget: usize) -> Result<Self, ReportError> {
         let metrics = Metrics::read(&dir.join("metrics.csv"))?;
-        let forces = ThigmoForces::read(&dir.join("forces.csv"))?;
+        let centreline_path = dir.join("centreline.csv");
+        let bodies = Centreline::first_frame_bodies(&centreline_path)?;
+        let frames = FrameSelection::within(metrics.frames(), bodies, budget);
+        let centreline = Centreline::read_selected(&centreline_path, frames)?;
+        let forces = ThigmoForces::read_selected(&dir.join("forces.csv"), frames)?;
         let radii = Radii::for_run(&dir.join("scenario.ron"), centreline.bodies);
         let contacts_path = dir.join("contacts.csv");
         let contacts = contacts_path.exists().then(|| describe_csv(&contacts_path));
         let internal = dir.join("internal.csv");
-        let tension = internal.exists().then(|| Tension::read(&internal)).transpose()?;
+        let tension =
+            internal.exists().then(|| Tension::read_selected(&internal, frames)).transpose()?;
         Ok(Self {
             dir: dir.to_path_buf(),
             centreline,
@@ -58,6 +71,7 @@ impl RunDir {
             manifest: read_optional(&dir.join("manifest.json"))?,
             contacts,
             tension,
+            frames,
         })
     }
 }
@@ -102,6 +116,21 @@ mod tests {
         let run = RunDir::read(&dir).expect("reads");
         assert_eq!(run.manifest.as_deref(), Some("{\"version\": 1}"));
         assert_eq!(run.contacts.as_deref(), Some("2 rows; columns frame, a"));
+    }
+
+    #[test]
+    fn a_run_beyond_the_budget_is_held_one_frame_in_s_and_its_last() {
+        let dir = synthetic("budget");
+        // 3 frames of 4 bodies within 6 centres: frames 0 and 2 (stride 2, the last).
+        let run = RunDir::read_within(&dir, 6).expect("reads");
+        assert_eq!(run.frames, FrameSelection { stride: 2, last: Some(2) });
+        assert_eq!(run.centreline.times, [0.0, 0.2]);
+        assert_eq!(run.centreline.frame(1), RunDir::read(&dir).expect("reads").centreline.frame(2));
+        assert_eq!((run.forces.frames(), run.metrics.frames()), (2, 3));
+        assert_eq!(run.forces.values[1][2 + 1], 3.0, "frame 2, joint 1, Y");
+        let page = crate::html::page(&run, &[], &[]);
+        assert!(page.contains("one frame in 2 of the run&#39;s 3 and its last"), "caption");
+        assert!(page.contains(r#""states":["phase form, knot 0_1","phase form, knot 0_1"]"#));
     }
 
     #[test]

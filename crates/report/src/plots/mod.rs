@@ -61,7 +61,7 @@ pub fn draw(run: &RunDir, plots: &Path) -> Result<Vec<Plot>, ReportError> {
         let head = TimeSeries {
             title: "Tension at the head (the pull the body transmits to the wall)".into(),
             y_label: "tension at joint 0 (dyn)".into(),
-            times: tension.times.clone(),
+            times: tension.head_times.clone(),
             lines: vec![Line {
                 label: "N at the head".into(),
                 colour: [0, 0, 0],
