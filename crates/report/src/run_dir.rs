@@ -49,9 +49,9 @@ impl RunDir {
 
     /// [`RunDir::read`] holding about `budget` body centres at most ([`FrameSelection`]).
     pub(crate) fn read_within(dir: &Path, budget: usize) -> Result<Self, ReportError> {
-        let metrics = Metrics::read(&dir.join("metrics.csv"))?;
         let centreline_path = dir.join("centreline.csv");
         let bodies = Centreline::first_frame_bodies(&centreline_path)?;
+        let metrics = Metrics::read(&dir.join("metrics.csv"))?;
         let frames = FrameSelection::within(metrics.frames(), bodies, budget);
         let centreline = Centreline::read_selected(&centreline_path, frames)?;
         let forces = ThigmoForces::read_selected(&dir.join("forces.csv"), frames)?;
