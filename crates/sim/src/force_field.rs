@@ -5,8 +5,7 @@
 //! phase the way the thesis describes the field: zero tail-ward of the knot, growing as the
 //! knot nears the head, smooth along the body and rough in time. The log keeps O(frames +
 //! phases × DOFs) numbers, not the field itself: a 10 000-body run records 15 000 DOFs a frame
-//! (120 kB), which kept for every frame was the one store of a run growing with bodies ×
-//! frames.
+//! (120 kB), which kept for every frame would grow with bodies × frames.
 
 use std::collections::HashMap;
 
