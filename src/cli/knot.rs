@@ -1,8 +1,8 @@
 //! `hagfish knot FILE`: reads a `centreline.csv` (`frame,time_s,body,x_cm,y_cm,z_cm`, as
-//! `hagfish run` writes it) and prints the knot type of every frame. A malformed file is an
-//! error at its `file:line:column`.
+//! `hagfish run` writes it) a line at a time and prints the knot type of every frame as it
+//! completes. A malformed line is an error at its `file:line:column`.
 
-use std::io::Write;
+use std::io::{BufRead, BufReader, Write};
 use std::path::{Path, PathBuf};
 
 use glam::DVec3;
@@ -28,20 +28,22 @@ struct FramePoints {
 }
 
 /// Reads the file and prints `frame time_s knot agreement knotted_bodies position_cm` per
-/// frame (`-` where the analysis found no knotted stretch, the reason where it failed).
+/// frame (`-` where the analysis found no knotted stretch, the reason where it failed). The
+/// file is read a line at a time and each frame printed once it is complete, so a run of any
+/// length needs one frame in memory; a malformed line stops it there with its error.
 pub fn run(args: &KnotArgs, out: &mut impl Write) -> Result<(), CliError> {
-    let text = std::fs::read_to_string(&args.file).map_err(|e| CliError::RunDirectory {
+    let file = std::fs::File::open(&args.file).map_err(|e| CliError::RunDirectory {
         path: args.file.clone(),
         reason: format!("cannot read the file: {e}"),
     })?;
-    let frames = parse(&text, &args.file)?;
+    let mut frames = Frames::new(BufReader::new(file), &args.file)?;
     let (options, mut analyser) = (KnotOptions::default(), KnotAnalyser::default());
     writeln!(
         out,
         "{:>6}  {:>9}  {:>6}  {:>9}  {:>14}  position_cm",
         "frame", "time_s", "knot", "agreement", "knotted_bodies"
     )?;
-    for f in &frames {
+    while let Some(f) = frames.next_frame()? {
         match analyser.analyse(&f.points, &options) {
             Ok(k) => writeln!(
                 out,
@@ -59,40 +61,74 @@ pub fn run(args: &KnotArgs, out: &mut impl Write) -> Result<(), CliError> {
     Ok(())
 }
 
-/// The frames of a centreline CSV, in file order; rows of one frame must be consecutive.
-fn parse(text: &str, path: &Path) -> Result<Vec<FramePoints>, CliError> {
-    let error = |line: usize, column: usize, message: String| CliError::Csv {
-        path: path.to_path_buf(),
-        line,
-        column,
-        message,
-    };
-    let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l));
-    let Some((_, header)) = lines.next() else {
-        return Err(error(
-            1,
-            1,
-            format!("empty file: expected a header with {}", COLUMNS.join(",")),
-        ));
-    };
-    let names: Vec<&str> = header.split(',').map(str::trim).collect();
-    let mut index = [0usize; 5];
-    for (slot, wanted) in index.iter_mut().zip(COLUMNS) {
-        *slot = names.iter().position(|n| *n == wanted).ok_or_else(|| {
-            error(1, 1, format!("header has no column `{wanted}`: expected {}", COLUMNS.join(",")))
-        })?;
-    }
-    let mut frames: Vec<FramePoints> = Vec::new();
-    for (number, line) in lines {
-        if line.trim().is_empty() {
-            continue;
+/// The frames of a centreline CSV, in file order, read a line at a time; rows of one frame
+/// must be consecutive.
+struct Frames<'a, R> {
+    lines: std::iter::Enumerate<std::io::Lines<R>>,
+    path: &'a Path,
+    /// The header's column count and the places of [`COLUMNS`] in it.
+    width: usize,
+    names: Vec<String>,
+    index: [usize; 5],
+    /// The frame being read (complete once a row of the next one, or the end, is read).
+    current: Option<FramePoints>,
+}
+
+impl<'a, R: BufRead> Frames<'a, R> {
+    /// Reads the header of `reader` (the file `path`).
+    fn new(reader: R, path: &'a Path) -> Result<Self, CliError> {
+        let mut lines = reader.lines().enumerate();
+        let header = match lines.next() {
+            Some((_, line)) => line.map_err(|e| read_error(path, &e))?,
+            None => {
+                return Err(csv_error(
+                    path,
+                    1,
+                    1,
+                    format!("empty file: expected a header with {}", COLUMNS.join(",")),
+                ));
+            }
+        };
+        let names: Vec<String> = header.split(',').map(|n| n.trim().to_string()).collect();
+        let mut index = [0usize; 5];
+        for (slot, wanted) in index.iter_mut().zip(COLUMNS) {
+            *slot = names.iter().position(|n| n == wanted).ok_or_else(|| {
+                let expected = COLUMNS.join(",");
+                csv_error(
+                    path,
+                    1,
+                    1,
+                    format!("header has no column `{wanted}`: expected {expected}"),
+                )
+            })?;
         }
+        Ok(Self { lines, path, width: names.len(), names, index, current: None })
+    }
+
+    /// The next complete frame, or `None` at the end of the file.
+    fn next_frame(&mut self) -> Result<Option<FramePoints>, CliError> {
+        while let Some((i, line)) = self.lines.next() {
+            let line = line.map_err(|e| read_error(self.path, &e))?;
+            if line.trim().is_empty() {
+                continue;
+            }
+            if let Some(done) = self.add_row(i + 1, &line)? {
+                return Ok(Some(done));
+            }
+        }
+        Ok(self.current.take())
+    }
+
+    /// Adds the row at line `number`; returns the frame it completes, if it starts another.
+    fn add_row(&mut self, number: usize, line: &str) -> Result<Option<FramePoints>, CliError> {
+        let (path, index) = (self.path, self.index);
         let fields: Vec<&str> = line.split(',').collect();
-        if fields.len() != names.len() {
-            return Err(error(
+        if fields.len() != self.width {
+            return Err(csv_error(
+                path,
                 number,
                 line.chars().count() + 1,
-                format!("{} fields, expected {} as in the header", fields.len(), names.len()),
+                format!("{} fields, expected {} as in the header", fields.len(), self.width),
             ));
         }
         let column =
@@ -100,44 +136,65 @@ fn parse(text: &str, path: &Path) -> Result<Vec<FramePoints>, CliError> {
         let number_at = |k: usize| -> Result<f64, CliError> {
             let field = fields[k].trim();
             field.parse::<f64>().ok().filter(|v| v.is_finite()).ok_or_else(|| {
-                error(
-                    number,
-                    column(k),
-                    format!("`{}` = \"{field}\": expected a finite number", names[k]),
-                )
+                let message =
+                    format!("`{}` = \"{field}\": expected a finite number", self.names[k]);
+                csv_error(path, number, column(k), message)
             })
         };
         let frame = fields[index[0]].trim().parse::<u64>().map_err(|_| {
-            error(
-                number,
-                column(index[0]),
-                format!("frame = \"{}\": expected a whole number", fields[index[0]].trim()),
-            )
+            let message =
+                format!("frame = \"{}\": expected a whole number", fields[index[0]].trim());
+            csv_error(path, number, column(index[0]), message)
         })?;
         let point = DVec3::new(number_at(index[2])?, number_at(index[3])?, number_at(index[4])?);
-        match frames.last_mut() {
-            Some(last) if last.frame == frame => last.points.push(point),
-            Some(last) if frame < last.frame => {
-                return Err(error(
-                    number,
-                    column(index[0]),
-                    format!(
-                        "frame {frame} after frame {}: expected the rows of a frame together, frames increasing",
-                        last.frame
-                    ),
-                ));
+        match &mut self.current {
+            Some(last) if last.frame == frame => {
+                last.points.push(point);
+                Ok(None)
             }
+            Some(last) if frame < last.frame => Err(csv_error(
+                path,
+                number,
+                column(index[0]),
+                format!(
+                    "frame {frame} after frame {}: expected the rows of a frame together, frames increasing",
+                    last.frame
+                ),
+            )),
             _ => {
-                frames.push(FramePoints { frame, time: number_at(index[1])?, points: vec![point] })
+                let next = FramePoints { frame, time: number_at(index[1])?, points: vec![point] };
+                Ok(self.current.replace(next))
             }
         }
     }
-    Ok(frames)
+}
+
+/// A malformed line of `path`, at `line:column`.
+fn csv_error(path: &Path, line: usize, column: usize, message: String) -> CliError {
+    CliError::Csv { path: path.to_path_buf(), line, column, message }
+}
+
+/// A read failure of `path`.
+fn read_error(path: &Path, e: &std::io::Error) -> CliError {
+    CliError::RunDirectory {
+        path: path.to_path_buf(),
+        reason: format!("cannot read the file: {e}"),
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Every frame of `text`, read as `hagfish knot` reads a file.
+    fn parse(text: &str, path: &Path) -> Result<Vec<FramePoints>, CliError> {
+        let mut frames = Frames::new(text.as_bytes(), path)?;
+        let mut all = Vec::new();
+        while let Some(frame) = frames.next_frame()? {
+            all.push(frame);
+        }
+        Ok(all)
+    }
 
     fn message(text: &str) -> String {
         match parse(text, Path::new("c.csv")) {
@@ -169,5 +226,24 @@ mod tests {
         );
         assert!(message("frame,x_cm\n").starts_with("c.csv:1:1: header has no column `time_s`"));
         assert!(message("").starts_with("c.csv:1:1: empty file"));
+    }
+
+    #[test]
+    fn frames_are_printed_as_they_complete_before_a_later_malformed_line() {
+        let path = std::env::temp_dir().join(format!("hagfish-knot-{}.csv", std::process::id()));
+        let square = |f: usize, t: f64| {
+            (0..4).map(|b| format!("{f},{t},{b},{},{},0\n", b % 2, b / 2)).collect::<String>()
+        };
+        let rows = format!("{}1,0.1,0,0,0,0\n1,0.1,1,x,0,0\n", square(0, 0.0));
+        let text = format!("frame,time_s,body,x_cm,y_cm,z_cm\n{rows}");
+        std::fs::write(&path, text).expect("write");
+        let mut out = Vec::new();
+        let result = run(&KnotArgs { file: path.clone() }, &mut out);
+        let _ = std::fs::remove_file(&path);
+        let printed = String::from_utf8(out).expect("UTF-8");
+        assert_eq!(printed.lines().count(), 2, "the header and frame 0: {printed}");
+        assert!(printed.lines().nth(1).is_some_and(|row| row.trim_start().starts_with("0 ")));
+        let error = result.expect_err("frame 1 is malformed").to_string();
+        assert!(error.contains(":7:") && error.contains("x_cm"), "{error}");
     }
 }
