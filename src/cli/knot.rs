@@ -66,8 +66,7 @@ pub fn run(args: &KnotArgs, out: &mut impl Write) -> Result<(), CliError> {
 struct Frames<'a, R> {
     lines: std::iter::Enumerate<std::io::Lines<R>>,
     path: &'a Path,
-    /// The header's column count and the places of [`COLUMNS`] in it.
-    width: usize,
+    /// The header's column names and the places of [`COLUMNS`] among them.
     names: Vec<String>,
     index: [usize; 5],
     /// The frame being read (complete once a row of the next one, or the end, is read).
@@ -102,7 +101,7 @@ impl<'a, R: BufRead> Frames<'a, R> {
                 )
             })?;
         }
-        Ok(Self { lines, path, width: names.len(), names, index, current: None })
+        Ok(Self { lines, path, names, index, current: None })
     }
 
     /// The next complete frame, or `None` at the end of the file.
@@ -123,12 +122,13 @@ impl<'a, R: BufRead> Frames<'a, R> {
     fn add_row(&mut self, number: usize, line: &str) -> Result<Option<FramePoints>, CliError> {
         let (path, index) = (self.path, self.index);
         let fields: Vec<&str> = line.split(',').collect();
-        if fields.len() != self.width {
+        let width = self.names.len();
+        if fields.len() != width {
             return Err(csv_error(
                 path,
                 number,
                 line.chars().count() + 1,
-                format!("{} fields, expected {} as in the header", fields.len(), self.width),
+                format!("{} fields, expected {width} as in the header", fields.len()),
             ));
         }
         let column =

@@ -36,8 +36,10 @@ impl Centreline {
         let mut times = Vec::new();
         let mut points = Vec::new();
         let mut bodies = None;
-        // The frame being read: its index, its bodies so far, and its centres if kept.
-        let (mut current_frame, mut current_bodies, mut current) = (None, 0, Vec::new());
+        // The frame being read: its index, its bodies so far, whether it is kept, and its
+        // centres if it is.
+        let (mut current_frame, mut current_bodies, mut kept) = (None, 0, false);
+        let mut current = Vec::new();
         file.for_each_record(|record| {
             let f = record.index(frame)?;
             if current_frame != Some(f) {
@@ -59,7 +61,8 @@ impl Centreline {
                 } else if f != 0 {
                     return Err(record.error(frame, "is not the next frame, 0"));
                 }
-                if selection.keeps(f) {
+                kept = selection.keeps(f);
+                if kept {
                     times.push(record.number(time)?);
                 }
                 (current_frame, current_bodies) = (Some(f), 0);
@@ -69,7 +72,7 @@ impl Centreline {
                 return Err(record.error(body, &what));
             }
             current_bodies += 1;
-            if current_frame.is_some_and(|f| selection.keeps(f)) {
+            if kept {
                 current.push([record.number(x)?, record.number(y)?, record.number(z)?]);
             }
             Ok(())
@@ -77,7 +80,7 @@ impl Centreline {
         let count = *bodies.get_or_insert(current_bodies);
         if current_bodies == count {
             points.append(&mut current);
-        } else if current_frame.is_some_and(|f| selection.keeps(f)) {
+        } else if kept {
             times.pop();
         }
         if times.is_empty() || count < 2 {

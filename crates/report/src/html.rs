@@ -89,10 +89,12 @@ fn run_data(run: &RunDir) -> String {
     bytes.extend(c.points.iter().flatten().flat_map(|v| (*v as f32).to_le_bytes()));
     let encoded = base64::encoded_len(bytes.len(), true).unwrap_or(0);
     let mut data = String::with_capacity(rest.len() + encoded);
+    // `"points":"` and `"`, the centres encoded between them.
+    let (open, close) = POINTS_PLACE.split_at(POINTS_PLACE.len() - 1);
     data.push_str(before);
-    data.push_str(&POINTS_PLACE[..POINTS_PLACE.len() - 1]);
+    data.push_str(open);
     STANDARD.encode_string(&bytes, &mut data);
-    data.push('"');
+    data.push_str(close);
     data.push_str(after);
     data
 }
