@@ -2,9 +2,10 @@
 //!
 //! - stopped after frame 200 (`--stop-after-frames`, status `interrupted`) and resumed, the run
 //!   gives the same bytes in every output and the same final-state hash as a straight run;
-//! - killed with SIGKILL mid-way, it leaves CSV files of complete rows and whole frames, frame
-//!   counts that agree across files (up to the frame being written) and cover the checkpoint,
-//!   and resumed from there it again ends bit for bit as the straight run;
+//! - killed with SIGKILL mid-way, it leaves CSV files of whole frames up to the frame being
+//!   written (which the kill may cut, even mid-row: Linux stops a write between pages when
+//!   SIGKILL arrives), frame counts that agree across files (up to that frame) and cover the
+//!   checkpoint, and resumed from there it again ends bit for bit as the straight run;
 //! - stopped by SIGTERM, it ends after a frame with exit code 130, status `interrupted`, and
 //!   resumes bit for bit.
 
@@ -15,8 +16,8 @@ use std::sync::OnceLock;
 use std::time::{Duration, Instant};
 
 use common::{
-    ROOT, code_and_stderr, csv_rows, frames_of, fresh_dir, hagfish, manifest, run_hagfish,
-    terminate,
+    ROOT, code_and_stderr, complete_rows, csv_rows, frames_of, fresh_dir, hagfish, manifest,
+    run_hagfish, terminate,
 };
 
 const OUTPUTS: [&str; 7] = [
@@ -114,6 +115,13 @@ fn stop_and_resume_gives_the_straight_run_bit_for_bit() {
     assert!(stderr.contains("the run is completed: nothing to resume"), "{stderr}");
 }
 
+/// Asserts that `frames` (the frame of each row) are `per_frame` rows of frame 0, then of
+/// frame 1, and so on: whole frames, the last of which may be cut short.
+fn assert_frame_major(frames: &[usize], per_frame: usize, file: &str) {
+    let expected: Vec<usize> = (0..frames.len()).map(|k| k / per_frame).collect();
+    assert_eq!(frames, expected, "{file}: whole frames in order, the last possibly cut");
+}
+
 /// Number of lines of a file (0 if it does not exist yet).
 fn line_count(path: &Path) -> usize {
     std::fs::read_to_string(path).map_or(0, |t| t.lines().count())
@@ -135,14 +143,14 @@ fn a_killed_run_keeps_whole_frames_and_resumes_bit_for_bit() {
     child.wait().expect("the killed run is reaped");
     assert_eq!(manifest(&dir)["status"], "running", "the run ended before it was killed");
 
-    let metrics = frames_of(&csv_rows(&dir.join("metrics.csv")));
+    let metrics = frames_of(&complete_rows(&dir.join("metrics.csv")));
     let frames = metrics.len();
     assert_eq!(metrics, (0..frames).collect::<Vec<_>>(), "metrics.csv: frames 0, 1, …");
-    let centreline = frames_of(&csv_rows(&dir.join("centreline.csv")));
-    assert_eq!(centreline.len() % 100, 0, "centreline.csv holds whole frames");
-    let forces = frames_of(&csv_rows(&dir.join("forces.csv")));
-    assert_eq!(forces.len() % (3 * 150), 0, "forces.csv holds whole frames");
-    let contacts = frames_of(&csv_rows(&dir.join("contacts.csv")));
+    let centreline = frames_of(&complete_rows(&dir.join("centreline.csv")));
+    assert_frame_major(&centreline, 100, "centreline.csv");
+    let forces = frames_of(&complete_rows(&dir.join("forces.csv")));
+    assert_frame_major(&forces, 3 * 150, "forces.csv");
+    let contacts = frames_of(&complete_rows(&dir.join("contacts.csv")));
     let checkpoint = std::fs::read_to_string(dir.join("checkpoint.ron")).expect("checkpoint");
     let saved: usize = checkpoint
         .lines()

@@ -64,7 +64,16 @@ pub fn manifest(dir: &Path) -> serde_json::Value {
 pub fn csv_rows(path: &Path) -> Vec<Vec<String>> {
     let text = std::fs::read_to_string(path).expect("a CSV file");
     assert!(text.ends_with('\n'), "{} ends in a partial row", path.display());
-    let mut lines = text.lines();
+    complete_rows(path)
+}
+
+/// The complete rows of a CSV file, as [`csv_rows`], but a last line without its newline is
+/// left out: part of a row that a killed run was writing (Linux stops a write between pages
+/// when SIGKILL arrives).
+pub fn complete_rows(path: &Path) -> Vec<Vec<String>> {
+    let text = std::fs::read_to_string(path).expect("a CSV file");
+    let complete = &text[..text.rfind('\n').map_or(0, |end| end + 1)];
+    let mut lines = complete.lines();
     let width = lines.next().expect("a header").split(',').count();
     lines
         .map(|line| {

@@ -67,7 +67,10 @@ impl CsvFile {
 
     /// Calls `each` on the data lines in order (blank lines skipped), stopping at the first
     /// error it returns; a line with a different number of fields from the header is an
-    /// error. The file is read again from its start, a line at a time.
+    /// error. A last line without its newline is left out: `hagfish run` ends every row with
+    /// one, so it is a row that a killed run was writing (Linux stops a write between pages
+    /// when SIGKILL arrives, so even one `write` per frame can leave part of a row). The file
+    /// is read again from its start, a line at a time.
     pub fn for_each_record(
         &self,
         mut each: impl FnMut(&Record<'_>) -> Result<(), ReportError>,
@@ -88,7 +91,7 @@ impl CsvFile {
             let read = reader
                 .read_line(&mut text)
                 .map_err(|source| Self::read_error(&self.path, source))?;
-            if read == 0 {
+            if read == 0 || !text.ends_with('\n') {
                 return Ok(());
             }
             if line == 1 || text.trim().is_empty() {
@@ -202,6 +205,13 @@ mod tests {
         assert!(error.to_string().contains("a.csv:4:"), "{error}");
         assert!(file.column("c").is_err());
         assert_eq!(file.count_records().expect("count"), 2, "the blank line is skipped");
+    }
+
+    #[test]
+    fn a_last_line_without_its_newline_is_a_cut_row_and_left_out() {
+        let path = write("cut.csv", "a,b\n1,2\n3");
+        let file = CsvFile::open(&path).expect("open");
+        assert_eq!(file.count_records().expect("count"), 1);
     }
 
     #[test]

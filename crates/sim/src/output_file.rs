@@ -3,7 +3,10 @@
 //! every I/O error naming the file.
 //!
 //! Lines are gathered in memory and written by [`OutputFile::flush`] in one `write` call per
-//! frame, so a run killed between two frames leaves complete rows only.
+//! frame, so a run killed between two frames leaves complete rows only. Killed during that
+//! write, a file may end in part of a frame, even part of a row: Linux stops a write between
+//! pages when SIGKILL arrives. The checkpoint records how far every file is whole, a resume
+//! cuts the files there, and the report's reader leaves out a last line without its newline.
 
 use std::fs::{File, OpenOptions};
 use std::io::{Seek, SeekFrom, Write};
