@@ -33,7 +33,9 @@ pub struct RunArgs {
     /// Override a scenario value for this run: `--set PATH=VALUE`, repeatable, with the dotted
     /// paths of `hagfish params` (e.g. `--set time_step_s=0.02`,
     /// `--set Thigmotaxis.parameters.tail_pull_dyn=0`, `--set phases[2].Thigmotaxis.until.
-    /// seconds=10`). Recorded in the run's scenario.ron and manifest.json.
+    /// seconds=10`); VALUE as in the scenario files (`Trefoil(Left)`, `(0.0, 2.0)`,
+    /// `Some((linear_dyn_s_per_cm3: 0.0, quadratic_g_per_cm3: 1.0))`). Recorded in the run's
+    /// scenario.ron and manifest.json.
     #[arg(long = "set", value_name = "PATH=VALUE")]
     set: Vec<String>,
     /// Replace the run already in DIR (its files only; the old run is kept if the new one

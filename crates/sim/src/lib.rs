@@ -48,6 +48,7 @@ mod memory;
 pub mod npy;
 mod options;
 mod output_file;
+mod override_value;
 mod overrides;
 mod parameters;
 pub mod pipeline;

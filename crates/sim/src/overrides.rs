@@ -9,9 +9,10 @@
 //!   tail_pull_dyn`, `Thigmotaxis.until.seconds`, `Form.gains.kp_dyn_per_cm`;
 //! - a field of one phase, by its index from 0: `phases[2].Thigmotaxis.parameters.head.v_a`.
 //!
-//! A VALUE is a number, `true`/`false`, `None`, `Some(VALUE)`, a quoted string, a bare
-//! identifier (an enum variant such as `SparseMaximal`), a variant with a value
-//! (`Trefoil(Left)`) or a tuple `(1.0, 2.0, 3.0)`.
+//! A VALUE is written as in the scenario files (`override_value.rs` has the grammar): a number,
+//! `true`/`false`, `None`, `Some(VALUE)`, a quoted string, an enum variant (`SparseMaximal`,
+//! `Trefoil(Left)`), a tuple `(0.0, 2.0)`, a struct `(linear_dyn_s_per_cm3: 0.0,
+//! quadratic_g_per_cm3: 1.0)` or a list `[…]`.
 //!
 //! Overrides work on the scenario's serde data model: the scenario is turned into a tree of
 //! values, each override replaces one or more of its leaves (a path that names nothing is an
@@ -21,6 +22,7 @@
 use serde_json::{Map, Value};
 
 use crate::error::SimError;
+use crate::override_value::parse_override_value;
 use crate::scenario::Scenario;
 
 /// The kinds of phase a kind-wide path may start with (`params` lists their fields so).
@@ -72,12 +74,8 @@ pub fn apply_overrides(scenario: &Scenario, overrides: &[Override]) -> Result<Sc
         reason: format!("the scenario has no data model: {e}"),
     })?;
     for given in overrides {
-        let value = parse_value(&given.value).ok_or_else(|| {
-            given.error(
-                "the value is not a number, true/false, None, Some(…), a quoted string, an \
-                 identifier, Variant(…) or a tuple",
-            )
-        })?;
+        let value = parse_override_value(&given.value)
+            .map_err(|reason| given.error(format!("the value: {reason}")))?;
         let segments: Vec<&str> = given.path.split('.').collect();
         let targets = match segments.first() {
             Some(kind) if PHASE_KINDS.contains(kind) => phases_of_kind(&mut tree, kind),
@@ -161,43 +159,6 @@ fn unknown_field(name: &str, fields: &Map<String, Value>) -> String {
     format!("no field `{name}` here; the fields are {}", known.join(", "))
 }
 
-/// The value of an override's text (see the module documentation), or `None`.
-fn parse_value(text: &str) -> Option<Value> {
-    let text = text.trim();
-    if let Some(inner) = text.strip_prefix("Some(").and_then(|t| t.strip_suffix(')')) {
-        return parse_value(inner);
-    }
-    if let Some(inner) = text.strip_prefix('(').and_then(|t| t.strip_suffix(')')) {
-        return inner.split(',').map(parse_value).collect::<Option<Vec<_>>>().map(Value::Array);
-    }
-    if let Some((variant, inner)) = text.strip_suffix(')').and_then(|t| t.split_once('(')) {
-        let value = parse_value(inner)?;
-        return is_identifier(variant).then(|| serde_json::json!({ variant: value }));
-    }
-    if let Some(inner) = text.strip_prefix('"').and_then(|t| t.strip_suffix('"')) {
-        return Some(Value::String(inner.to_owned()));
-    }
-    match text {
-        "None" => return Some(Value::Null),
-        "true" => return Some(Value::Bool(true)),
-        "false" => return Some(Value::Bool(false)),
-        _ => {}
-    }
-    if let Ok(integer) = text.parse::<i64>() {
-        return Some(Value::from(integer));
-    }
-    if let Ok(number) = text.parse::<f64>() {
-        return serde_json::Number::from_f64(number).map(Value::Number);
-    }
-    is_identifier(text).then(|| Value::String(text.to_owned()))
-}
-
-/// A letter, then letters, digits and underscores.
-fn is_identifier(text: &str) -> bool {
-    text.chars().next().is_some_and(char::is_alphabetic)
-        && text.chars().all(|c| c.is_alphanumeric() || c == '_')
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -237,6 +198,26 @@ mod tests {
     }
 
     #[test]
+    fn structs_variants_and_whole_phases_as_in_the_scenario_files() {
+        let drag = set_one("drag=Some((linear_dyn_s_per_cm3: 0.25, quadratic_g_per_cm3: 1.0))")
+            .expect("applies");
+        let drag = drag.drag.expect("drag");
+        assert_eq!((drag.linear_dyn_s_per_cm3, drag.quadratic_g_per_cm3), (0.25, 1.0));
+        let before = scenario();
+        let hold = set_one("phases[0]=Hold(2.5)").expect("applies");
+        assert_eq!(format!("{:?}", hold.phases[0]), "Hold(2.5)");
+        assert_eq!(hold.phases[1..], before.phases[1..]);
+        let head = set_one("phases[2].Thigmotaxis.parameters.head=(v_a: -1.0, v_b: 1.0)")
+            .expect("applies");
+        let positional =
+            set_one("phases[2].Thigmotaxis.parameters.head=(-1.0, 1.0)").expect("applies");
+        assert_eq!(head, positional);
+        let missing = set_one("phases[2].Thigmotaxis.parameters.head=(v_a: -1.0)")
+            .expect_err("a struct without a field");
+        assert!(missing.to_string().contains("missing field `v_b`"), "{missing}");
+    }
+
+    #[test]
     fn bad_paths_values_and_types_name_the_override() {
         let message = |text: &str| set_one(text).expect_err(text).to_string();
         assert!(message("time_stepp=1").contains("--set time_stepp=1: no field `time_stepp`"));
@@ -244,6 +225,7 @@ mod tests {
         assert!(message("time_step_s").contains("expected PATH=VALUE"));
         assert!(message("Form.gains.kp=1").contains("no field `kp`"));
         assert!(message("phases[9].Form=1").contains("no [9]"));
-        assert!(message("duration_s=1..2").contains("the value is not"));
+        assert!(message("duration_s=1..2").contains("the value: expected a finite number"));
+        assert!(message("time_step_s=NaN").contains("wrong value for time_step_s"));
     }
 }
