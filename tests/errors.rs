@@ -53,7 +53,7 @@ fn unknown_field() {
         "error_unknown_field",
         |t| t.replace("record_every_s", "record_evry_s"),
         "8:5",
-        "unknown field `record_evry_s`, expected one of: name, body, time_step_s, duration_s, end_after_phases, record_every_s, drag, initial_shape, phases",
+        "unknown field `record_evry_s`, expected one of: name, body, time_step_s, duration_s, end_after_phases, record_every_s, observe_every_s, drag, initial_shape, phases",
     );
 }
 

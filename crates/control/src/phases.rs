@@ -78,7 +78,8 @@ pub fn kinetic_energy(context: &ControlContext<'_>) -> f64 {
     hagfish_tree::kinetic_energy(context.kinematics)
 }
 
-/// What the knot analysis of a recorded frame shows ([`PhasedController::observe_knot`]).
+/// What the knot analysis of the body shows at an observation (every `observe_every_s` of
+/// the scenario; [`PhasedController::observe_knot`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct KnotObservation<'a> {
     /// The knot type's Rolfsen name (`0_1`, `3_1`, …).
@@ -108,11 +109,11 @@ pub struct PhaseProgress {
     /// interruption (s), or `None`.
     #[serde(default)]
     pub condition_since: Option<f64>,
-    /// The knotted core's head-ward end at the latest recorded frame (fraction of L), or
-    /// `None` if that frame was not knotted ([`Until::core_start_below_l`]).
+    /// The knotted core's head-ward end at the latest observation (fraction of L), or
+    /// `None` if the body was not knotted then ([`Until::core_start_below_l`]).
     #[serde(default)]
     pub core_start_l: Option<f64>,
-    /// The knotted core's length at the latest recorded frame (local diameters), or `None`
+    /// The knotted core's length at the latest observation (local diameters), or `None`
     /// ([`Until::core_length_above_d`], [`Until::core_length_below_d`]).
     #[serde(default)]
     pub core_length_d: Option<f64>,
@@ -170,7 +171,7 @@ impl PhasedController {
         Self { drag, phases, progress, forming, tie }
     }
 
-    /// Takes the knot analysis of a recorded frame at time `t` (`None` if it failed). Its
+    /// Takes the knot analysis of an observation at time `t` (`None` if it failed). Its
     /// core's head-ward end and length are kept for [`Until::core_start_below_l`] and the core
     /// length conditions. A tie phase ends on it (the knot shown for `hold_s`), or starts its
     /// plan again, or fails (`settle_s` after its plan without the knot).

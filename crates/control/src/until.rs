@@ -54,13 +54,13 @@ pub struct Until {
     #[serde(default)]
     pub span_above_d: Option<f64>,
     /// Ends once the knotted core's head-ward end is within this fraction of L of the head:
-    /// the core (shortest knotted sub-arc, `hagfish_knots`) of the latest recorded frame, so
-    /// it is looked at every `record_every_s`. Unlike [`Until::knot_start_below_l`] (the
+    /// the core (shortest knotted sub-arc, `hagfish_knots`) of the latest observation, so
+    /// it is looked at every `observe_every_s` of the scenario. Unlike [`Until::knot_start_below_l`] (the
     /// first self contact, which a loop of the tail end can make near the head while the
     /// knot is still far from it), this is where the knot itself is.
     #[serde(default)]
     pub core_start_below_l: Option<f64>,
-    /// Ends once the knotted core (of the latest recorded frame, as
+    /// Ends once the knotted core (of the latest observation, as
     /// [`Until::core_start_below_l`]) is at least this many local diameters long: loosened.
     #[serde(default)]
     pub core_length_above_d: Option<f64>,
@@ -90,13 +90,13 @@ pub struct Observation<'a> {
     pub body_length_cm: f64,
     /// The kinetic energy (erg).
     pub kinetic_energy_erg: f64,
-    /// The knotted core's head-ward end at the latest recorded frame (fraction of L), if
-    /// that frame was knotted.
+    /// The knotted core's head-ward end at the latest observation (fraction of L), if the
+    /// body was knotted then.
     pub core_start_l: Option<f64>,
-    /// The knotted core's length at the latest recorded frame in local diameters, if that
-    /// frame was knotted.
+    /// The knotted core's length at the latest observation in local diameters, if the body
+    /// was knotted then.
     pub core_length_d: Option<f64>,
-    /// The core's length (local diameters) at the last frame before the phase started.
+    /// The core's length (local diameters) at the last observation before the phase started.
     pub core_length_d_at_start: Option<f64>,
 }
 

@@ -48,7 +48,14 @@ pub const PARAMETERS: &[Parameter] = &[
         "record_every_s",
         "s",
         "0.1",
-        "interval between recorded frames; frame 0 is the initial state",
+        "interval between recorded frames, in whole time steps; frame 0 is the initial state",
+    ),
+    p(
+        "observe_every_s",
+        "s",
+        "0.1",
+        "interval of the controller's knot observations (tie end, core_* end conditions), \
+         in whole time steps; apart from record_every_s so recording does not change the run",
     ),
     p("drag", "-", "None", "water drag on every body: Some((...)) or None for vacuum"),
     p(
@@ -448,6 +455,7 @@ mod tests {
             duration_s: 1.0,
             end_after_phases: true,
             record_every_s: 0.1,
+            observe_every_s: 0.2,
             drag: Some(WaterDrag::default()),
             initial_shape: Some(crate::InitialShape::OpenTorusKnot(crate::OpenTorusKnot {
                 crossings: 3,
@@ -560,6 +568,7 @@ mod tests {
         let default =
             |name: &str| PARAMETERS.iter().find(|p| p.name == name).map(|p| p.default).expect(name);
         assert_eq!(default("record_every_s").parse::<f64>().ok(), Some(scenario.record_every_s));
+        assert_eq!(default("observe_every_s").parse::<f64>().ok(), Some(scenario.observe_every_s));
         assert_eq!(default("drag"), "None");
         assert_eq!(default("backend"), format!("{:?}", scenario.backend));
         assert!(scenario.drag.is_none());

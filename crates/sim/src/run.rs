@@ -177,19 +177,37 @@ pub fn run(
         return Err(SimError::TooManySteps { steps, cap });
     }
     let steps = steps as u64;
-    let record_every = ((scenario.record_every_s / scenario.time_step_s).round() as u64).max(1);
+    let record_every = whole_steps(scenario.record_every_s, scenario.time_step_s);
+    let observe_every = whole_steps(scenario.observe_every_s, scenario.time_step_s);
     let mut recording = Recording::new(&world, loaded.hash(), loaded.body_hash.clone());
-    // Frame 0 is the initial state; a resumed run recorded its last frame before it stopped.
+    // Frame 0 is the initial state, and the first observation; a resumed run recorded its
+    // last frame (and made any observation due at it) before it stopped.
     let mut record = options.resume.is_none();
+    let mut observe = record;
     let end = loop {
-        if record {
-            recording.frame(&mut world, &mut controller, &mut summary, sink, progress, scenario)?;
-            let stop = options.stop_after_frame.is_some_and(|k| summary.frames > k)
-                || options.stop.is_some_and(|flag| flag.load(Ordering::Relaxed));
-            if stop && world.steps() < steps {
-                break RunEnd::Interrupted;
+        if record || observe {
+            recording.analyse_knot(&mut world);
+            if observe {
+                recording.observe(&world, &mut controller);
             }
-            if let Some(failure) = controller.tie_failure() {
+            // A failed tie ends the run on a frame of the state it failed in.
+            let tie_failure = controller.tie_failure();
+            if record || tie_failure.is_some() {
+                recording.frame(
+                    &mut world,
+                    &mut controller,
+                    &mut summary,
+                    sink,
+                    progress,
+                    scenario,
+                )?;
+                let stop = options.stop_after_frame.is_some_and(|k| summary.frames > k)
+                    || options.stop.is_some_and(|flag| flag.load(Ordering::Relaxed));
+                if stop && world.steps() < steps && tie_failure.is_none() {
+                    break RunEnd::Interrupted;
+                }
+            }
+            if let Some(failure) = tie_failure {
                 break RunEnd::TieFailed(failure);
             }
         }
@@ -198,9 +216,11 @@ pub fn run(
             break RunEnd::Completed;
         }
         // Joint loads are recorded, not used by the step: they are computed only for a step
-        // that may end on a frame (every step when the phases may end the run).
+        // that may end on a frame (every step when the phases may end the run; an
+        // observation, as a failed tie is recorded there).
+        let next = world.steps() + 1;
         world.set_internal_forces_due(
-            scenario.end_after_phases || (world.steps() + 1) % record_every == 0,
+            scenario.end_after_phases || next % record_every == 0 || next % observe_every == 0,
         );
         if let Err(error) = recording.advance(&mut world, &mut controller, &mut summary) {
             let at = Box::new(recording.checkpoint(&world, &controller, &summary));
@@ -208,6 +228,7 @@ pub fn run(
         }
         let phases_over = scenario.end_after_phases && controller.finished();
         record = world.steps() % record_every == 0 || phases_over;
+        observe = world.steps() % observe_every == 0;
         if !record && options.stop.is_some_and(|flag| flag.load(Ordering::Relaxed)) {
             break RunEnd::Interrupted;
         }
@@ -215,6 +236,12 @@ pub fn run(
     summary.steps = world.steps();
     summary.unfinished_phase = controller.unfinished_phase();
     Ok(RunOutcome { summary, end, state: world.state().clone() })
+}
+
+/// An interval of `interval_s` as a whole number of steps of `time_step_s`: the nearest, at
+/// least one.
+fn whole_steps(interval_s: f64, time_step_s: f64) -> u64 {
+    ((interval_s / time_step_s).round() as u64).max(1)
 }
 
 /// The scratch of recording frames: buffers, labels, the latest step report and the maxima
@@ -226,6 +253,8 @@ struct Recording {
     body_length_cm: f64,
     knot_options: KnotOptions,
     knots: KnotAnalyser,
+    /// The knot analysis of the current state, by [`Recording::analyse_knot`].
+    knot: Option<KnotReport>,
     centres: Vec<DVec3>,
     labels: Vec<crate::forces::DofLabel>,
     forces: GroupForces,
@@ -246,6 +275,7 @@ impl Recording {
             body_length_cm: world.model().bodies().iter().map(|b| b.length).sum(),
             knot_options: KnotOptions::default(),
             knots: KnotAnalyser::default(),
+            knot: None,
             centres: Vec::with_capacity(world.model().body_count()),
             labels: dof_labels(world.model()),
             forces: GroupForces::default(),
@@ -376,20 +406,20 @@ impl Recording {
         Ok(())
     }
 
-    /// Records the current state as the next frame, then hands its checkpoint to the sink.
-    fn frame(
-        &mut self,
-        world: &mut World,
-        controller: &mut PhasedController,
-        summary: &mut RunSummary,
-        sink: &mut dyn FrameSink,
-        progress: &mut dyn FnMut(&Progress<'_>),
-        scenario: &Scenario,
-    ) -> Result<(), SimError> {
+    /// Analyses the knot of the current state into `self.knot` (`None` where the analysis
+    /// fails, e.g. too few bodies), leaving the body centres in `self.centres`.
+    fn analyse_knot(&mut self, world: &mut World) {
         world.body_centres(&mut self.centres);
-        let knot = self.knots.analyse(&self.centres, &self.knot_options).ok();
-        let name = knot.as_ref().map(|k| k.knot.to_string());
-        let observed = knot.as_ref().zip(name.as_deref()).map(|(k, name)| {
+        self.knot = self.knots.analyse(&self.centres, &self.knot_options).ok();
+    }
+
+    /// Gives the controller what the knot analysis of the current state
+    /// ([`Self::analyse_knot`]) shows: type, handedness and knotted core, which end a tie and
+    /// the core-based end conditions.
+    fn observe(&self, world: &World, controller: &mut PhasedController) {
+        let knot = self.knot.as_ref();
+        let name = knot.map(|k| k.knot.to_string());
+        let observed = knot.zip(name.as_deref()).map(|(k, name)| {
             let core = KnotCore::of(k, &self.centres, &self.radii, self.body_length_cm);
             KnotObservation {
                 name,
@@ -400,6 +430,20 @@ impl Recording {
             }
         });
         controller.observe_knot(world.state().t, observed);
+    }
+
+    /// Records the current state as the next frame, with its knot analysis
+    /// ([`Self::analyse_knot`], run first), then hands its checkpoint to the sink.
+    fn frame(
+        &mut self,
+        world: &mut World,
+        controller: &mut PhasedController,
+        summary: &mut RunSummary,
+        sink: &mut dyn FrameSink,
+        progress: &mut dyn FnMut(&Progress<'_>),
+        scenario: &Scenario,
+    ) -> Result<(), SimError> {
+        let knot = self.knot.take();
         let dofs = world.model().dof_count();
         self.forces.finish_interval(dofs, world.options().time_step);
         let data = world.data();

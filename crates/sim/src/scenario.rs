@@ -46,9 +46,16 @@ pub struct Scenario {
     /// frame recorded there, instead of at `duration_s` (default false).
     #[serde(default)]
     pub end_after_phases: bool,
-    /// Interval between recorded frames (s); frame 0 is the initial state.
+    /// Interval between recorded frames (s), rounded to a whole number of time steps (at
+    /// least one); frame 0 is the initial state.
     #[serde(default = "default_record_every")]
     pub record_every_s: f64,
+    /// Interval (s) at which the controller observes the knot, rounded as `record_every_s`:
+    /// the knot analysis that ends a `Tie` phase and the knotted core that the `core_*` end
+    /// conditions read. Part of the control, apart from `record_every_s`, so that recording
+    /// more or fewer frames does not change the run (default 0.1 s).
+    #[serde(default = "default_observe_every")]
+    pub observe_every_s: f64,
     /// Water drag on the body, or `None` for a body in vacuum.
     #[serde(default)]
     pub drag: Option<WaterDrag>,
@@ -72,6 +79,10 @@ pub struct Scenario {
 pub const MIN_TIME_STEP_S: f64 = 1e-6;
 
 fn default_record_every() -> f64 {
+    0.1
+}
+
+fn default_observe_every() -> f64 {
     0.1
 }
 
