@@ -48,6 +48,8 @@ def test_an_override_changes_what_it_names_and_nothing_else(thesis):
     for overrides, changed in [
         ({"time_step_s": 0.02}, ["time_step_s: 0.02"]),
         ({"phases[2].Thigmotaxis.until.seconds": 7.5}, ["seconds: 7.5"]),
+        ({"drag": {"linear_dyn_s_per_cm3": 0.25, "quadratic_g_per_cm3": 0.5}},
+         ["linear_dyn_s_per_cm3: 0.25"]),
     ]:
         lines = hagfish.Scenario.load(thesis, overrides).resolved.splitlines()
         assert len(lines) == len(base)
@@ -142,5 +144,6 @@ def test_python_values_become_the_command_lines_text():
     assert hagfish.override_text((1.0, 2.5)) == "(1.0, 2.5)"
     assert hagfish.override_text([5.6, 5.5]) == "[5.6, 5.5]"
     assert hagfish.override_text(Path("/a/b.ron")) == '"/a/b.ron"'
+    assert hagfish.override_text({"v_a": -1.0, "v_b": (1, 2)}) == "(v_a: -1.0, v_b: (1, 2))"
     with pytest.raises(TypeError):
         hagfish.override_text(object())

@@ -18,8 +18,10 @@ PathLike = Union[str, "os.PathLike[str]"]
 def override_text(value: Any) -> str:
     """The ``--set`` text of a Python value: ``True``/``False`` → ``true``/``false``, ``None`` →
     ``None``, a number → its shortest round-trip form, a :class:`pathlib.Path` → a quoted
-    absolute path, a tuple → ``(a, b, …)``, a list → ``[a, b, …]``; a ``str`` is RON text as the command line takes it
-    (``"Trefoil(Left)"``, ``"SparseMaximal"``, ``'"my_body.ron"'`` for a file name)."""
+    absolute path, a tuple → ``(a, b, …)``, a list → ``[a, b, …]``, a mapping → a struct
+    ``(name: a, …)`` (``{"linear_dyn_s_per_cm3": 0.0, "quadratic_g_per_cm3": 1.0}`` for
+    ``drag``); a ``str`` is RON text as the command line takes it (``"Trefoil(Left)"``,
+    ``"SparseMaximal"``, ``'"my_body.ron"'`` for a file name)."""
     if isinstance(value, bool):
         return "true" if value else "false"
     if value is None:
@@ -32,6 +34,8 @@ def override_text(value: Any) -> str:
         return "(" + ", ".join(override_text(v) for v in value) + ")"
     if isinstance(value, list):
         return "[" + ", ".join(override_text(v) for v in value) + "]"
+    if isinstance(value, Mapping):
+        return "(" + ", ".join(f"{k}: {override_text(v)}" for k, v in value.items()) + ")"
     if isinstance(value, str):
         return value
     raise TypeError(f"cannot turn {value!r} ({type(value).__name__}) into a scenario value")
