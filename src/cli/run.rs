@@ -188,10 +188,12 @@ fn summarise(finished: &Finished, out: &mut dyn Write) -> Result<(), CliError> {
     });
     for (tie, &at) in ties.zip(&manifest.tie_crossovers_l) {
         if let Some(diameters) = tie.min_tail_d.filter(|_| at != tie.at) {
+            let decimals = (3..12).find(|&d| format!("{at:.d$}") != format!("{:.d$}", tie.at));
+            let decimals = decimals.unwrap_or(12);
             writeln!(
                 out,
-                "tie crossover at {at:.3} L, not {} L: on this body {} L leaves less than \
-                 min_tail_d = {diameters} local diameters tail-ward",
+                "tie crossover at {at:.decimals$} L, not {} L: on this body {} L leaves less \
+                 than min_tail_d = {diameters} local diameters tail-ward",
                 tie.at, tie.at,
             )?;
         }
