@@ -202,9 +202,8 @@ fn summarise(finished: &Finished, out: &mut dyn Write) -> Result<(), CliError> {
         writeln!(
             out,
             "steps rejected whole (acceptance bounds) and taken whole again with self contacts \
-             every {} bodies: {}",
-            hagfish_sim::RESOLVED_CLUSTER_BODIES,
-            summary.resolved_steps
+             every {:.1} bodies: {}",
+            summary.resolved_cluster_bodies, summary.resolved_steps
         )?;
     }
     if summary.substepped_steps > 0 {

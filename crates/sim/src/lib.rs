@@ -73,7 +73,7 @@ pub use initial_shape::{InitialShape, OpenTorusKnot};
 pub use internal_forces::{InternalForces, JointLoad};
 pub use knot_core::KnotCore;
 pub use memory::{available_memory, check_memory, step_memory_estimate};
-pub use options::{RESOLVED_CLUSTER_BODIES, StepOptions};
+pub use options::{FINEST_RESOLVED_CHAIN, RESOLVED_CLUSTER_BODIES, StepOptions};
 pub use output_file::replace_file;
 pub use overrides::{Override, apply_overrides};
 pub use parameters::{PARAMETERS, Parameter};

@@ -16,6 +16,16 @@ use crate::error::SimError;
 /// where steps go deep (docs/physics.md, "Step acceptance and substeps").
 pub const RESOLVED_CLUSTER_BODIES: f64 = 1.5;
 
+/// The finest chain (bodies) whose retries resolve contacts at [`RESOLVED_CLUSTER_BODIES`]:
+/// 300, the finest the retry was measured on. A chain of N > 300 bodies retries at
+/// 1.5·N/300 bodies, the same length of body. A retry's rows grow about with the square of
+/// its refinement over the body-relative radius (records merge in both spline parameters)
+/// and its contact-space solve with their cube: ES103 at 1000 bodies (body-relative radius
+/// 15.75 bodies) retried at 1.5 bodies carried ≈ 3600 rows and `thesis.ron` there fell to
+/// 5 steps per second; retried at 5 it completes (docs/physics.md, "Step acceptance and
+/// substeps").
+pub const FINEST_RESOLVED_CHAIN: usize = 300;
+
 /// Everything that shapes a step but is not the body itself. Immutable during a run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct StepOptions {
@@ -99,11 +109,14 @@ impl StepOptions {
     }
 
     /// The cluster radius (in bodies) of a step retried with contacts at the chain's
-    /// resolution: [`RESOLVED_CLUSTER_BODIES`], or the body-relative radius of
-    /// [`StepOptions::detector_options`] where that is not larger (ES103 and chains of up
-    /// to 101 bodies at its proportions, on which the retry changes nothing).
+    /// resolution: [`RESOLVED_CLUSTER_BODIES`], scaled by N/[`FINEST_RESOLVED_CHAIN`] on
+    /// chains of more bodies, or the body-relative radius of
+    /// [`StepOptions::detector_options`] where that is not larger (ES103 and chains of up to
+    /// 101 bodies at its proportions, on which the retry changes nothing).
     pub fn resolved_cluster_radius(&self, model: &Model) -> f64 {
-        self.detector_options(model).cluster_radius.min(RESOLVED_CLUSTER_BODIES)
+        let finer = model.body_count() as f64 / FINEST_RESOLVED_CHAIN as f64;
+        let resolved = RESOLVED_CLUSTER_BODIES * finer.max(1.0);
+        self.detector_options(model).cluster_radius.min(resolved)
     }
 
     /// Checks every scalar option.
@@ -138,5 +151,41 @@ impl StepOptions {
             }
             None => Ok(()),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use hagfish_anatomy::Body;
+
+    use super::*;
+
+    /// ES103 (`data/hagfish/es103.ron`) made of `bodies` bodies.
+    fn es103(bodies: usize) -> Model {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/hagfish/es103.ron");
+        let Body::Hagfish(mut biometrics) = Body::load(path).expect("es103.ron") else {
+            panic!("es103.ron is a hagfish")
+        };
+        biometrics.body_count = bodies;
+        biometrics.to_model().expect("a model")
+    }
+
+    #[test]
+    fn retries_resolve_at_one_and_a_half_bodies_up_to_300_and_the_same_length_beyond() {
+        let options = StepOptions::default();
+        let radii = |bodies| {
+            let model = es103(bodies);
+            (
+                options.detector_options(&model).cluster_radius,
+                options.resolved_cluster_radius(&model),
+            )
+        };
+        // ES103 itself: the body-relative radius is already 1.5 bodies, so no retry differs.
+        assert_eq!(radii(100), (1.5, 1.5));
+        assert_eq!(radii(300), (4.6875, 1.5));
+        // Finer: 1.5 bodies of the 300-body chain, not a tenth of the body-relative radius.
+        let (coarse, resolved) = radii(1000);
+        assert!(coarse > 15.0, "{coarse}");
+        assert_eq!(resolved, 5.0);
     }
 }

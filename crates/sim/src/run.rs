@@ -74,6 +74,9 @@ pub struct RunSummary {
     /// with self contacts at the chain's resolution (`acceptance.resolve_contacts`; in the
     /// whole run).
     pub resolved_steps: u64,
+    /// The cluster radius (bodies) of those retries ([`crate::StepOptions::
+    /// resolved_cluster_radius`]).
+    pub resolved_cluster_bodies: f64,
     /// The phase still running when the run stopped, if any
     /// ([`hagfish_control::PhasedController::unfinished_phase`]): a run whose duration ends
     /// during its tie says that its knot was never tied.
@@ -235,6 +238,7 @@ pub fn run(
     };
     summary.steps = world.steps();
     summary.unfinished_phase = controller.unfinished_phase();
+    summary.resolved_cluster_bodies = world.options().resolved_cluster_radius(world.model());
     Ok(RunOutcome { summary, end, state: world.state().clone() })
 }
 
