@@ -196,7 +196,7 @@ impl PhasedController {
                 last_miss: self.tie.last_miss,
                 ..TieProgress::default()
             };
-            self.forming = Some(FormingController::new(phase.script()));
+            self.forming = Some(FormingController::new(phase.script_for(self.tie.attempt)));
         }
     }
 

@@ -181,6 +181,11 @@ pub struct TiePhase {
     /// Speed of the tail's target (cm/s; default 5).
     #[serde(default = "default_speed")]
     pub speed_cm_s: f64,
+    /// Speed of the tail's target on the attempts after the first (cm/s; default
+    /// `speed_cm_s`): soft and fine chains tie with a slower tail, stiff ones with a faster
+    /// one (docs/physics.md, the figure-eight).
+    #[serde(default)]
+    pub retry_speed_cm_s: Option<f64>,
     /// Plans tried before the phase fails (default 2).
     #[serde(default = "default_attempts")]
     pub attempts: u32,
@@ -220,6 +225,7 @@ impl TiePhase {
             min_tail_d: None,
             gains: TailGains::default(),
             speed_cm_s: default_speed(),
+            retry_speed_cm_s: None,
             attempts: default_attempts(),
             hold_s: default_hold(),
             settle_s: default_settle(),
@@ -278,12 +284,22 @@ impl TiePhase {
     ///   trefoil (measured at `a − 0.04`, `a − 0.08`);
     /// - then hold 1 s.
     pub fn script(&self) -> FormingScript {
+        self.script_for(1)
+    }
+
+    /// The plan of attempt `attempt` (from 1): [`TiePhase::script`], at `retry_speed_cm_s`
+    /// after the first attempt where that is set.
+    pub fn script_for(&self, attempt: u32) -> FormingScript {
+        let speed = match self.retry_speed_cm_s {
+            Some(retry) if attempt > 1 => retry,
+            _ => self.speed_cm_s,
+        };
         let z = match self.knot {
             TieKnot::Trefoil(Handedness::Left) => -1.0,
             TieKnot::Trefoil(Handedness::Right) | TieKnot::FigureEight => 1.0,
         };
         let (a, rest) = (self.at, 1.0 - self.at);
-        let step = |to| ScriptStep::Move { to, speed: self.speed_cm_s };
+        let step = |to| ScriptStep::Move { to, speed };
         let arc =
             |at: f64, y: f64, up: f64| Waypoint::FromArc { at, offset_radii: [0.0, y, z * up] };
         let centroid = |up: f64| step(Waypoint::FromLoopCentroidRadii([0.0, 0.0, z * up]));
@@ -348,6 +364,27 @@ mod tests {
 
     fn phase(handedness: Handedness) -> TiePhase {
         TiePhase::new(TieKnot::Trefoil(handedness), 0.31)
+    }
+
+    #[test]
+    fn attempts_after_the_first_move_at_the_retry_speed() {
+        let speeds = |tie: &TiePhase, attempt| -> Vec<f64> {
+            let script = tie.script_for(attempt);
+            let moves = script.steps.iter().filter_map(|step| match step {
+                ScriptStep::Move { speed, .. } => Some(*speed),
+                ScriptStep::Hold(_) => None,
+            });
+            moves.collect()
+        };
+        let mut tie = TiePhase::new(TieKnot::FigureEight, 0.31);
+        assert!(speeds(&tie, 2).iter().all(|&v| v == 5.0), "{:?}", speeds(&tie, 2));
+        tie.speed_cm_s = 3.0;
+        tie.retry_speed_cm_s = Some(5.0);
+        assert_eq!(tie.script(), tie.script_for(1));
+        assert!(speeds(&tie, 1).iter().all(|&v| v == 3.0), "{:?}", speeds(&tie, 1));
+        for attempt in [2, 3] {
+            assert!(speeds(&tie, attempt).iter().all(|&v| v == 5.0), "attempt {attempt}");
+        }
     }
 
     #[test]

@@ -250,6 +250,12 @@ pub const PARAMETERS: &[Parameter] = &[
     ),
     p("Tie.gains", "-", "(200, 20, 2000)", "gains and cap of the PD tail pull (as Form.gains)"),
     p("Tie.speed_cm_s", "cm/s", "5", "speed of the tail's target"),
+    p(
+        "Tie.retry_speed_cm_s",
+        "cm/s",
+        "None",
+        "Some(v): the tail's target speed on attempts after the first (default speed_cm_s)",
+    ),
     p("Tie.attempts", "-", "2", "plans tried before the phase fails (exit 4, status tie_failed)"),
     p("Tie.hold_s", "s", "0.5", "how long the knot must be shown before the phase ends"),
     p("Tie.settle_s", "s", "2", "how long after a plan the knot may take to show"),

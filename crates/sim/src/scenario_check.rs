@@ -165,6 +165,9 @@ impl Checker<'_> {
         }
         self.gains(&phase.gains)?;
         self.check("speed_cm_s", phase.speed_cm_s, Range::Positive)?;
+        if let Some(retry) = phase.retry_speed_cm_s {
+            self.check("retry_speed_cm_s", retry, Range::Positive)?;
+        }
         self.check("attempts", f64::from(phase.attempts), Range::Positive)?;
         self.check("hold_s", phase.hold_s, Range::NonNegative)?;
         self.check("settle_s", phase.settle_s, Range::NonNegative)
