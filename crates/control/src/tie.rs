@@ -5,8 +5,8 @@
 //! at a fraction `at` of the body length L, the sweep in fractions of L, every offset in
 //! local radii — and executes it with the PD tail pull of the forming script, each waypoint
 //! resolved from the body's shape when the move toward it starts. The knot is then checked
-//! by the knot analysis of the controller's observations (type, agreement and handedness, from the
-//! knotted core's writhe): tied and held for `hold_s`, the phase ends; not tied `settle_s`
+//! by the knot analysis of the controller's observations (type, agreement and handedness,
+//! from the knotted core's writhe): tied and held for `hold_s`, the phase ends; not tied `settle_s`
 //! after the plan, the plan is tried again from the current shape, up to `attempts` times,
 //! and then the phase fails (the run ends with its own status, never a hang).
 //!

@@ -55,9 +55,10 @@ pub struct Until {
     pub span_above_d: Option<f64>,
     /// Ends once the knotted core's head-ward end is within this fraction of L of the head:
     /// the core (shortest knotted sub-arc, `hagfish_knots`) of the latest observation, so
-    /// it is looked at every `observe_every_s` of the scenario. Unlike [`Until::knot_start_below_l`] (the
-    /// first self contact, which a loop of the tail end can make near the head while the
-    /// knot is still far from it), this is where the knot itself is.
+    /// it is looked at every `observe_every_s` of the scenario. Unlike
+    /// [`Until::knot_start_below_l`] (the first self contact, which a loop of the tail end can
+    /// make near the head while the knot is still far from it), this is where the knot itself
+    /// is.
     #[serde(default)]
     pub core_start_below_l: Option<f64>,
     /// Ends once the knotted core (of the latest observation, as

@@ -34,6 +34,11 @@ pub fn parse_override_value(text: &str) -> Result<Value, String> {
     Ok(value)
 }
 
+/// Whether `c` can start an identifier: a letter or an underscore.
+fn starts_identifier(c: char) -> bool {
+    c.is_alphabetic() || c == '_'
+}
+
 /// A cursor over the value's characters.
 struct Parser {
     chars: Vec<char>,
@@ -50,7 +55,7 @@ impl Parser {
                 self.sequence(']').map(Value::Array)
             }
             Some('"') => self.string(),
-            Some(c) if c.is_alphabetic() || c == '_' => self.named(),
+            Some(c) if starts_identifier(c) => self.named(),
             Some(c) if c.is_ascii_digit() || matches!(c, '-' | '+' | '.') => self.number(),
             _ => Err(self.expected(
                 "a number, true/false, None, Some(…), a quoted string, an identifier, \
@@ -91,7 +96,7 @@ impl Parser {
         self.at += 1;
         let rewind = self.at;
         self.skip_space();
-        if self.peek().is_some_and(|c| c.is_alphabetic() || c == '_') {
+        if self.peek().is_some_and(starts_identifier) {
             self.identifier();
             self.skip_space();
             if self.peek() == Some(':') {
@@ -111,7 +116,7 @@ impl Parser {
             if self.eat(')') {
                 return Ok(Value::Object(fields));
             }
-            if !self.peek().is_some_and(|c| c.is_alphabetic() || c == '_') {
+            if !self.peek().is_some_and(starts_identifier) {
                 return Err(self.expected("a field name or `)`"));
             }
             let name = self.identifier();

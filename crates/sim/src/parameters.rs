@@ -574,7 +574,8 @@ mod tests {
         let default =
             |name: &str| PARAMETERS.iter().find(|p| p.name == name).map(|p| p.default).expect(name);
         assert_eq!(default("record_every_s").parse::<f64>().ok(), Some(scenario.record_every_s));
-        assert_eq!(default("observe_every_s").parse::<f64>().ok(), Some(scenario.observe_every_s));
+        let observe_every = default("observe_every_s").parse::<f64>().ok();
+        assert_eq!(observe_every, Some(scenario.observe_every_s));
         assert_eq!(default("drag"), "None");
         assert_eq!(default("backend"), format!("{:?}", scenario.backend));
         assert!(scenario.drag.is_none());
