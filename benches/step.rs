@@ -6,10 +6,11 @@
 //! - `step/knotted/<backend>`: one whole pipeline step (kinematics, contact detection,
 //!   drag, dynamics, rows, constraint solve with its re-solves, integration) in the knotted
 //!   benchmark state (`hagfish_bench_support::knotted_world`: `data/scenarios/form.ron` at t = 23.13 s,
-//!   41 self contacts), with the contact-space QP (default) and with clarabel (reference);
-//!   `step/knotted/ContactSpace/SparseMaximal`, the same step on the sparse
-//!   maximal-coordinate backend (`StepOptions::backend`); and
-//!   `step/knotted/ContactSpace/NoPrediction`, without contact prediction (its cost).
+//!   41 self contacts), with the contact-space QP on the sparse maximal-coordinate backend
+//!   (both the defaults) and with clarabel on the dense backend (reference);
+//!   `step/knotted/ContactSpace/DenseReduced`, the same step on the dense reduced backend
+//!   (`StepOptions::backend`); and `step/knotted/ContactSpace/NoPrediction`, the default
+//!   without contact prediction (its cost).
 //!   Each iteration restores the state first (`World::set_state`, untimed).
 //! - `step/knotted_1000/SparseMaximal`: the same whole step in a long chain: ES103 at 1000
 //!   bodies on the sparse backend, `data/scenarios/tie.ron` at t = 19 s (a trefoil tied by
@@ -54,15 +55,20 @@ fn knotted(c: &mut Criterion) {
     let knotted = world.state().clone();
     let prediction = StepOptions::default().contact_prediction;
     for (backend, dynamics, contact_prediction, name) in [
-        (QpBackend::ContactSpace, DynamicsBackend::DenseReduced, prediction, "ContactSpace"),
+        (QpBackend::ContactSpace, DynamicsBackend::SparseMaximal, prediction, "ContactSpace"),
         (QpBackend::Clarabel, DynamicsBackend::DenseReduced, prediction, "Clarabel"),
         (
             QpBackend::ContactSpace,
-            DynamicsBackend::SparseMaximal,
+            DynamicsBackend::DenseReduced,
             prediction,
-            "ContactSpace/SparseMaximal",
+            "ContactSpace/DenseReduced",
         ),
-        (QpBackend::ContactSpace, DynamicsBackend::DenseReduced, None, "ContactSpace/NoPrediction"),
+        (
+            QpBackend::ContactSpace,
+            DynamicsBackend::SparseMaximal,
+            None,
+            "ContactSpace/NoPrediction",
+        ),
     ] {
         let model = world.model().clone();
         let options = StepOptions {

@@ -137,7 +137,7 @@ fn zero_slide_targets() -> Vec<String> {
 /// head, its head-ward end reaches ≤ 0.05 L, the midpoint moves at 2 cm/s ± 30 % and the
 /// tubes never sink into each other by 2 % of the radius. The core's length changes by at
 /// most 30 % in the run as written; in one of the seven perturbed runs (δh/h = 4e-12) it
-/// grows by 35 % (docs/physics.md). And the slide is the targets' doing: the control run with
+/// grows by 41 % (docs/physics.md). And the slide is the targets' doing: the control run with
 /// zero slide targets moves the core at least 0.2 L less.
 #[test]
 fn the_tied_knot_slides_to_the_head_on_es103_because_of_the_targets() {
@@ -207,7 +207,7 @@ fn the_figure_eight_is_tied_held_and_slid_to_the_head_on_es103() {
 /// as 4_1 on every frame after and slid to the head as a whole: its head-ward end brought
 /// within 0.05 L of the head, its midpoint moved ≥ 0.05 L (more than a local diameter) and its
 /// length changed by ≤ 30 %. The slide starts with the head-ward end at 0.15–0.18 L, so the
-/// midpoint can travel little more than that (0.086 and 0.115 L measured; docs/physics.md).
+/// midpoint can travel little more than that (0.096 and 0.076 L measured; docs/physics.md).
 #[test]
 fn the_figure_eight_keeps_its_tube_on_a_thicker_body() {
     let dir = fresh_dir("figure_eight_thicker");

@@ -13,7 +13,7 @@
    frames match), then times passive steps (no controller, no drag) from the knotted state at
    h = 1e-3 and 1e-2: median wall time per step over repeated runs, contacts, stability.
 4. It runs `cargo xtask knotted` for hagfish's numbers on the same state in the same run
-   (`--backend dense`, the default; `sparse` or `both` for the maximal-coordinate backend).
+   (`--backend sparse`, the default; `dense` or `both` for the dense reduced backend).
 
 Usage (from the workspace root):  python3 bench/peers/compare.py [--steps N] [--repeat R]
 """
@@ -199,8 +199,8 @@ def main():
     parser.add_argument(
         "--backend",
         choices=["dense", "sparse", "both"],
-        default="dense",
-        help="hagfish dynamics backend (dense: the default of every scenario)",
+        default="sparse",
+        help="hagfish dynamics backend (sparse: the default of every scenario)",
     )
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as directory:

@@ -6,7 +6,7 @@
 //!   then Z).
 //! - timing: from the knotted state, `--repeat` runs of `--steps` steps at `--time-step` with
 //!   a passive body (no drag, no controller: the physics a peer simulator can reproduce);
-//!   the `--backend` (dense reduced by default); prints the median and minimum wall time per step, the median per stage, the contacts,
+//!   the `--backend` (sparse maximal by default); prints the median and minimum wall time per step, the median per stage, the contacts,
 //!   whether every run stayed finite and how far any body centre moved, as one JSON object.
 
 use std::fmt::Write as _;
@@ -101,7 +101,7 @@ fn time(world: &World, request: &Request<'_>) -> Result<(), String> {
         let _ = write!(stage_json, "{separator}\"{name}\": {:.2}", 1e6 * median(all));
     }
     let simulator = match request.backend {
-        DynamicsBackend::DenseReduced => "hagfish",
+        DynamicsBackend::DenseReduced => "hagfish dense",
         DynamicsBackend::SparseMaximal => "hagfish sparse",
     };
     println!(

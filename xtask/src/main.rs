@@ -66,9 +66,9 @@ enum Task {
         /// Time step of the timed runs (s).
         #[arg(long, default_value_t = 0.01)]
         time_step: f64,
-        /// Dynamics backend of the timed runs: `dense` (reduced, the default of every
-        /// scenario) or `sparse` (maximal coordinates).
-        #[arg(long, value_parser = ["dense", "sparse"], default_value = "dense")]
+        /// Dynamics backend of the timed runs: `sparse` (maximal coordinates, the default of
+        /// every scenario) or `dense` (reduced).
+        #[arg(long, value_parser = ["dense", "sparse"], default_value = "sparse")]
         backend: String,
     },
     /// Runs the checks against elastic-rod theory and prints their table (Markdown).

@@ -2,8 +2,10 @@
 //! t = 23.13 s, 41 self contacts; see `hagfish_bench_support::knotted_world`), with water drag as the
 //! controller (as `benches/step.rs`):
 //!
-//! kinematics, effective mass M̃ (CRBA), Cholesky factor of M̃, dynamics (M̃, momentum,
-//! forces), broad phase, narrow phase, whole contact detection, constraint rows, contact solve
+//! kinematics, effective mass M̃ (CRBA) and its Cholesky factor (the dense backend's stages,
+//! timed for it; the state's own backend, sparse by default, assembles in `dynamics` and
+//! factors in the solve), dynamics (M̃ or the tree factor's blocks, momentum, forces), broad
+//! phase, narrow phase, whole contact detection, constraint rows, contact solve
 //! (with its velocity-product re-solve), the internal forces (the load each joint transmits),
 //! integration, and the whole step.
 //!

@@ -15,11 +15,12 @@ use crate::step_data::StepData;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 pub enum DynamicsBackend {
     /// Dense reduced `M̃ = M + h Jᵀ C_m J + hD + h²K` by CRBA, factored by dense Cholesky.
-    /// Cubic in the number of bodies; the reference path (the goldens are blessed on it).
-    #[default]
+    /// Cubic in the number of bodies: the reference that the sparse path is checked against.
     DenseReduced,
     /// Body twists and joint constraints, `[Ĩ, 0, Gᵀ; 0, K̃, −Sᵀ; G, −S, 0]`, eliminated
-    /// along the tree (`hagfish_sparse::TreeFactor`): linear in the number of bodies.
+    /// along the tree (`hagfish_sparse::TreeFactor`): linear in the number of bodies. The
+    /// default (the goldens are blessed on it).
+    #[default]
     SparseMaximal,
 }
 

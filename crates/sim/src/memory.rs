@@ -1,7 +1,7 @@
 //! The memory a world's step buffers need, estimated before they are allocated, so that a body
 //! too large for the machine is refused with an error instead of an allocation failure.
 //!
-//! **Dense backend** (the default): the buffers are dense in the DOF count n — the tree's M̃ and
+//! **Dense backend**: the buffers are dense in the DOF count n — the tree's M̃ and
 //! its factor (M only if asked for), the rows (n × m with a row capacity m = 2n), and the
 //! contact-space solve's Y and its sorted copy (n × m each), W and its sorted copy (m × m each),
 //! and the solver's own factor of M̃: 2 + 2 + 2 + 2 + 4 + 4 + 1 = 17, counted as 20 n² doubles
@@ -9,7 +9,7 @@
 //! every reserved page is touched), so it is an upper bound: ES103 with 100 bodies needs
 //! 3.6 MB, 1000 bodies 360 MB, 10 000 bodies 36 GB.
 //!
-//! **Sparse backend**: nothing is n × n. The rows and contact-space matrices are n × m and
+//! **Sparse backend** (the default): nothing is n × n. The rows and contact-space matrices are n × m and
 //! m × m for the m rows present (reserved for [`crate::step_data::row_reserve`] rows, growing
 //! when a step has more), and everything else is linear in the bodies.
 

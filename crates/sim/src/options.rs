@@ -63,8 +63,9 @@ pub struct StepOptions {
     /// velocity (0: explicit, as REDMAX). Default 1: explicit terms make the ES103 chain
     /// unstable at h = 0.01 s once runs of joints lock at their limits (`docs/physics.md`).
     pub velocity_product_iterations: usize,
-    /// The linear algebra of the velocity step: dense reduced (default) or sparse maximal
-    /// (linear in the number of bodies; `docs/physics.md`). Same answer up to rounding.
+    /// The linear algebra of the velocity step: sparse maximal (default; linear in the number
+    /// of bodies) or dense reduced (the reference; `docs/physics.md`). Same answer up to
+    /// rounding.
     pub backend: DynamicsBackend,
     /// Contact prediction (`contact_prediction.rs`): after a solve, the self-contact gaps at
     /// `q + h q̇` are evaluated exactly, and the bound of every row whose gap would end more than

@@ -105,8 +105,8 @@ pub const PARAMETERS: &[Parameter] = &[
     p(
         "backend",
         "-",
-        "DenseReduced",
-        "velocity-step linear algebra: DenseReduced, or SparseMaximal (linear in the bodies)",
+        "SparseMaximal",
+        "velocity-step linear algebra: SparseMaximal (linear in the bodies), or DenseReduced",
     ),
     p(
         "acceptance",
@@ -469,7 +469,7 @@ mod tests {
                 start_l: 0.15,
                 mirror: true,
             })),
-            backend: crate::DynamicsBackend::SparseMaximal,
+            backend: crate::DynamicsBackend::DenseReduced,
             acceptance: crate::StepAcceptance::default(),
             phases: vec![
                 Phase::Form(FormingScript {

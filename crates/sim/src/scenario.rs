@@ -64,8 +64,8 @@ pub struct Scenario {
     pub initial_shape: Option<InitialShape>,
     /// The phases of control, in order.
     pub phases: Vec<Phase>,
-    /// The linear algebra of the velocity step: `DenseReduced` (default) or `SparseMaximal`
-    /// (linear in the number of bodies, for long bodies; same answer up to rounding).
+    /// The linear algebra of the velocity step: `SparseMaximal` (default; linear in the number
+    /// of bodies) or `DenseReduced` (cubic; the reference). Same answer up to rounding.
     #[serde(default)]
     pub backend: DynamicsBackend,
     /// When a step's result is accepted, and how far a rejected step is divided
@@ -237,9 +237,9 @@ mod tests {
 
     #[test]
     fn the_backend_of_a_scenario_reaches_the_step_options() {
-        let (world, _) = short_form_with("backend: SparseMaximal, ").build().expect("builds");
-        assert_eq!(world.options().backend, DynamicsBackend::SparseMaximal);
-        let (world, _) = short_form_with("").build().expect("builds");
+        let (world, _) = short_form_with("backend: DenseReduced, ").build().expect("builds");
         assert_eq!(world.options().backend, DynamicsBackend::DenseReduced);
+        let (world, _) = short_form_with("").build().expect("builds");
+        assert_eq!(world.options().backend, DynamicsBackend::SparseMaximal);
     }
 }

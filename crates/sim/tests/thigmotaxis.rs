@@ -155,14 +155,29 @@ fn head_drift(records: &[Record]) -> f64 {
     records.iter().map(|r| (r.head - records[0].head).length()).fold(0.0, f64::max)
 }
 
+/// Runs of the eight in which the slide's force must grow as the knot nears the head. The
+/// growth holds in ≈ 95 % of trajectories, not in all: over 48 rounding perturbations the last
+/// quarter's mean |f| is below the first's in 3 on the dense backend and 2 on the sparse one
+/// (docs/physics.md, "More force as the knot nears the head"). At that rate 6 of 8 fails once in
+/// ≈ 100 reruns under other rounding; without the growth (one run in two) it passes one in seven.
+const FORCE_GROWTH_RUNS: usize = 6;
+
 #[test]
 fn thesis_tightens_then_slides_the_knot_to_the_head() {
-    for perturbation in PERTURBATIONS {
-        check_thesis(perturbation);
-    }
+    let grown: Vec<(f64, bool)> = PERTURBATIONS
+        .iter()
+        .map(|&perturbation| (perturbation, check_thesis(perturbation)))
+        .collect();
+    let count = grown.iter().filter(|(_, grows)| *grows).count();
+    assert!(
+        count >= FORCE_GROWTH_RUNS,
+        "the force grows as the knot nears the head in {count} of 8 runs: {grown:?}"
+    );
 }
 
-fn check_thesis(perturbation: f64) {
+/// Checks one run of the thesis (scripted knot) and returns whether the force over the slide
+/// grew from its first quarter to its last.
+fn check_thesis(perturbation: f64) -> bool {
     let (records, summary) = run("thesis_scripted", perturbation);
     let label = format!("thesis, δh/h = {perturbation:e}");
 
@@ -215,12 +230,7 @@ fn check_thesis(perturbation: f64) {
         "{label}: zero force tail-ward of the knot in ≥ 95 % of samples: {}",
         stats.tailward_zero_fraction
     );
-    // Holds in these eight; over 48 perturbations the last quarter's mean is below the
-    // first's in 3 dense and 2 sparse trajectories (bursty frames; docs/physics.md).
-    assert!(
-        stats.last_quarter_mean_dyn_cm > stats.first_quarter_mean_dyn_cm,
-        "{label}: the force grows as the knot nears the head: {stats:?}"
-    );
+    stats.last_quarter_mean_dyn_cm > stats.first_quarter_mean_dyn_cm
 }
 
 #[test]
