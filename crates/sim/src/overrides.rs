@@ -91,13 +91,26 @@ pub fn apply_overrides(scenario: &Scenario, overrides: &[Override]) -> Result<Sc
         for target in targets {
             set(target, leaf, value.clone()).map_err(|reason| given.error(reason))?;
         }
-        serde_json::from_value::<Scenario>(tree.clone())
-            .map_err(|e| given.error(format!("wrong value for {}: {e}", given.path)))?;
+        serde_json::from_value::<Scenario>(tree.clone()).map_err(|e| {
+            given.error(format!("wrong value for {}: {}", given.path, explain(&e, &given.value)))
+        })?;
     }
     serde_json::from_value(tree).map_err(|e| SimError::Override {
         given: overrides.iter().map(Override::text).collect::<Vec<_>>().join(" "),
         reason: e.to_string(),
     })
+}
+
+/// serde's reason for refusing `value`, with what to write instead where serde's words name
+/// only its data model: a variant that holds a value given bare (`Trefoil` for
+/// `Trefoil(Right)`).
+fn explain(error: &serde_json::Error, value: &str) -> String {
+    let reason = error.to_string();
+    if reason.starts_with("invalid type: unit variant, expected") {
+        format!("`{value}` holds a value: write it as `{value}(…)` (serde: {reason})")
+    } else {
+        reason
+    }
 }
 
 /// The bodies of every phase `{kind: …}` of `tree`'s `phases`.
@@ -227,5 +240,9 @@ mod tests {
         assert!(message("phases[9].Form=1").contains("no [9]"));
         assert!(message("duration_s=1..2").contains("the value: expected a finite number"));
         assert!(message("time_step_s=NaN").contains("wrong value for time_step_s"));
+        let bare = message("phases[0]=Hold");
+        assert!(bare.contains("`Hold` holds a value: write it as `Hold(…)`"), "{bare}");
+        let unknown = message("backend=Fast");
+        assert!(unknown.contains("unknown variant `Fast`") && !unknown.contains("holds"));
     }
 }
