@@ -6,7 +6,7 @@
 //! - `step/knotted/<backend>`: one whole pipeline step (kinematics, contact detection,
 //!   drag, dynamics, rows, constraint solve with its re-solves, integration) in the knotted
 //!   benchmark state (`hagfish_bench_support::knotted_world`: `data/scenarios/form.ron` at t = 23.13 s,
-//!   41 self contacts), with the contact-space QP on the sparse maximal-coordinate backend
+//!   40 self contacts), with the contact-space QP on the sparse maximal-coordinate backend
 //!   (both the defaults) and with clarabel on the dense backend (reference);
 //!   `step/knotted/ContactSpace/DenseReduced`, the same step on the dense reduced backend
 //!   (`StepOptions::backend`); and `step/knotted/ContactSpace/NoPrediction`, the default

@@ -6,8 +6,9 @@
 //!   then Z).
 //! - timing: from the knotted state, `--repeat` runs of `--steps` steps at `--time-step` with
 //!   a passive body (no drag, no controller: the physics a peer simulator can reproduce);
-//!   the `--backend` (sparse maximal by default); prints the median and minimum wall time per step, the median per stage, the contacts,
-//!   whether every run stayed finite and how far any body centre moved, as one JSON object.
+//!   the `--backend` (sparse maximal by default); prints the median and minimum wall time
+//!   per step, the median per stage, the contacts, whether every run stayed finite and how
+//!   far any body centre moved, as one JSON object.
 
 use std::fmt::Write as _;
 use std::path::Path;

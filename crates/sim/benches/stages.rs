@@ -1,5 +1,5 @@
 //! Per-stage benchmarks of one step in the knotted benchmark state (`form.ron` at
-//! t = 23.13 s, 41 self contacts; see `hagfish_bench_support::knotted_world`), with water drag as the
+//! t = 23.13 s, 40 self contacts; see `hagfish_bench_support::knotted_world`), with water drag as the
 //! controller (as `benches/step.rs`):
 //!
 //! kinematics, effective mass M̃ (CRBA) and its Cholesky factor (the dense backend's stages,

@@ -9,9 +9,9 @@
 //! every reserved page is touched), so it is an upper bound: ES103 with 100 bodies needs
 //! 3.6 MB, 1000 bodies 360 MB, 10 000 bodies 36 GB.
 //!
-//! **Sparse backend** (the default): nothing is n × n. The rows and contact-space matrices are n × m and
-//! m × m for the m rows present (reserved for [`crate::step_data::row_reserve`] rows, growing
-//! when a step has more), and everything else is linear in the bodies.
+//! **Sparse backend** (the default): nothing is n × n. The rows and contact-space matrices are
+//! n × m and m × m for the m rows present (reserved for [`crate::step_data::row_reserve`]
+//! rows, growing when a step has more), and everything else is linear in the bodies.
 
 use hagfish_tree::Model;
 
