@@ -23,8 +23,11 @@
 //! than the index gap; a pair of runs is looked into only if their spheres overlap. A chain is
 //! spatially coherent, so a free chain visits O(log runs) nodes per run: at 10 000 bodies
 //! ≈ 10⁴ sphere tests instead of the ≈ 2·10⁵ of all run pairs, or the 5·10⁷ of all body
-//! pairs. The tree visits the runs in order, so the pairs come out sorted by i, then j,
-//! without a sort.
+//! pairs. Within a partner run a body is tested against the spheres of its [`QUAD`]s of
+//! consecutive bodies first, and against their bodies only where those overlap: a run always
+//! overlaps its neighbours along the chain, but most of their bodies lie beyond a body's
+//! reach (a straight chain of 10 000 bodies tested ≈ 2·10⁵ body pairs without them). The tree
+//! visits the runs in order, so the pairs come out sorted by i, then j, without a sort.
 
 use parry3d_f64::bounding_volume::{BoundingSphere, BoundingVolume};
 
@@ -56,6 +59,15 @@ impl Default for BroadPhaseOptions {
 /// Consecutive bodies bounded together by one sphere (module docs).
 const BLOCK: usize = 16;
 
+/// Consecutive bodies bounded together inside a run, tested before their bodies (module docs);
+/// a divisor of [`BLOCK`], so a run holds whole quads.
+const QUAD: usize = 4;
+
+/// Relative rounding allowance on a group's sphere radius, so that every body sphere lies
+/// inside its group's sphere as computed: a body pair is then skipped only where its own test
+/// would fail, and the pairs are exactly those of the body tests alone.
+const RADIUS_ROUNDING: f64 = 1e-12;
+
 /// Broad-phase workspace: the per-body and per-run bounding spheres, reused across calls.
 #[derive(Debug, Clone)]
 pub struct BroadPhase {
@@ -65,6 +77,8 @@ pub struct BroadPhase {
     /// bodies, holding their spheres; `levels[k][i]` holds `levels[k − 1][2i]` and
     /// `[2i + 1]`; the last level has one sphere.
     levels: Vec<Vec<BoundingSphere>>,
+    /// One sphere per [`QUAD`] consecutive bodies, holding their spheres.
+    quads: Vec<BoundingSphere>,
     /// The runs that may hold partners of the run being searched.
     partner_runs: Vec<usize>,
     /// Per segment k: `|c_{k+1} − c_k|/2 + σ_k + max(r_k, r_{k+1})` (module docs).
@@ -85,6 +99,7 @@ impl BroadPhase {
             options,
             spheres: Vec::new(),
             levels: Vec::new(),
+            quads: Vec::new(),
             partner_runs: Vec::new(),
             reaches: Vec::new(),
         })
@@ -118,11 +133,11 @@ impl BroadPhase {
         }
         let (inflation, half_margin) = (self.options.inflation, 0.5 * self.options.margin);
         let (centres, radii) = (centreline.centres(), centreline.radii());
-        self.reaches.clear();
-        self.reaches.extend((0..centreline.segment_count()).map(|k| {
+        centreline.chord_deviation_bounds(&mut self.reaches);
+        for (k, reach) in self.reaches.iter_mut().enumerate() {
             let chord = centres[k].distance(centres[k + 1]);
-            0.5 * chord + centreline.segment(k).chord_deviation_bound() + radii[k].max(radii[k + 1])
-        }));
+            *reach = 0.5 * chord + *reach + radii[k].max(radii[k + 1]);
+        }
         let reaches = &self.reaches;
         self.spheres.clear();
         self.spheres.extend(centres.iter().zip(radii).zip(body_lengths).enumerate().map(
@@ -135,7 +150,8 @@ impl BroadPhase {
         ));
         self.build_levels();
         out.clear();
-        let (gap, spheres, n) = (self.options.index_gap, &self.spheres, self.spheres.len());
+        let (gap, spheres, quads, n) =
+            (self.options.index_gap, &self.spheres, &self.quads, self.spheres.len());
         let top = self.levels.len().saturating_sub(1);
         for (a, run_a) in self.levels[0].iter().enumerate() {
             let (first_a, end_a) = (a * BLOCK, ((a + 1) * BLOCK).min(n));
@@ -145,31 +161,37 @@ impl BroadPhase {
             let search =
                 RunSearch { levels: &self.levels, bodies: n, gap, run: a, run_sphere: run_a };
             search.collect(top, 0, &mut self.partner_runs);
-            // Body by body, partner runs in order: the pairs come out sorted by (i, j).
+            // Body by body, partner runs and their quads in order: the pairs come out sorted
+            // by (i, j).
             for i in first_a..end_a {
+                let first = i.saturating_add(gap).saturating_add(1);
                 for &b in &self.partner_runs {
-                    let first = i.saturating_add(gap).saturating_add(1);
-                    let partners = (b * BLOCK).max(first)..((b + 1) * BLOCK).min(n);
-                    let touching = partners.filter(|&j| spheres[i].intersects(&spheres[j]));
-                    out.extend(touching.map(|j| (i, j)));
+                    let run_quads = b * (BLOCK / QUAD)..((b + 1) * (BLOCK / QUAD)).min(quads.len());
+                    for (q, quad) in run_quads.clone().zip(&quads[run_quads]) {
+                        let partners = (q * QUAD).max(first)..((q + 1) * QUAD).min(n);
+                        if partners.is_empty() || !spheres[i].intersects(quad) {
+                            continue;
+                        }
+                        let touching = partners.filter(|&j| spheres[i].intersects(&spheres[j]));
+                        out.extend(touching.map(|j| (i, j)));
+                    }
                 }
             }
         }
         Ok(())
     }
 
-    /// Fills the tree over the runs from the bodies' spheres (`levels`, see its field).
+    /// Fills the quads and the tree over the runs from the bodies' spheres (`quads` and
+    /// `levels`, see their fields).
     fn build_levels(&mut self) {
         let runs = self.spheres.len().div_ceil(BLOCK).max(1);
         let depth = runs.next_power_of_two().trailing_zeros() as usize + 1;
+        self.quads.clear();
+        self.quads.extend(self.spheres.chunks(QUAD).map(holding));
         self.levels.resize_with(depth, Vec::new);
         let (first, rest) = self.levels.split_at_mut(1);
         first[0].clear();
-        first[0].extend(self.spheres.chunks(BLOCK).map(|run| {
-            let centre = run.iter().map(|s| s.center).sum::<glam::DVec3>() / run.len() as f64;
-            let radius = run.iter().map(|s| s.center.distance(centre) + s.radius);
-            BoundingSphere::new(centre, radius.fold(0.0, f64::max))
-        }));
+        first[0].extend(self.spheres.chunks(BLOCK).map(holding));
         let mut below = &first[0];
         for level in rest.iter_mut() {
             level.clear();
@@ -180,6 +202,14 @@ impl BroadPhase {
             below = level;
         }
     }
+}
+
+/// A sphere holding `spheres` (consecutive bodies): at their mean centre, its radius the
+/// farthest reach of theirs from it, with [`RADIUS_ROUNDING`].
+fn holding(spheres: &[BoundingSphere]) -> BoundingSphere {
+    let centre = spheres.iter().map(|s| s.center).sum::<glam::DVec3>() / spheres.len() as f64;
+    let radius = spheres.iter().map(|s| s.center.distance(centre) + s.radius);
+    BoundingSphere::new(centre, radius.fold(0.0, f64::max) * (1.0 + RADIUS_ROUNDING))
 }
 
 /// The search of one run's partner runs down the tree over the runs.

@@ -130,6 +130,28 @@ impl Centreline {
         Segment::new([before, c[k], c[k + 1], after])
     }
 
+    /// Fills `out` with every segment's chord deviation bound σ_k, equal bit for bit to
+    /// `self.segment(k).chord_deviation_bound()` (`(2/27)(b_k + b_{k+1})` with the bends
+    /// b_i = |c_{i−1} − 2c_i + c_{i+1}|, phantom end points as in [`segment`](Self::segment)),
+    /// but with each bend computed once and no segment built: the broad phase needs σ of every
+    /// segment on every step.
+    pub fn chord_deviation_bounds(&self, out: &mut Vec<f64>) {
+        let c = &self.centres;
+        let n = c.len();
+        let bend = |i: usize| {
+            let before = if i == 0 { 2.0 * c[0] - c[1] } else { c[i - 1] };
+            let after = if i + 1 == n { 2.0 * c[n - 1] - c[n - 2] } else { c[i + 1] };
+            (before - 2.0 * c[i] + after).length()
+        };
+        out.clear();
+        let mut previous = bend(0);
+        for k in 0..self.segment_count() {
+            let next = bend(k + 1);
+            out.push((2.0 / 27.0) * (previous + next));
+            previous = next;
+        }
+    }
+
     /// Point x(u) on the centreline (cm).
     pub fn point(&self, u: f64) -> DVec3 {
         let (k, s) = self.locate(u);
@@ -237,6 +259,17 @@ mod tests {
 
     /// The arc-length table is built when asked for, and again after every update: a curve
     /// updated to new centres measures what a curve built on them measures.
+    #[test]
+    fn chord_deviation_bounds_are_those_of_the_segments_bit_for_bit() {
+        let line = wiggly_centreline(23);
+        let mut bounds = Vec::new();
+        line.chord_deviation_bounds(&mut bounds);
+        assert_eq!(bounds.len(), line.segment_count());
+        for (k, bound) in bounds.iter().enumerate() {
+            assert_eq!(bound.to_bits(), line.segment(k).chord_deviation_bound().to_bits(), "{k}");
+        }
+    }
+
     #[test]
     fn arc_lengths_follow_every_update() {
         let (centres, radii) = wiggly(12);
