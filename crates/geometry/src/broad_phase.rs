@@ -63,10 +63,11 @@ const BLOCK: usize = 16;
 /// a divisor of [`BLOCK`], so a run holds whole quads.
 const QUAD: usize = 4;
 
-/// Relative rounding allowance on a group's sphere radius, so that every body sphere lies
-/// inside its group's sphere as computed: a body pair is then skipped only where its own test
-/// would fail, and the pairs are exactly those of the body tests alone.
-const RADIUS_ROUNDING: f64 = 1e-12;
+/// Rounding allowance on a group's sphere radius, relative to the radius and the centre's
+/// largest coordinate (the scale of the rounding in its distances), so that every body sphere
+/// lies inside its group's sphere as computed: a body pair is then skipped only where its own
+/// test would fail, and the pairs are exactly those of the body tests alone.
+const RADIUS_ROUNDING: f64 = 1e-9;
 
 /// Broad-phase workspace: the per-body and per-run bounding spheres, reused across calls.
 #[derive(Debug, Clone)]
@@ -208,8 +209,9 @@ impl BroadPhase {
 /// farthest reach of theirs from it, with [`RADIUS_ROUNDING`].
 fn holding(spheres: &[BoundingSphere]) -> BoundingSphere {
     let centre = spheres.iter().map(|s| s.center).sum::<glam::DVec3>() / spheres.len() as f64;
-    let radius = spheres.iter().map(|s| s.center.distance(centre) + s.radius);
-    BoundingSphere::new(centre, radius.fold(0.0, f64::max) * (1.0 + RADIUS_ROUNDING))
+    let reach = spheres.iter().map(|s| s.center.distance(centre) + s.radius).fold(0.0, f64::max);
+    let allowance = RADIUS_ROUNDING * (reach + centre.abs().max_element());
+    BoundingSphere::new(centre, reach + allowance)
 }
 
 /// The search of one run's partner runs down the tree over the runs.
