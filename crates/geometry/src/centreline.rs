@@ -12,7 +12,7 @@ use glam::DVec3;
 
 use crate::arc_length::{invert_segment_length, segment_length};
 use crate::error::GeometryError;
-use crate::segment::{Segment, basis, basis_derivative};
+use crate::segment::{Segment, basis, basis_derivative, bend, chord_deviation_bound};
 use crate::weights::SplineWeights;
 
 /// The Catmull-Rom centreline through the body centres, with the body radii and a
@@ -122,12 +122,22 @@ impl Centreline {
     /// Segment k with its four control points, phantom points included at the ends.
     /// `k` beyond the last segment gives the last segment, as for clamped u.
     pub fn segment(&self, k: usize) -> Segment {
-        let n = self.centres.len();
-        let k = k.min(n - 2);
+        let k = k.min(self.centres.len() - 2);
         let c = &self.centres;
-        let before = if k == 0 { 2.0 * c[0] - c[1] } else { c[k - 1] };
-        let after = if k + 2 == n { 2.0 * c[n - 1] - c[n - 2] } else { c[k + 2] };
-        Segment::new([before, c[k], c[k + 1], after])
+        Segment::new([self.before(k), c[k], c[k + 1], self.after(k + 1)])
+    }
+
+    /// The control point before centre i: c_{i−1}, or the phantom c₋₁ = 2c₀ − c₁ for i = 0.
+    fn before(&self, i: usize) -> DVec3 {
+        let c = &self.centres;
+        if i == 0 { 2.0 * c[0] - c[1] } else { c[i - 1] }
+    }
+
+    /// The control point after centre i: c_{i+1}, or the phantom c_N = 2c_{N−1} − c_{N−2} for
+    /// the last centre.
+    fn after(&self, i: usize) -> DVec3 {
+        let (c, n) = (&self.centres, self.centres.len());
+        if i + 1 == n { 2.0 * c[n - 1] - c[n - 2] } else { c[i + 1] }
     }
 
     /// Fills `out` with every segment's chord deviation bound σ_k, equal bit for bit to
@@ -136,18 +146,12 @@ impl Centreline {
     /// but with each bend computed once and no segment built: the broad phase needs σ of every
     /// segment on every step.
     pub fn chord_deviation_bounds(&self, out: &mut Vec<f64>) {
-        let c = &self.centres;
-        let n = c.len();
-        let bend = |i: usize| {
-            let before = if i == 0 { 2.0 * c[0] - c[1] } else { c[i - 1] };
-            let after = if i + 1 == n { 2.0 * c[n - 1] - c[n - 2] } else { c[i + 1] };
-            (before - 2.0 * c[i] + after).length()
-        };
+        let bend = |i: usize| bend(self.before(i), self.centres[i], self.after(i));
         out.clear();
         let mut previous = bend(0);
         for k in 0..self.segment_count() {
             let next = bend(k + 1);
-            out.push((2.0 / 27.0) * (previous + next));
+            out.push(chord_deviation_bound(previous, next));
             previous = next;
         }
     }

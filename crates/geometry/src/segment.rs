@@ -118,8 +118,19 @@ impl Segment {
     /// segment pairs whose chords are too far apart to touch, without a search.
     pub fn chord_deviation_bound(&self) -> f64 {
         let [p0, p1, p2, p3] = self.control;
-        (2.0 / 27.0) * ((p0 - 2.0 * p1 + p2).length() + (p1 - 2.0 * p2 + p3).length())
+        chord_deviation_bound(bend(p0, p1, p2), bend(p1, p2, p3))
     }
+}
+
+/// The bend `|P₀ − 2P₁ + P₂|` of three consecutive control points (a second difference).
+pub(crate) fn bend(p0: DVec3, p1: DVec3, p2: DVec3) -> f64 {
+    (p0 - 2.0 * p1 + p2).length()
+}
+
+/// [`Segment::chord_deviation_bound`] from the bends at the segment's two ends:
+/// `(2/27)(b₁ + b₂)`.
+pub(crate) fn chord_deviation_bound(bend_start: f64, bend_end: f64) -> f64 {
+    (2.0 / 27.0) * (bend_start + bend_end)
 }
 
 #[cfg(test)]
