@@ -90,7 +90,8 @@ impl Default for DetectorOptions {
 pub struct DetectionReport {
     /// Body pairs reported by the broad phase.
     pub candidate_pairs: usize,
-    /// Distinct segment pairs around the candidate body pairs.
+    /// Distinct segment pairs around the candidate body pairs, k_b − k_a ≥ `index_gap` (no
+    /// closer pair can give a record outside the index gap).
     pub segment_pairs: usize,
     /// Segment pairs close enough to touch by the chord bound and searched from their chords'
     /// closest points.
@@ -360,14 +361,18 @@ impl ContactDetector {
         }
     }
 
-    /// Segment pairs (k_a < k_b) touching the candidate body pairs, sorted and unique:
-    /// body i touches segments i − 1 and i (those that exist), so segment k_a is touched by
-    /// the body pairs of bodies k_a and k_a + 1. The body pairs come sorted by (i, j), so each
+    /// Segment pairs (k_a < k_b, k_b − k_a ≥ `index_gap`) touching the candidate body pairs,
+    /// sorted and unique: body i touches segments i − 1 and i (those that exist), so segment
+    /// k_a is touched by the body pairs of bodies k_a and k_a + 1. The body pairs come sorted by (i, j), so each
     /// of those two rows gives its partners k_b ∈ {j − 1, j} in order; merging the two rows
     /// gives the pairs of k_a sorted, in memory linear in the pairs and time O(S log p) (no
     /// table over all S² segment pairs).
     fn collect_segment_pairs(&mut self, segment_count: usize) {
         self.segment_pairs.clear();
+        // A record of segments k_a < k_b has u_b − u_a ≤ k_b + 1 − k_a, so it is outside the
+        // index gap only if k_b − k_a ≥ `index_gap`: closer pairs (the broad phase's gap is
+        // two less) are never searched.
+        let min_offset = self.options.index_gap.max(1);
         let pairs = &self.body_pairs;
         let row = |body: usize| {
             let (start, end) =
@@ -375,7 +380,7 @@ impl ContactDetector {
             pairs[start..end].iter().flat_map(|&(_, j)| [j.checked_sub(1), Some(j)]).flatten()
         };
         for k_a in 0..segment_count {
-            let in_range = |&k_b: &usize| k_a < k_b && k_b < segment_count;
+            let in_range = |&k_b: &usize| k_a + min_offset <= k_b && k_b < segment_count;
             let mut first = row(k_a).filter(in_range).peekable();
             let mut second = row(k_a + 1).filter(in_range).peekable();
             let mut last = None;
@@ -513,14 +518,17 @@ mod tests {
     }
 
     proptest::proptest! {
-        /// The merged rows give exactly the sorted, unique segment pairs (k_a < k_b) of
-        /// segments i − 1, i and j − 1, j over the body pairs (i, j).
+        /// The merged rows give exactly the sorted, unique segment pairs (k_b − k_a at least
+        /// the index gap) of segments i − 1, i and j − 1, j over the body pairs (i, j).
         #[test]
         fn segment_pairs_are_those_of_the_body_pairs_sorted_and_unique(
             bodies in 2_usize..60,
             raw in proptest::collection::vec((0_usize..60, 0_usize..60), 0..200),
+            index_gap in 0_usize..12,
         ) {
-            let mut detector = ContactDetector::new(DetectorOptions::default()).expect("valid");
+            let options = DetectorOptions { index_gap, ..DetectorOptions::default() };
+            let mut detector = ContactDetector::new(options).expect("valid");
+            let index_gap = index_gap.max(1);
             let mut pairs: Vec<(usize, usize)> = raw
                 .into_iter()
                 .map(|(i, j)| (i % bodies, j % bodies))
@@ -535,7 +543,7 @@ mod tests {
                     let near = |b: usize| [b.checked_sub(1), Some(b)].into_iter().flatten();
                     near(i).flat_map(move |k_a| near(j).map(move |k_b| (k_a, k_b)))
                 })
-                .filter(|&(k_a, k_b)| k_a < k_b && k_b < segment_count)
+                .filter(|&(k_a, k_b)| k_a + index_gap <= k_b && k_b < segment_count)
                 .collect();
             detector.body_pairs = pairs;
             detector.collect_segment_pairs(segment_count);

@@ -3,6 +3,8 @@
 
 use hagfish_tree::{RigidInertia, Spatial};
 
+use crate::factor::MAX_JOINT_DOFS;
+
 /// A 6 × 6 matrix acting on spatial vectors, row-major, `(angular; linear)` order. Used for
 /// symmetric blocks (inertias and articulated inertias).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -40,21 +42,23 @@ impl Block6 {
         from_array(&y)
     }
 
-    /// `B ← B + A`.
-    pub(crate) fn add(&mut self, other: &Block6) {
-        for (row, other_row) in self.0.iter_mut().zip(&other.0) {
-            for (a, b) in row.iter_mut().zip(other_row) {
-                *a += b;
-            }
+    /// `B ← B + (A − Σ_k u_k u_kᵀ)`, the downdates subtracted from each entry of A in the
+    /// order of `downdates` (at most [`MAX_JOINT_DOFS`]) before it is added: a child's
+    /// articulated inertia less its joint's gains, added to its parent's, without forming the
+    /// child's block.
+    pub(crate) fn add_downdated(&mut self, other: &Block6, downdates: &[Spatial]) {
+        let mut u = [[0.0; 6]; MAX_JOINT_DOFS];
+        for (array, spatial) in u.iter_mut().zip(downdates) {
+            *array = to_array(spatial);
         }
-    }
-
-    /// `B ← B − u uᵀ` (a symmetric rank-one downdate).
-    pub(crate) fn subtract_outer(&mut self, u: &Spatial) {
-        let u = to_array(u);
-        for (row, ui) in self.0.iter_mut().zip(&u) {
-            for (a, uj) in row.iter_mut().zip(&u) {
-                *a -= ui * uj;
+        let u = &u[..downdates.len()];
+        for (i, (row, other_row)) in self.0.iter_mut().zip(&other.0).enumerate() {
+            for (j, (a, b)) in row.iter_mut().zip(other_row).enumerate() {
+                let mut child = *b;
+                for uk in u {
+                    child -= uk[i] * uk[j];
+                }
+                *a += child;
             }
         }
     }
@@ -92,14 +96,33 @@ mod tests {
     }
 
     #[test]
-    fn downdate_removes_the_outer_product() {
-        let u = Spatial::new(DVec3::new(1.0, 2.0, 3.0), DVec3::new(-1.0, 0.5, 0.0));
-        let mut b = Block6::ZERO;
-        b.subtract_outer(&u);
-        let v = Spatial::new(DVec3::X, DVec3::Y);
-        // −u (uᵀv) with uᵀv = 1 + 0.5.
-        let got = b.apply(&v);
-        assert!((got - u * -1.5).angular.length() < 1e-14);
-        assert!((got - u * -1.5).linear.length() < 1e-14);
+    fn downdated_block_is_added_entry_by_entry() {
+        let entry = |i: usize, j: usize, scale: f64| scale * ((i * 6 + j) as f64 * 0.37).sin();
+        let (mut b, mut a) = (Block6::ZERO, Block6::ZERO);
+        for i in 0..6 {
+            for j in 0..6 {
+                b.0[i][j] = entry(i, j, 2.0);
+                a.0[i][j] = entry(j, i, 3.0);
+            }
+        }
+        let u = [
+            Spatial::new(DVec3::new(1.0, 2.0, 3.0), DVec3::new(-1.0, 0.5, 0.0)),
+            Spatial::new(DVec3::new(0.3, -0.7, 0.1), DVec3::new(0.9, 0.2, -0.4)),
+        ];
+        let before = b;
+        b.add_downdated(&a, &u);
+        let (u0, u1) = (to_array(&u[0]), to_array(&u[1]));
+        for i in 0..6 {
+            for j in 0..6 {
+                let child = a.0[i][j] - u0[i] * u0[j] - u1[i] * u1[j];
+                assert_eq!(b.0[i][j], before.0[i][j] + child, "entry ({i}, {j})");
+            }
+        }
+        // The downdate alone: (0 − u uᵀ) v = −u (uᵀv), uᵀv = 1 + 0.5.
+        let mut downdate = Block6::ZERO;
+        downdate.add_downdated(&Block6::ZERO, &u[..1]);
+        let got = downdate.apply(&Spatial::new(DVec3::X, DVec3::Y));
+        assert!((got - u[0] * -1.5).angular.length() < 1e-14);
+        assert!((got - u[0] * -1.5).linear.length() < 1e-14);
     }
 }

@@ -40,7 +40,7 @@ use crate::block::{Block6, to_array};
 use crate::error::SparseError;
 
 /// Largest number of DOFs of one joint (a free joint).
-const MAX_JOINT_DOFS: usize = 6;
+pub(crate) const MAX_JOINT_DOFS: usize = 6;
 
 /// Most columns that one leaf-to-root pass solves together
 /// ([`TreeFactor::solve_lower_lanes`]): the factor is read once for all of them.
@@ -152,7 +152,10 @@ impl TreeFactor {
         for body in (0..self.parents.len()).rev() {
             let range = self.dofs[body].clone();
             let start = range.start;
-            let articulated = self.articulated[body];
+            // The body's block by reference (its parent's, earlier in the list, is the only
+            // one written below): no 6 × 6 copy per body.
+            let (ancestors, rest) = self.articulated.split_at_mut(body);
+            let articulated = &rest[0];
             let mut unreduced = [Spatial::ZERO; MAX_JOINT_DOFS];
             for (u, a) in unreduced.iter_mut().zip(range.clone()) {
                 *u = articulated.apply(&self.axes[a]);
@@ -184,11 +187,7 @@ impl TreeFactor {
                 self.gains[a] = gain * (1.0 / row[i]);
             }
             if let Some(parent) = self.parents[body] {
-                let mut child = articulated;
-                for a in range {
-                    child.subtract_outer(&self.gains[a]);
-                }
-                self.articulated[parent].add(&child);
+                ancestors[parent].add_downdated(articulated, &self.gains[range]);
             }
         }
         self.factored = true;

@@ -84,7 +84,13 @@ fn overshooting_limits<'a>(
     time_step: f64,
     margin: f64,
 ) -> impl Iterator<Item = (usize, f64, f64)> + 'a {
-    model.dofs().iter().enumerate().flat_map(move |(k, dof)| {
+    // The DOFs whose next position leaves [lo, hi] first (next − lo < 0 ⇔ next < lo for
+    // floating-point numbers), so that the rest of a long chain costs a comparison each.
+    let crossing = move |&(k, dof): &(usize, &hagfish_tree::DofParams)| {
+        let next = state.q[k] + time_step * qdot_next[k];
+        next < dof.lower || dof.upper < next
+    };
+    model.dofs().iter().enumerate().filter(crossing).flat_map(move |(k, dof)| {
         let next = state.q[k] + time_step * qdot_next[k];
         [
             (state.q[k] - dof.lower, next - dof.lower, 1.0),
