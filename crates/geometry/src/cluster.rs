@@ -133,13 +133,14 @@ impl DeepestPerCluster {
         }
     }
 
-    /// Whether a kept record lies within the radius, in both parameters, of every point of
-    /// the parameter box `u_a` × `u_b` (closed intervals): then a record from that box that
-    /// is not deeper than the kept one is dropped.
-    pub(crate) fn covers(&self, u_a: [f64; 2], u_b: [f64; 2]) -> bool {
-        let radius = self.radius;
-        let within = |k: f64, [low, high]: [f64; 2]| k - radius <= low && high <= k + radius;
-        self.kept.iter().any(|k| within(k.u_a, u_a) && within(k.u_b, u_b))
+    /// The records kept so far, in the order they were kept.
+    pub(crate) fn kept(&self) -> &[Candidate] {
+        &self.kept
+    }
+
+    /// The cluster radius.
+    pub(crate) fn radius(&self) -> f64 {
+        self.radius
     }
 
     /// Judges the remaining records and returns the kept ones sorted by (u_a, u_b), with how
@@ -244,18 +245,5 @@ mod tests {
         assert_eq!(kept, all_at_once.as_slice());
         assert_eq!(merged, merged_at_once);
         assert!(merged > 0 && kept.len() > 1, "the case merges some and keeps several");
-    }
-
-    #[test]
-    fn a_box_is_covered_only_when_a_kept_record_reaches_all_of_it() {
-        let mut clusters = DeepestPerCluster::default();
-        clusters.clear(1.5);
-        clusters.push(candidate(10.4, 40.6, -0.1));
-        assert!(!clusters.covers([10.0, 11.0], [40.0, 41.0]), "pending records cover nothing");
-        clusters.settle_below(0.0);
-        assert!(clusters.covers([10.0, 11.0], [40.0, 41.0]));
-        assert!(clusters.covers([9.0, 10.0], [40.0, 41.0]), "u_a 9 is 1.4 away");
-        assert!(!clusters.covers([11.0, 12.0], [40.0, 41.0]), "u_a 12 is 1.6 away");
-        assert!(!clusters.covers([10.0, 11.0], [38.0, 39.0]), "u_b 38 is 2.6 away");
     }
 }

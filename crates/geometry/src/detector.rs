@@ -1,13 +1,16 @@
 //! Self-contact detection: broad phase, narrow phase on the spline, merging.
 
+use glam::DVec3;
+
 use crate::broad_phase::{BroadPhase, BroadPhaseOptions};
 use crate::centreline::Centreline;
 use crate::chord::{chord_distance, closest_chord_parameters};
 use crate::cluster::{Candidate, DeepestPerCluster};
 use crate::contact::SelfContact;
+use crate::coverage::Coverage;
 use crate::error::GeometryError;
 use crate::narrow_phase::{ClosestPoints, NewtonStatus, closest_points_within_after, search};
-use crate::sampled_segment::SampledSegment;
+use crate::sampled_segment::SampledSegments;
 
 /// The distance below which segments k_a and k_b may be in contact: the largest tube radii
 /// along them (a radius along a segment is at most the larger of its two body radii) plus
@@ -16,19 +19,35 @@ fn reach(radii: &[f64], (k_a, k_b): (usize, usize), margin: f64) -> f64 {
     radii[k_a].max(radii[k_a + 1]) + radii[k_b].max(radii[k_b + 1]) + margin
 }
 
-/// A lower bound on the distance of segments `a` and `b`, from their chords, whose closest
-/// points are at `chord_parameters`: each segment lies within its
-/// [`crate::Segment::chord_deviation_bound`] σ of its chord, so the spline distance is at
+/// A lower bound on the distance of two segments from their chords `a` and `b`, whose closest
+/// points are at `chord_parameters`, and their [`crate::Segment::chord_deviation_bound`]s
+/// `deviations`: each segment lies within its σ of its chord, so the spline distance is at
 /// least d_chord − σ_a − σ_b.
-fn distance_lower_bound(a: &SampledSegment, b: &SampledSegment, chord_parameters: [f64; 2]) -> f64 {
-    let chord_distance = chord_distance(a.segment.chord(), b.segment.chord(), chord_parameters);
-    chord_distance - a.chord_deviation - b.chord_deviation
+fn distance_lower_bound(
+    a: (DVec3, DVec3),
+    b: (DVec3, DVec3),
+    chord_parameters: [f64; 2],
+    deviations: [f64; 2],
+) -> f64 {
+    chord_distance(a, b, chord_parameters) - deviations[0] - deviations[1]
 }
 
 /// Rounding allowance (cm) on a segment pair's gap bound before the records shallower than it
 /// count as final: the bound is a difference of distances of a few centimetres, exact to
 /// ≈ 1e-15 cm, and the σ it subtracts are upper bounds with room to spare.
 const GAP_BOUND_ROUNDING: f64 = 1e-9;
+
+/// An unsigned integer in the order of [`f64::total_cmp`]: the bits of a positive number with
+/// the sign bit set, those of a negative one inverted.
+fn total_order_key(x: f64) -> u64 {
+    let bits = x.to_bits();
+    if bits >> 63 == 1 { !bits } else { bits | (1 << 63) }
+}
+
+/// The number whose [`total_order_key`] is `key`.
+fn from_total_order_key(key: u64) -> f64 {
+    f64::from_bits(if key >> 63 == 1 { key & !(1 << 63) } else { !key })
+}
 
 /// Counts of one narrow phase, for its [`DetectionReport`].
 #[derive(Debug, Default)]
@@ -46,17 +65,6 @@ struct SearchCounts {
 /// (keeping 233 records in order), while at 1000 bodies (radius ≈ 16) it covers most pairs
 /// near a crossing (2026-11-26, `docs/performance.md`).
 const MIN_PRUNING_RADIUS: f64 = 2.0;
-
-/// A segment pair that may touch, waiting for its search: the least gap it can give (its
-/// distance bound less the largest tube radii along it), its reach and its chords' closest
-/// points.
-#[derive(Debug, Clone, Copy)]
-struct QueuedPair {
-    gap_bound: f64,
-    pair: (usize, usize),
-    reach: f64,
-    chord: [f64; 2],
-}
 
 /// Options of the [`ContactDetector`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -142,15 +150,19 @@ pub struct ContactDetector {
     options: DetectorOptions,
     broad_phase: BroadPhase,
     body_pairs: Vec<(usize, usize)>,
-    /// The segments of the segment pairs with their seed-grid samples and bounds, in the
-    /// order first needed.
-    segments: Vec<SampledSegment>,
-    /// Per segment of the centreline, its place in `segments` (`usize::MAX`: not needed).
-    slots: Vec<usize>,
+    /// Every segment's chord deviation bound σ_k (filled when some pair is to be bounded).
+    deviations: Vec<f64>,
+    /// The searched segments with their seed-grid samples, made when first searched.
+    segments: SampledSegments,
     segment_pairs: Vec<(usize, usize)>,
-    /// The segment pairs that may touch, by increasing gap bound.
-    queue: Vec<QueuedPair>,
+    /// The segment pairs that may touch, as their gap bound (a [`total_order_key`]) and
+    /// index in `segment_pairs` packed in one integer, sorted before they are searched: by
+    /// gap bound, then pair. Integer keys sort several times faster than floating-point
+    /// comparisons, and a long chain queues thousands of pairs per crossing.
+    queue: Vec<u128>,
     clusters: DeepestPerCluster,
+    /// The pairs that the kept records cover, marked as each is kept.
+    coverage: Coverage,
     /// Whether pairs are searched by gap bound and skipped when covered: the cluster radius
     /// is at least [`MIN_PRUNING_RADIUS`].
     prune: bool,
@@ -176,11 +188,12 @@ impl ContactDetector {
             options,
             broad_phase,
             body_pairs: Vec::new(),
-            segments: Vec::new(),
-            slots: Vec::new(),
+            deviations: Vec::new(),
+            segments: SampledSegments::default(),
             segment_pairs: Vec::new(),
             queue: Vec::new(),
             clusters: DeepestPerCluster::default(),
+            coverage: Coverage::default(),
             prune: options.cluster_radius >= MIN_PRUNING_RADIUS,
         })
     }
@@ -191,11 +204,12 @@ impl ContactDetector {
     pub fn reserve(&mut self, bodies: usize) {
         let pairs = PAIRS_PER_BODY * bodies;
         self.body_pairs.reserve(pairs);
+        self.deviations.reserve(bodies + 1);
         self.segments.reserve(bodies + 1);
-        self.slots.reserve(bodies + 1);
         self.segment_pairs.reserve(pairs);
         self.queue.reserve(pairs);
         self.clusters.reserve(pairs);
+        self.coverage.reserve(bodies + 1, pairs);
     }
 
     /// Changes the cluster radius (as [`DetectorOptions::cluster_radius`]) without rebuilding
@@ -258,18 +272,14 @@ impl ContactDetector {
         centreline: &Centreline,
         out: &mut Vec<SelfContact>,
     ) -> DetectionReport {
-        // Only the segments of some pair are sampled: on a long chain that is in contact in
-        // a few places, most are not.
-        self.segments.clear();
-        self.slots.clear();
-        self.slots.resize(centreline.segment_count(), usize::MAX);
-        for &(k_a, k_b) in &self.segment_pairs {
-            for k in [k_a, k_b] {
-                if self.slots[k] == usize::MAX {
-                    self.slots[k] = self.segments.len();
-                    self.segments.push(SampledSegment::new(centreline.segment(k)));
-                }
-            }
+        // The bounds read only the centres and σ (compact arrays: on a long chain a crossing
+        // is bounded for thousands of segment pairs); a segment is sampled for the seed grid
+        // when a search first needs it.
+        self.segments.clear(centreline.segment_count());
+        if self.segment_pairs.is_empty() {
+            self.deviations.clear();
+        } else {
+            centreline.chord_deviation_bounds(&mut self.deviations);
         }
         let (margin, index_gap) = (self.options.margin, self.options.index_gap as f64);
         // A search result as a contact candidate: within the margin and outside the
@@ -288,15 +298,15 @@ impl ContactDetector {
         };
         // Searches one pair from its chords' closest points (then from every start if that
         // finds no contact and the seed grid cannot rule one out) and keeps its record.
-        let (segments, slots) = (&self.segments, &self.slots);
         let mut counts = SearchCounts::default();
-        let search_pair = |clusters: &mut DeepestPerCluster,
+        let search_pair = |segments: &mut SampledSegments,
+                           clusters: &mut DeepestPerCluster,
                            counts: &mut SearchCounts,
                            pair: (usize, usize),
                            reach,
                            chord| {
             counts.searched += 1;
-            let (a, b) = (&segments[slots[pair.0]], &segments[slots[pair.1]]);
+            let (a, b) = segments.pair(centreline, pair);
             let first = search(&a.segment, &b.segment, chord);
             let found = match candidate(pair, first) {
                 Some(found) if first.status == NewtonStatus::Converged => Some(found),
@@ -319,30 +329,59 @@ impl ContactDetector {
         let prune = self.prune;
         self.clusters.clear(self.options.cluster_radius);
         self.queue.clear();
-        for &pair in &self.segment_pairs {
+        let centres = centreline.centres();
+        let chord_of = |k: usize| (centres[k], centres[k + 1]);
+        for (index, &pair) in self.segment_pairs.iter().enumerate() {
             let reach = reach(centreline.radii(), pair, margin);
-            let (a, b) = (&segments[slots[pair.0]], &segments[slots[pair.1]]);
-            let chord = closest_chord_parameters(a.segment.chord(), b.segment.chord());
-            let distance_bound = distance_lower_bound(a, b, chord);
+            let (a, b) = (chord_of(pair.0), chord_of(pair.1));
+            let chord = closest_chord_parameters(a, b);
+            let deviations = [self.deviations[pair.0], self.deviations[pair.1]];
+            let distance_bound = distance_lower_bound(a, b, chord, deviations);
             if distance_bound >= reach {
                 continue;
             }
             if prune {
                 let gap_bound = distance_bound - (reach - margin);
-                self.queue.push(QueuedPair { gap_bound, pair, reach, chord });
+                self.queue.push((u128::from(total_order_key(gap_bound)) << 64) | index as u128);
             } else {
-                search_pair(&mut self.clusters, &mut counts, pair, reach, chord);
+                search_pair(
+                    &mut self.segments,
+                    &mut self.clusters,
+                    &mut counts,
+                    pair,
+                    reach,
+                    chord,
+                );
             }
         }
-        self.queue
-            .sort_unstable_by(|x, y| x.gap_bound.total_cmp(&y.gap_bound).then(x.pair.cmp(&y.pair)));
-        for &QueuedPair { gap_bound, pair, reach, chord } in &self.queue {
+        self.queue.sort_unstable();
+        if !self.queue.is_empty() {
+            self.coverage.reset(&self.segment_pairs, centreline.segment_count());
+        }
+        let mut marked = 0;
+        for &key in &self.queue {
+            let (gap_bound, index) =
+                (from_total_order_key((key >> 64) as u64), key as u64 as usize);
             self.clusters.settle_below(gap_bound - GAP_BOUND_ROUNDING);
-            let (k_a, k_b) = (pair.0 as f64, pair.1 as f64);
-            if self.clusters.covers([k_a, k_a + 1.0], [k_b, k_b + 1.0]) {
+            for record in &self.clusters.kept()[marked..] {
+                self.coverage.mark(&self.segment_pairs, record, self.clusters.radius());
+            }
+            marked = self.clusters.kept().len();
+            if self.coverage.is_covered(index) {
                 counts.covered += 1;
             } else {
-                search_pair(&mut self.clusters, &mut counts, pair, reach, chord);
+                // Reach and chord parameters again (the same numbers): few pairs get here.
+                let pair = self.segment_pairs[index];
+                let reach = reach(centreline.radii(), pair, margin);
+                let chord = closest_chord_parameters(chord_of(pair.0), chord_of(pair.1));
+                search_pair(
+                    &mut self.segments,
+                    &mut self.clusters,
+                    &mut counts,
+                    pair,
+                    reach,
+                    chord,
+                );
             }
         }
         let (kept, merged) = self.clusters.finish();
@@ -548,6 +587,30 @@ mod tests {
             detector.body_pairs = pairs;
             detector.collect_segment_pairs(segment_count);
             proptest::prop_assert_eq!(detector.segment_pairs, expected.into_iter().collect::<Vec<_>>());
+        }
+    }
+
+    #[test]
+    fn total_order_keys_sort_as_total_cmp() {
+        let values = [
+            f64::NEG_INFINITY,
+            -1e300,
+            -2.5,
+            -1e-310,
+            -0.0,
+            0.0,
+            1e-310,
+            3.0,
+            1e300,
+            f64::INFINITY,
+            f64::NAN,
+            -f64::NAN,
+        ];
+        for x in values {
+            for y in values {
+                assert_eq!(total_order_key(x).cmp(&total_order_key(y)), x.total_cmp(&y), "{x} {y}");
+                assert_eq!(from_total_order_key(total_order_key(x)).to_bits(), x.to_bits());
+            }
         }
     }
 

@@ -52,6 +52,7 @@ mod centreline;
 mod chord;
 mod cluster;
 mod contact;
+mod coverage;
 mod detector;
 mod error;
 mod narrow_phase;

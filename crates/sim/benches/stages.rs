@@ -9,13 +9,16 @@
 //! (with its velocity-product re-solve), the internal forces (the load each joint transmits),
 //! integration, and the whole step.
 //!
+//! The same detection stages and the contact solve on the long knotted state (1000 bodies,
+//! `hagfish_bench_support::long_knotted_world`), group `knotted_1000`.
+//!
 //! Stages that change their input (solve, integrate, step) are timed with their input reset
 //! outside the timed region.
 
 use std::time::{Duration, Instant};
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use hagfish_bench_support::knotted_world;
+use hagfish_bench_support::{knotted_world, long_knotted_world};
 use hagfish_control::WaterDrag;
 use hagfish_geometry::ContactDetector;
 use hagfish_sim::{StepData, pipeline};
@@ -122,5 +125,63 @@ fn stages(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, stages);
+/// The detection stages and the contact solve on the long knotted state (ES103 at 1000 bodies,
+/// `hagfish_bench_support::long_knotted_world`), where each crossing is seen by thousands of
+/// segment pairs.
+fn long_stages(c: &mut Criterion) {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
+    let (world, mut controller) =
+        long_knotted_world(root.as_ref(), &std::env::temp_dir()).expect("long knotted state");
+    let (model, options, state) =
+        (world.model().clone(), world.options().clone(), world.state().clone());
+    let (model, options) = (&model, &options);
+    let mut data = StepData::new(model, options).expect("step data");
+    let mut run_all = |data: &mut StepData| {
+        pipeline::kinematics(model, &state, data);
+        pipeline::detect_contacts(model, options, data).expect("detect");
+        pipeline::control(model, options, &state, data, &mut controller);
+        pipeline::dynamics(model, options, &state, data);
+        pipeline::build_rows(model, options, &state, data);
+    };
+    run_all(&mut data);
+    println!(
+        "long knotted state at t = {:.2} s: {} self contacts, {} rows",
+        state.t,
+        data.self_contacts.len(),
+        data.rows.len()
+    );
+    let mut group = c.benchmark_group("knotted_1000");
+    let lengths: Vec<f64> = model.bodies().iter().map(|body| body.length).collect();
+    let mut detector = ContactDetector::new(options.detector_options(model)).expect("detector");
+    let mut contacts = Vec::new();
+    group.bench_function("broad_phase", |b| {
+        b.iter(|| detector.find_candidates(&data.centreline, &lengths).expect("broad phase"))
+    });
+    detector.find_candidates(&data.centreline, &lengths).expect("broad phase");
+    group.bench_function("narrow_phase", |b| {
+        b.iter(|| {
+            contacts.clear();
+            detector.search_candidates(&data.centreline, &mut contacts)
+        })
+    });
+    group.bench_function("detect_contacts", |b| {
+        b.iter(|| pipeline::detect_contacts(model, options, &mut data).expect("detect"))
+    });
+    run_all(&mut data);
+    group.bench_function("contact_solve", |b| {
+        b.iter_custom(|iterations| {
+            let mut total = Duration::ZERO;
+            for _ in 0..iterations {
+                run_all(&mut data);
+                let start = Instant::now();
+                pipeline::solve_and_resolve(model, options, &state, &mut data).expect("solve");
+                total += start.elapsed();
+            }
+            total
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, stages, long_stages);
 criterion_main!(benches);
