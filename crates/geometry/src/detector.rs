@@ -402,10 +402,11 @@ impl ContactDetector {
 
     /// Segment pairs (k_a < k_b, k_b − k_a ≥ `index_gap`) touching the candidate body pairs,
     /// sorted and unique: body i touches segments i − 1 and i (those that exist), so segment
-    /// k_a is touched by the body pairs of bodies k_a and k_a + 1. The body pairs come sorted by (i, j), so each
-    /// of those two rows gives its partners k_b ∈ {j − 1, j} in order; merging the two rows
-    /// gives the pairs of k_a sorted, in memory linear in the pairs and time O(S log p) (no
-    /// table over all S² segment pairs).
+    /// k_a is touched by the body pairs of bodies k_a and k_a + 1. The body pairs come sorted
+    /// by (i, j), so each of those two rows gives its partners k_b ∈ {j − 1, j} in order
+    /// ([`TouchedSegments`]); merging the two rows gives the pairs of k_a sorted. One forward
+    /// pass over the body pairs, visiting only the segments some pair touches: time and memory
+    /// linear in the pairs (no table over all S² segment pairs).
     fn collect_segment_pairs(&mut self, segment_count: usize) {
         self.segment_pairs.clear();
         // A record of segments k_a < k_b has u_b − u_a ≤ k_b + 1 − k_a, so it is outside the
@@ -413,29 +414,64 @@ impl ContactDetector {
         // two less) are never searched.
         let min_offset = self.options.index_gap.max(1);
         let pairs = &self.body_pairs;
-        let row = |body: usize| {
-            let (start, end) =
-                (pairs.partition_point(|p| p.0 < body), pairs.partition_point(|p| p.0 <= body));
-            pairs[start..end].iter().flat_map(|&(_, j)| [j.checked_sub(1), Some(j)]).flatten()
+        let row_end = |from: usize, body: usize| {
+            from + pairs[from..].iter().take_while(|p| p.0 == body).count()
         };
-        for k_a in 0..segment_count {
-            let in_range = |&k_b: &usize| k_a + min_offset <= k_b && k_b < segment_count;
-            let mut first = row(k_a).filter(in_range).peekable();
-            let mut second = row(k_a + 1).filter(in_range).peekable();
+        let (mut start, mut k_a) = (0, pairs.first().map_or(usize::MAX, |p| p.0.saturating_sub(1)));
+        while k_a < segment_count {
+            while pairs[start].0 < k_a {
+                start += 1;
+            }
+            let middle = row_end(start, k_a);
+            let end = row_end(middle, k_a + 1);
+            let mut first = TouchedSegments { partners: &pairs[start..middle], position: 0 };
+            let mut second = TouchedSegments { partners: &pairs[middle..end], position: 0 };
             let mut last = None;
             loop {
                 let next = match (first.peek(), second.peek()) {
-                    (Some(&a), Some(&b)) if a <= b => first.next(),
-                    (Some(_), Some(_)) | (None, Some(_)) => second.next(),
-                    (Some(_), None) => first.next(),
+                    (Some(a), Some(b)) if a <= b => first.advance(a),
+                    (_, Some(b)) => second.advance(b),
+                    (Some(a), None) => first.advance(a),
                     (None, None) => break,
                 };
-                if next != last {
-                    self.segment_pairs.extend(next.map(|k_b| (k_a, k_b)));
-                    last = next;
+                if next >= segment_count {
+                    break;
+                }
+                if k_a + min_offset <= next && last != Some(next) {
+                    self.segment_pairs.push((k_a, next));
+                    last = Some(next);
                 }
             }
+            // The next segment that a body row touches: k_a + 1, or the one before the next row.
+            k_a = match pairs.get(end) {
+                _ if middle < end => k_a + 1,
+                Some(next_row) => next_row.0 - 1,
+                None => break,
+            };
         }
+    }
+}
+
+/// The segments j − 1 and j touched by the partners j of one body row (sorted by j, every
+/// j ≥ 1 as a partner is a later body), in non-decreasing order: position p stands for
+/// segment j_{p/2} − 1 + p mod 2.
+struct TouchedSegments<'a> {
+    partners: &'a [(usize, usize)],
+    position: usize,
+}
+
+impl TouchedSegments<'_> {
+    /// The segment at the current position, if any.
+    fn peek(&self) -> Option<usize> {
+        let &(_, j) = self.partners.get(self.position / 2)?;
+        Some(j - 1 + self.position % 2)
+    }
+
+    /// Moves past the current position, whose segment [`peek`](Self::peek) gave as `segment`,
+    /// and returns it.
+    fn advance(&mut self, segment: usize) -> usize {
+        self.position += 1;
+        segment
     }
 }
 

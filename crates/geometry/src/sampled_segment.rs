@@ -43,12 +43,7 @@ impl SampledSegment {
                 tangents[c][i] = tangent[c];
             }
         }
-        SampledSegment {
-            segment,
-            speed_bound: segment.speed_bound(),
-            points,
-            tangents,
-        }
+        SampledSegment { segment, speed_bound: segment.speed_bound(), points, tangents }
     }
 }
 
