@@ -299,29 +299,26 @@ impl ContactDetector {
         // Searches one pair from its chords' closest points (then from every start if that
         // finds no contact and the seed grid cannot rule one out) and keeps its record.
         let mut counts = SearchCounts::default();
-        let search_pair = |segments: &mut SampledSegments,
-                           clusters: &mut DeepestPerCluster,
-                           counts: &mut SearchCounts,
-                           pair: (usize, usize),
-                           reach,
-                           chord| {
-            counts.searched += 1;
-            let (a, b) = segments.pair(centreline, pair);
-            let first = search(&a.segment, &b.segment, chord);
-            let found = match candidate(pair, first) {
-                Some(found) if first.status == NewtonStatus::Converged => Some(found),
-                _ => closest_points_within_after(a, b, first, reach).and_then(|closest| {
-                    counts.searched_from_grid += 1;
-                    counts.newton_failures +=
-                        usize::from(closest.status != NewtonStatus::Converged);
-                    candidate(pair, closest)
-                }),
+        let segments = &mut self.segments;
+        let mut search_pair =
+            |clusters: &mut DeepestPerCluster, pair: (usize, usize), reach, chord| {
+                counts.searched += 1;
+                let (a, b) = segments.pair(centreline, pair);
+                let first = search(&a.segment, &b.segment, chord);
+                let found = match candidate(pair, first) {
+                    Some(found) if first.status == NewtonStatus::Converged => Some(found),
+                    _ => closest_points_within_after(a, b, first, reach).and_then(|closest| {
+                        counts.searched_from_grid += 1;
+                        counts.newton_failures +=
+                            usize::from(closest.status != NewtonStatus::Converged);
+                        candidate(pair, closest)
+                    }),
+                };
+                if let Some(found) = found {
+                    counts.raw_contacts += 1;
+                    clusters.push(found);
+                }
             };
-            if let Some(found) = found {
-                counts.raw_contacts += 1;
-                clusters.push(found);
-            }
-        };
         // The pairs that may touch by the chord bound: searched at once in pair order, or,
         // where the cluster radius leaves room to skip some, queued and searched by increasing
         // gap bound, so that every record shallower than the next pair's bound is known and a
@@ -344,21 +341,14 @@ impl ContactDetector {
                 let gap_bound = distance_bound - (reach - margin);
                 self.queue.push((u128::from(total_order_key(gap_bound)) << 64) | index as u128);
             } else {
-                search_pair(
-                    &mut self.segments,
-                    &mut self.clusters,
-                    &mut counts,
-                    pair,
-                    reach,
-                    chord,
-                );
+                search_pair(&mut self.clusters, pair, reach, chord);
             }
         }
         self.queue.sort_unstable();
         if !self.queue.is_empty() {
             self.coverage.reset(&self.segment_pairs, centreline.segment_count());
         }
-        let mut marked = 0;
+        let (mut marked, mut covered) = (0, 0);
         for &key in &self.queue {
             let (gap_bound, index) =
                 (from_total_order_key((key >> 64) as u64), key as u64 as usize);
@@ -368,22 +358,16 @@ impl ContactDetector {
             }
             marked = self.clusters.kept().len();
             if self.coverage.is_covered(index) {
-                counts.covered += 1;
+                covered += 1;
             } else {
                 // Reach and chord parameters again (the same numbers): few pairs get here.
                 let pair = self.segment_pairs[index];
                 let reach = reach(centreline.radii(), pair, margin);
                 let chord = closest_chord_parameters(chord_of(pair.0), chord_of(pair.1));
-                search_pair(
-                    &mut self.segments,
-                    &mut self.clusters,
-                    &mut counts,
-                    pair,
-                    reach,
-                    chord,
-                );
+                search_pair(&mut self.clusters, pair, reach, chord);
             }
         }
+        counts.covered = covered;
         let (kept, merged) = self.clusters.finish();
         let before = out.len();
         out.extend(kept.iter().map(|c| SelfContact::new(centreline, c.u_a, c.u_b, c.status)));

@@ -17,48 +17,40 @@
 
 use std::time::{Duration, Instant};
 
-use criterion::{Criterion, criterion_group, criterion_main};
+use criterion::measurement::WallTime;
+use criterion::{BenchmarkGroup, Criterion, criterion_group, criterion_main};
 use hagfish_bench_support::{knotted_world, long_knotted_world};
-use hagfish_control::WaterDrag;
+use hagfish_control::{Controller, WaterDrag};
 use hagfish_geometry::ContactDetector;
-use hagfish_sim::{StepData, pipeline};
+use hagfish_sim::{StepData, StepOptions, pipeline};
+use hagfish_tree::{Model, State};
 
-fn stages(c: &mut Criterion) {
-    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
-    let (mut world, _) = knotted_world(root.as_ref()).expect("knotted state");
-    let (model, options, state) =
-        (world.model().clone(), world.options().clone(), world.state().clone());
-    let (model, options) = (&model, &options);
-    let h = options.time_step;
-    let mut drag = WaterDrag::default();
-    let mut data = StepData::new(model, options).expect("step data");
-    let mut run_all = |data: &mut StepData| {
-        pipeline::kinematics(model, &state, data);
-        pipeline::detect_contacts(model, options, data).expect("detect");
-        pipeline::control(model, options, &state, data, &mut drag);
-        pipeline::dynamics(model, options, &state, data);
-        pipeline::build_rows(model, options, &state, data);
-    };
-    run_all(&mut data);
-    println!(
-        "knotted state at t = {:.2} s: {} self contacts, {} rows",
-        state.t,
-        data.self_contacts.len(),
-        data.rows.len()
-    );
-    let mut group = c.benchmark_group("knotted");
-    group.bench_function("kinematics", |b| {
-        b.iter(|| pipeline::kinematics(model, &state, &mut data))
-    });
-    group.bench_function("mass_matrix", |b| {
-        b.iter(|| hagfish_tree::effective_mass(model, &mut data.tree, h))
-    });
-    group.bench_function("factor", |b| {
-        b.iter(|| hagfish_tree::factor_effective_mass(&mut data.tree, state.t).expect("SPD"))
-    });
-    group.bench_function("dynamics", |b| {
-        b.iter(|| pipeline::dynamics(model, options, &state, &mut data))
-    });
+/// The stages of a step up to its rows (kinematics, detection, control, dynamics, rows): the
+/// input of the contact solve, rebuilt untimed before each timed solve.
+fn run_to_rows(
+    (model, options, state): (&Model, &StepOptions, &State),
+    data: &mut StepData,
+    controller: &mut dyn Controller,
+) {
+    pipeline::kinematics(model, state, data);
+    pipeline::detect_contacts(model, options, data).expect("detect");
+    pipeline::control(model, options, state, data, controller);
+    pipeline::dynamics(model, options, state, data);
+    pipeline::build_rows(model, options, state, data);
+}
+
+/// Prints the state a group measures: its time, self contacts and rows.
+fn print_state(name: &str, state: &State, data: &StepData) {
+    let (contacts, rows) = (data.self_contacts.len(), data.rows.len());
+    println!("{name} at t = {:.2} s: {contacts} self contacts, {rows} rows", state.t);
+}
+
+/// `broad_phase`, `narrow_phase` and `detect_contacts` on the centreline in `data`.
+fn bench_detection(
+    group: &mut BenchmarkGroup<'_, WallTime>,
+    (model, options): (&Model, &StepOptions),
+    data: &mut StepData,
+) {
     let lengths: Vec<f64> = model.bodies().iter().map(|body| body.length).collect();
     let mut detector = ContactDetector::new(options.detector_options(model)).expect("detector");
     let mut contacts = Vec::new();
@@ -75,25 +67,65 @@ fn stages(c: &mut Criterion) {
         })
     });
     group.bench_function("detect_contacts", |b| {
-        b.iter(|| pipeline::detect_contacts(model, options, &mut data).expect("detect"))
+        b.iter(|| pipeline::detect_contacts(model, options, data).expect("detect"))
     });
-    run_all(&mut data);
-    group.bench_function("rows", |b| {
-        b.iter(|| pipeline::build_rows(model, options, &state, &mut data))
-    });
+}
+
+/// `contact_solve`: the tree factor, both solves, prediction and re-solves, with its input
+/// rebuilt by [`run_to_rows`] outside the timed region.
+fn bench_contact_solve(
+    group: &mut BenchmarkGroup<'_, WallTime>,
+    step: (&Model, &StepOptions, &State),
+    data: &mut StepData,
+    controller: &mut dyn Controller,
+) {
+    let (model, options, state) = step;
     group.bench_function("contact_solve", |b| {
         b.iter_custom(|iterations| {
             let mut total = Duration::ZERO;
             for _ in 0..iterations {
-                run_all(&mut data);
+                run_to_rows(step, data, controller);
                 let start = Instant::now();
-                pipeline::solve_and_resolve(model, options, &state, &mut data).expect("solve");
+                pipeline::solve_and_resolve(model, options, state, data).expect("solve");
                 total += start.elapsed();
             }
             total
         })
     });
-    run_all(&mut data);
+}
+
+fn stages(c: &mut Criterion) {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
+    let (mut world, _) = knotted_world(root.as_ref()).expect("knotted state");
+    let (model, options, state) =
+        (world.model().clone(), world.options().clone(), world.state().clone());
+    let (model, options) = (&model, &options);
+    let h = options.time_step;
+    let mut drag = WaterDrag::default();
+    let mut data = StepData::new(model, options).expect("step data");
+    let step = (model, options, &state);
+    run_to_rows(step, &mut data, &mut drag);
+    print_state("knotted state", &state, &data);
+    let mut group = c.benchmark_group("knotted");
+    group.bench_function("kinematics", |b| {
+        b.iter(|| pipeline::kinematics(model, &state, &mut data))
+    });
+    group.bench_function("mass_matrix", |b| {
+        b.iter(|| hagfish_tree::effective_mass(model, &mut data.tree, h))
+    });
+    group.bench_function("factor", |b| {
+        b.iter(|| hagfish_tree::factor_effective_mass(&mut data.tree, state.t).expect("SPD"))
+    });
+    group.bench_function("dynamics", |b| {
+        b.iter(|| pipeline::dynamics(model, options, &state, &mut data))
+    });
+    bench_detection(&mut group, (model, options), &mut data);
+    run_to_rows(step, &mut data, &mut drag);
+    group.bench_function("rows", |b| {
+        b.iter(|| pipeline::build_rows(model, options, &state, &mut data))
+    });
+    bench_contact_solve(&mut group, step, &mut data, &mut drag);
+    run_to_rows(step, &mut data, &mut drag);
     pipeline::solve_and_resolve(model, options, &state, &mut data).expect("solve");
     group.bench_function("internal_forces", |b| {
         b.iter(|| pipeline::internal_forces(model, options, &state, &mut data))
@@ -136,50 +168,13 @@ fn long_stages(c: &mut Criterion) {
         (world.model().clone(), world.options().clone(), world.state().clone());
     let (model, options) = (&model, &options);
     let mut data = StepData::new(model, options).expect("step data");
-    let mut run_all = |data: &mut StepData| {
-        pipeline::kinematics(model, &state, data);
-        pipeline::detect_contacts(model, options, data).expect("detect");
-        pipeline::control(model, options, &state, data, &mut controller);
-        pipeline::dynamics(model, options, &state, data);
-        pipeline::build_rows(model, options, &state, data);
-    };
-    run_all(&mut data);
-    println!(
-        "long knotted state at t = {:.2} s: {} self contacts, {} rows",
-        state.t,
-        data.self_contacts.len(),
-        data.rows.len()
-    );
+    let step = (model, options, &state);
+    run_to_rows(step, &mut data, &mut controller);
+    print_state("long knotted state", &state, &data);
     let mut group = c.benchmark_group("knotted_1000");
-    let lengths: Vec<f64> = model.bodies().iter().map(|body| body.length).collect();
-    let mut detector = ContactDetector::new(options.detector_options(model)).expect("detector");
-    let mut contacts = Vec::new();
-    group.bench_function("broad_phase", |b| {
-        b.iter(|| detector.find_candidates(&data.centreline, &lengths).expect("broad phase"))
-    });
-    detector.find_candidates(&data.centreline, &lengths).expect("broad phase");
-    group.bench_function("narrow_phase", |b| {
-        b.iter(|| {
-            contacts.clear();
-            detector.search_candidates(&data.centreline, &mut contacts)
-        })
-    });
-    group.bench_function("detect_contacts", |b| {
-        b.iter(|| pipeline::detect_contacts(model, options, &mut data).expect("detect"))
-    });
-    run_all(&mut data);
-    group.bench_function("contact_solve", |b| {
-        b.iter_custom(|iterations| {
-            let mut total = Duration::ZERO;
-            for _ in 0..iterations {
-                run_all(&mut data);
-                let start = Instant::now();
-                pipeline::solve_and_resolve(model, options, &state, &mut data).expect("solve");
-                total += start.elapsed();
-            }
-            total
-        })
-    });
+    bench_detection(&mut group, (model, options), &mut data);
+    run_to_rows(step, &mut data, &mut controller);
+    bench_contact_solve(&mut group, step, &mut data, &mut controller);
     group.finish();
 }
 
