@@ -10,7 +10,9 @@ use crate::contact::SelfContact;
 use crate::coverage::Coverage;
 use crate::error::GeometryError;
 use crate::narrow_phase::{ClosestPoints, NewtonStatus, closest_points_within_after, search};
+use crate::pair_queue::PairQueue;
 use crate::sampled_segment::SampledSegments;
+use crate::segment_pairs::collect_segment_pairs;
 
 /// The distance below which segments k_a and k_b may be in contact: the largest tube radii
 /// along them (a radius along a segment is at most the larger of its two body radii) plus
@@ -36,18 +38,6 @@ fn distance_lower_bound(
 /// count as final: the bound is a difference of distances of a few centimetres, exact to
 /// ≈ 1e-15 cm, and the σ it subtracts are upper bounds with room to spare.
 const GAP_BOUND_ROUNDING: f64 = 1e-9;
-
-/// An unsigned integer in the order of [`f64::total_cmp`]: the bits of a positive number with
-/// the sign bit set, those of a negative one inverted.
-fn total_order_key(x: f64) -> u64 {
-    let bits = x.to_bits();
-    if bits >> 63 == 1 { !bits } else { bits | (1 << 63) }
-}
-
-/// The number whose [`total_order_key`] is `key`.
-fn from_total_order_key(key: u64) -> f64 {
-    f64::from_bits(if key >> 63 == 1 { key & !(1 << 63) } else { !key })
-}
 
 /// Counts of one narrow phase, for its [`DetectionReport`].
 #[derive(Debug, Default)]
@@ -155,11 +145,8 @@ pub struct ContactDetector {
     /// The searched segments with their seed-grid samples, made when first searched.
     segments: SampledSegments,
     segment_pairs: Vec<(usize, usize)>,
-    /// The segment pairs that may touch, as their gap bound (a [`total_order_key`]) and
-    /// index in `segment_pairs` packed in one integer, sorted before they are searched: by
-    /// gap bound, then pair. Integer keys sort several times faster than floating-point
-    /// comparisons, and a long chain queues thousands of pairs per crossing.
-    queue: Vec<u128>,
+    /// The segment pairs that may touch, by gap bound (where pairs are searched in that order).
+    queue: PairQueue,
     clusters: DeepestPerCluster,
     /// The pairs that the kept records cover, marked as each is kept.
     coverage: Coverage,
@@ -191,7 +178,7 @@ impl ContactDetector {
             deviations: Vec::new(),
             segments: SampledSegments::default(),
             segment_pairs: Vec::new(),
-            queue: Vec::new(),
+            queue: PairQueue::default(),
             clusters: DeepestPerCluster::default(),
             coverage: Coverage::default(),
             prune: options.cluster_radius >= MIN_PRUNING_RADIUS,
@@ -260,7 +247,12 @@ impl ContactDetector {
         body_lengths: &[f64],
     ) -> Result<(), GeometryError> {
         self.broad_phase.find_pairs(centreline, body_lengths, &mut self.body_pairs)?;
-        self.collect_segment_pairs(centreline.segment_count());
+        // A record of segments k_a < k_b has u_b − u_a ≤ k_b + 1 − k_a, so it is outside the
+        // index gap only if k_b − k_a ≥ `index_gap`: closer pairs (the broad phase's gap is two
+        // less) are never searched.
+        let min_offset = self.options.index_gap.max(1);
+        let segment_count = centreline.segment_count();
+        collect_segment_pairs(&self.body_pairs, segment_count, min_offset, &mut self.segment_pairs);
         Ok(())
     }
 
@@ -339,19 +331,17 @@ impl ContactDetector {
             }
             if prune {
                 let gap_bound = distance_bound - (reach - margin);
-                self.queue.push((u128::from(total_order_key(gap_bound)) << 64) | index as u128);
+                self.queue.push(gap_bound, index);
             } else {
                 search_pair(&mut self.clusters, pair, reach, chord);
             }
         }
-        self.queue.sort_unstable();
+        self.queue.sort();
         if !self.queue.is_empty() {
             self.coverage.reset(&self.segment_pairs, centreline.segment_count());
         }
         let (mut marked, mut covered) = (0, 0);
-        for &key in &self.queue {
-            let (gap_bound, index) =
-                (from_total_order_key((key >> 64) as u64), key as u64 as usize);
+        for (gap_bound, index) in self.queue.iter() {
             self.clusters.settle_below(gap_bound - GAP_BOUND_ROUNDING);
             for record in &self.clusters.kept()[marked..] {
                 self.coverage.mark(&self.segment_pairs, record, self.clusters.radius());
@@ -382,80 +372,6 @@ impl ContactDetector {
             merged,
             contacts: out.len() - before,
         }
-    }
-
-    /// Segment pairs (k_a < k_b, k_b − k_a ≥ `index_gap`) touching the candidate body pairs,
-    /// sorted and unique: body i touches segments i − 1 and i (those that exist), so segment
-    /// k_a is touched by the body pairs of bodies k_a and k_a + 1. The body pairs come sorted
-    /// by (i, j), so each of those two rows gives its partners k_b ∈ {j − 1, j} in order
-    /// ([`TouchedSegments`]); merging the two rows gives the pairs of k_a sorted. One forward
-    /// pass over the body pairs, visiting only the segments some pair touches: time and memory
-    /// linear in the pairs (no table over all S² segment pairs).
-    fn collect_segment_pairs(&mut self, segment_count: usize) {
-        self.segment_pairs.clear();
-        // A record of segments k_a < k_b has u_b − u_a ≤ k_b + 1 − k_a, so it is outside the
-        // index gap only if k_b − k_a ≥ `index_gap`: closer pairs (the broad phase's gap is
-        // two less) are never searched.
-        let min_offset = self.options.index_gap.max(1);
-        let pairs = &self.body_pairs;
-        let row_end = |from: usize, body: usize| {
-            from + pairs[from..].iter().take_while(|p| p.0 == body).count()
-        };
-        let (mut start, mut k_a) = (0, pairs.first().map_or(usize::MAX, |p| p.0.saturating_sub(1)));
-        while k_a < segment_count {
-            while pairs[start].0 < k_a {
-                start += 1;
-            }
-            let middle = row_end(start, k_a);
-            let end = row_end(middle, k_a + 1);
-            let mut first = TouchedSegments { partners: &pairs[start..middle], position: 0 };
-            let mut second = TouchedSegments { partners: &pairs[middle..end], position: 0 };
-            let mut last = None;
-            loop {
-                let next = match (first.peek(), second.peek()) {
-                    (Some(a), Some(b)) if a <= b => first.advance(a),
-                    (_, Some(b)) => second.advance(b),
-                    (Some(a), None) => first.advance(a),
-                    (None, None) => break,
-                };
-                if next >= segment_count {
-                    break;
-                }
-                if k_a + min_offset <= next && last != Some(next) {
-                    self.segment_pairs.push((k_a, next));
-                    last = Some(next);
-                }
-            }
-            // The next segment that a body row touches: k_a + 1, or the one before the next row.
-            k_a = match pairs.get(end) {
-                _ if middle < end => k_a + 1,
-                Some(next_row) => next_row.0 - 1,
-                None => break,
-            };
-        }
-    }
-}
-
-/// The segments j − 1 and j touched by the partners j of one body row (sorted by j, every
-/// j ≥ 1 as a partner is a later body), in non-decreasing order: position p stands for
-/// segment j_{p/2} − 1 + p mod 2.
-struct TouchedSegments<'a> {
-    partners: &'a [(usize, usize)],
-    position: usize,
-}
-
-impl TouchedSegments<'_> {
-    /// The segment at the current position, if any.
-    fn peek(&self) -> Option<usize> {
-        let &(_, j) = self.partners.get(self.position / 2)?;
-        Some(j - 1 + self.position % 2)
-    }
-
-    /// Moves past the current position, whose segment [`peek`](Self::peek) gave as `segment`,
-    /// and returns it.
-    fn advance(&mut self, segment: usize) -> usize {
-        self.position += 1;
-        segment
     }
 }
 
@@ -573,64 +489,6 @@ mod tests {
             let mut detector = ContactDetector::new(options).expect("valid");
             detector.detect(&line, &vec![0.424; n], &mut contacts).expect("valid");
             assert_eq!(contacts.len(), expected, "margin {margin}");
-        }
-    }
-
-    proptest::proptest! {
-        /// The merged rows give exactly the sorted, unique segment pairs (k_b − k_a at least
-        /// the index gap) of segments i − 1, i and j − 1, j over the body pairs (i, j).
-        #[test]
-        fn segment_pairs_are_those_of_the_body_pairs_sorted_and_unique(
-            bodies in 2_usize..60,
-            raw in proptest::collection::vec((0_usize..60, 0_usize..60), 0..200),
-            index_gap in 0_usize..12,
-        ) {
-            let options = DetectorOptions { index_gap, ..DetectorOptions::default() };
-            let mut detector = ContactDetector::new(options).expect("valid");
-            let index_gap = index_gap.max(1);
-            let mut pairs: Vec<(usize, usize)> = raw
-                .into_iter()
-                .map(|(i, j)| (i % bodies, j % bodies))
-                .filter(|&(i, j)| i < j)
-                .collect();
-            pairs.sort_unstable();
-            pairs.dedup();
-            let segment_count = bodies - 1;
-            let expected: std::collections::BTreeSet<(usize, usize)> = pairs
-                .iter()
-                .flat_map(|&(i, j)| {
-                    let near = |b: usize| [b.checked_sub(1), Some(b)].into_iter().flatten();
-                    near(i).flat_map(move |k_a| near(j).map(move |k_b| (k_a, k_b)))
-                })
-                .filter(|&(k_a, k_b)| k_a + index_gap <= k_b && k_b < segment_count)
-                .collect();
-            detector.body_pairs = pairs;
-            detector.collect_segment_pairs(segment_count);
-            proptest::prop_assert_eq!(detector.segment_pairs, expected.into_iter().collect::<Vec<_>>());
-        }
-    }
-
-    #[test]
-    fn total_order_keys_sort_as_total_cmp() {
-        let values = [
-            f64::NEG_INFINITY,
-            -1e300,
-            -2.5,
-            -1e-310,
-            -0.0,
-            0.0,
-            1e-310,
-            3.0,
-            1e300,
-            f64::INFINITY,
-            f64::NAN,
-            -f64::NAN,
-        ];
-        for x in values {
-            for y in values {
-                assert_eq!(total_order_key(x).cmp(&total_order_key(y)), x.total_cmp(&y), "{x} {y}");
-                assert_eq!(from_total_order_key(total_order_key(x)).to_bits(), x.to_bits());
-            }
         }
     }
 

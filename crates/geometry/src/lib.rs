@@ -57,9 +57,11 @@ mod detector;
 mod error;
 mod narrow_phase;
 mod nearby;
+mod pair_queue;
 mod sampled_segment;
 mod seeds;
 mod segment;
+mod segment_pairs;
 mod wall;
 mod weights;
 
