@@ -138,11 +138,6 @@ impl DeepestPerCluster {
         &self.kept
     }
 
-    /// The cluster radius.
-    pub(crate) fn radius(&self) -> f64 {
-        self.radius
-    }
-
     /// Judges the remaining records and returns the kept ones sorted by (u_a, u_b), with how
     /// many records were merged away.
     pub(crate) fn finish(&mut self) -> (&[Candidate], usize) {

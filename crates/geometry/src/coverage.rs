@@ -17,59 +17,50 @@ fn reaches(center: f64, radius: f64, low: f64, high: f64) -> bool {
     center - radius <= low && high <= center + radius
 }
 
-/// The covered pairs of one sorted pair list.
+/// The covered pairs of one sorted pair list: per pair, whether a kept record covers it.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Coverage {
-    /// Index in the pair list of the first pair of each segment k_a, and the list's length
-    /// last (segment count + 1 entries).
-    row_starts: Vec<usize>,
-    /// Per pair, whether a kept record covers it.
     covered: Vec<bool>,
 }
 
 impl Coverage {
-    /// Room for `segments` segments and `pairs` pairs.
-    pub(crate) fn reserve(&mut self, segments: usize, pairs: usize) {
-        self.row_starts.reserve(segments + 1);
+    /// Room for `pairs` pairs.
+    pub(crate) fn reserve(&mut self, pairs: usize) {
         self.covered.reserve(pairs);
     }
 
-    /// Starts on `pairs` (sorted by (k_a, k_b), k_a < `segment_count`) with no pair covered.
-    pub(crate) fn reset(&mut self, pairs: &[(usize, usize)], segment_count: usize) {
-        self.row_starts.clear();
-        let mut next = 0;
-        for k_a in 0..=segment_count {
-            next += pairs[next..].partition_point(|p| p.0 < k_a);
-            self.row_starts.push(next);
-        }
+    /// Starts on a list of `pairs` pairs with none covered.
+    pub(crate) fn reset(&mut self, pairs: usize) {
         self.covered.clear();
-        self.covered.resize(pairs.len(), false);
+        self.covered.resize(pairs, false);
     }
 
-    /// Marks every pair of `pairs` (those of the last [`reset`](Self::reset)) whose box
-    /// [k_a, k_a + 1] × [k_b, k_b + 1] lies within `radius` of `record` in both parameters.
+    /// Marks every pair of `pairs` (sorted by (k_a, k_b); the list of the last
+    /// [`reset`](Self::reset)) whose box [k_a, k_a + 1] × [k_b, k_b + 1] lies within `radius`
+    /// of `record` in both parameters.
     pub(crate) fn mark(&mut self, pairs: &[(usize, usize)], record: &Candidate, radius: f64) {
-        let segments = self.row_starts.len() - 1;
-        // Every k_a the test can accept, and one more on each side for rounding.
+        // Every k_a the test can accept, and one more on each side for rounding; the rows in
+        // that range follow each other in the list, so one bisection finds the first.
         let first = (record.u_a - radius - 1.0).floor().max(0.0) as usize;
-        let last = ((record.u_a + radius + 1.0).ceil().max(0.0) as usize).min(segments);
+        let last = (record.u_a + radius + 1.0).ceil().max(0.0) as usize;
+        let mut start = pairs.partition_point(|p| p.0 < first);
         for k_a in first..last {
+            let end = start + pairs[start..].partition_point(|p| p.0 == k_a);
             let low = k_a as f64;
             if reaches(record.u_a, radius, low, low + 1.0) {
-                let row = self.row(pairs, k_a, record.u_b, radius);
-                self.covered[row].fill(true);
+                let range = Self::within(&pairs[start..end], record.u_b, radius);
+                self.covered[start + range.start..start + range.end].fill(true);
             }
+            start = end;
         }
     }
 
-    /// The pairs of row `k_a` whose k_b interval lies within `radius` of `u_b`: the test is
+    /// The pairs of one row whose k_b interval lies within `radius` of `u_b`: the test is
     /// monotone in k_b (false, true, false along the row), so the range is found by bisection.
-    fn row(&self, pairs: &[(usize, usize)], k_a: usize, u_b: f64, radius: f64) -> Range<usize> {
-        let (start, end) = (self.row_starts[k_a], self.row_starts[k_a + 1]);
-        let row = &pairs[start..end];
+    fn within(row: &[(usize, usize)], u_b: f64, radius: f64) -> Range<usize> {
         let from = row.partition_point(|p| u_b - radius > p.1 as f64);
         let to = row.partition_point(|p| p.1 as f64 + 1.0 <= u_b + radius);
-        start + from..start + to.max(from)
+        from..to.max(from)
     }
 
     /// Whether pair `index` of the pair list is covered.
@@ -91,7 +82,7 @@ mod tests {
     fn a_box_is_covered_only_when_a_kept_record_reaches_all_of_it() {
         let pairs = [(9, 40), (10, 38), (10, 40), (11, 40)];
         let mut coverage = Coverage::default();
-        coverage.reset(&pairs, 50);
+        coverage.reset(pairs.len());
         assert!((0..pairs.len()).all(|i| !coverage.is_covered(i)), "nothing is kept yet");
         coverage.mark(&pairs, &record(10.4, 40.6), 1.5);
         assert!(coverage.is_covered(2), "[10, 11] × [40, 41]");
@@ -119,7 +110,7 @@ mod tests {
                 .map(|&(a, b)| record(f64::from(a) / 10.0, f64::from(b) / 10.0))
                 .collect();
             let mut coverage = Coverage::default();
-            coverage.reset(&pairs, 60);
+            coverage.reset(pairs.len());
             for r in &records {
                 coverage.mark(&pairs, r, radius);
             }

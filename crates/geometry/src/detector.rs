@@ -196,7 +196,7 @@ impl ContactDetector {
         self.segment_pairs.reserve(pairs);
         self.queue.reserve(pairs);
         self.clusters.reserve(pairs);
-        self.coverage.reserve(bodies + 1, pairs);
+        self.coverage.reserve(pairs);
     }
 
     /// Changes the cluster radius (as [`DetectorOptions::cluster_radius`]) without rebuilding
@@ -338,13 +338,13 @@ impl ContactDetector {
         }
         self.queue.sort();
         if !self.queue.is_empty() {
-            self.coverage.reset(&self.segment_pairs, centreline.segment_count());
+            self.coverage.reset(self.segment_pairs.len());
         }
         let (mut marked, mut covered) = (0, 0);
         for (gap_bound, index) in self.queue.iter() {
             self.clusters.settle_below(gap_bound - GAP_BOUND_ROUNDING);
             for record in &self.clusters.kept()[marked..] {
-                self.coverage.mark(&self.segment_pairs, record, self.clusters.radius());
+                self.coverage.mark(&self.segment_pairs, record, self.options.cluster_radius);
             }
             marked = self.clusters.kept().len();
             if self.coverage.is_covered(index) {
