@@ -86,12 +86,13 @@ fn overshooting_limits<'a>(
 ) -> impl Iterator<Item = (usize, f64, f64)> + 'a {
     // The DOFs whose next position leaves [lo, hi] first (next − lo < 0 ⇔ next < lo for
     // floating-point numbers), so that the rest of a long chain costs a comparison each.
-    let crossing = move |&(k, dof): &(usize, &hagfish_tree::DofParams)| {
-        let next = state.q[k] + time_step * qdot_next[k];
+    let next = move |(k, dof): (usize, &'a hagfish_tree::DofParams)| {
+        (k, dof, state.q[k] + time_step * qdot_next[k])
+    };
+    let crossing = |&(_, dof, next): &(usize, &hagfish_tree::DofParams, f64)| {
         next < dof.lower || dof.upper < next
     };
-    model.dofs().iter().enumerate().filter(crossing).flat_map(move |(k, dof)| {
-        let next = state.q[k] + time_step * qdot_next[k];
+    model.dofs().iter().enumerate().map(next).filter(crossing).flat_map(move |(k, dof, next)| {
         [
             (state.q[k] - dof.lower, next - dof.lower, 1.0),
             (dof.upper - state.q[k], dof.upper - next, -1.0),
