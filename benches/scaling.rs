@@ -28,7 +28,7 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::{SparseColMat, Triplet};
 use faer::{Conj, MatMut, Par, Side};
 use glam::DVec3;
-use hagfish_bench_support::segment_chain;
+use hagfish_anatomy::segment_chain;
 use hagfish_control::Passive;
 use hagfish_sim::rows::RowGroup;
 use hagfish_sim::{DynamicsBackend, StepOptions, World, pipeline};

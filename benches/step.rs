@@ -23,8 +23,9 @@ use std::time::{Duration, Instant};
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
 use hagfish_bench_support::{knotted_world, long_knotted_world};
 use hagfish_control::WaterDrag;
+use hagfish_scenario::LoadedScenario;
 use hagfish_sim::rows::RowGroup;
-use hagfish_sim::{DynamicsBackend, LoadedScenario, StepOptions, World};
+use hagfish_sim::{DynamicsBackend, StepOptions, World};
 use hagfish_solver::{QpBackend, SolverOptions};
 use hagfish_tree::{Data, State, step_unconstrained};
 

@@ -13,7 +13,13 @@ pub enum CliError {
     /// The body file could not be read, parsed, validated or turned into a model.
     #[error(transparent)]
     Anatomy(#[from] AnatomyError),
-    /// The scenario could not be loaded, or the run could not be set up or recorded.
+    /// The scenario could not be loaded or built.
+    #[error(transparent)]
+    Scenario(#[from] hagfish_scenario::ScenarioError),
+    /// The run could not be set up or recorded.
+    #[error(transparent)]
+    Run(#[from] hagfish_run::RunError),
+    /// A world could not be built or stepped outside a run.
     #[error(transparent)]
     Sim(#[from] hagfish_sim::SimError),
     /// A step of the run failed; everything up to the last frame is kept.

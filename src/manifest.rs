@@ -6,7 +6,7 @@
 use std::path::{Path, PathBuf};
 use std::time::SystemTime;
 
-use hagfish_sim::LoadedScenario;
+use hagfish_scenario::LoadedScenario;
 use serde::{Deserialize, Serialize};
 
 use crate::CliError;
@@ -164,7 +164,7 @@ impl Manifest {
         };
         let text =
             serde_json::to_string_pretty(self).map_err(|e| fail(std::io::Error::other(e)))?;
-        hagfish_sim::replace_file(&path, (text + "\n").as_bytes()).map_err(CliError::from)
+        hagfish_run::replace_file(&path, (text + "\n").as_bytes()).map_err(CliError::from)
     }
 
     /// Marks the end of one part of the run.

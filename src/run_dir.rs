@@ -8,7 +8,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::SystemTime;
 
-use hagfish_sim::{CHECKPOINT_FILE, Recorder};
+use hagfish_run::{CHECKPOINT_FILE, Recorder};
 
 use crate::CliError;
 use crate::manifest::MANIFEST_FILE;

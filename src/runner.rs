@@ -13,10 +13,11 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
-use hagfish_sim::{
-    CHECKPOINT_FILE, Checkpoint, LoadedScenario, Override, Progress, Recorder, RunEnd, RunOptions,
-    RunOutcome, SimError, state_hash,
+use hagfish_run::{
+    CHECKPOINT_FILE, Checkpoint, Progress, Recorder, RunEnd, RunError, RunOptions, RunOutcome,
 };
+use hagfish_scenario::{LoadedScenario, Override};
+use hagfish_sim::state_hash;
 
 use crate::CliError;
 use crate::manifest::{MANIFEST_FILE, Manifest, Status};
@@ -124,7 +125,7 @@ pub fn run_into_directory(
         stop: Some(stop),
         max_steps: request.max_steps,
     };
-    let outcome = hagfish_sim::run(&loaded, options, &mut recorder, progress)?;
+    let outcome = hagfish_run::run(&loaded, options, &mut recorder, progress)?;
     let wall_s = started.elapsed().as_secs_f64();
     finish(&outcome, &directory, &mut manifest, wall_s)?;
     let steps_run = outcome.summary.steps - checkpoint.as_ref().map_or(0, |c| c.steps);
@@ -245,7 +246,7 @@ fn start_files(
     manifest: &mut Manifest,
 ) -> Result<Recorder, CliError> {
     let recorder = Recorder::create(directory, dofs, joints)?;
-    hagfish_sim::replace_file(&directory.join(SCENARIO_FILE), loaded.resolved_text().as_bytes())?;
+    hagfish_run::replace_file(&directory.join(SCENARIO_FILE), loaded.resolved_text().as_bytes())?;
     manifest.write(directory)?;
     Ok(recorder)
 }
@@ -302,7 +303,7 @@ fn finish(
             (Status::Diverged, Some(error.to_string()))
         }
         RunEnd::TieFailed(failure) => {
-            (Status::TieFailed, Some(SimError::TieFailed(failure.clone()).to_string()))
+            (Status::TieFailed, Some(RunError::TieFailed(failure.clone()).to_string()))
         }
     };
     manifest.stop(status, wall);

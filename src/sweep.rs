@@ -32,7 +32,7 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::Instant;
 
-use hagfish_sim::{LoadedScenario, Override};
+use hagfish_scenario::{LoadedScenario, Override};
 use serde::{Deserialize, Serialize};
 
 use crate::CliError;
@@ -203,7 +203,7 @@ impl Plan {
         })?;
         let text = serde_json::to_string_pretty(self)
             .map_err(|e| CliError::Sweep(format!("cannot write the plan: {e}")))?;
-        hagfish_sim::replace_file(&path, (text + "\n").as_bytes()).map_err(CliError::from)
+        hagfish_run::replace_file(&path, (text + "\n").as_bytes()).map_err(CliError::from)
     }
 
     /// Reads the plan of the sweep folder `folder`.
@@ -389,7 +389,7 @@ pub fn collect(folder: &Path) -> Result<Vec<Vec<String>>, CliError> {
     for row in &rows {
         text.push_str(&csv_line(row));
     }
-    hagfish_sim::replace_file(&folder.join(SUMMARY_FILE), text.as_bytes())?;
+    hagfish_run::replace_file(&folder.join(SUMMARY_FILE), text.as_bytes())?;
     hagfish_report::write_scatters(&scatters(&plan, &header, &rows), &folder.join("plots"))?;
     Ok(rows)
 }

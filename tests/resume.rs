@@ -71,7 +71,7 @@ fn assert_same_as_straight(dir: &Path) {
 fn assert_arrays_end_at_the_checkpoint(dir: &Path) {
     let checkpoint = std::fs::read_to_string(dir.join("checkpoint.ron")).expect("checkpoint");
     for (file, key) in [("q.npy", "q: "), ("qdot.npy", "qdot: ")] {
-        let array = hagfish_sim::npy::read_npy(&dir.join(file)).expect(file);
+        let array = hagfish_run::npy::read_npy(&dir.join(file)).expect(file);
         assert_eq!((array.rows, array.columns), (301, 150), "{file}");
         let saved: Vec<u64> = checkpoint
             .lines()
@@ -163,7 +163,7 @@ fn a_killed_run_keeps_whole_frames_and_resumes_bit_for_bit() {
     assert!(counts.iter().all(|&c| c >= saved && c <= saved + 1), "{counts:?} vs {saved}");
     assert!(contacts.last().is_none_or(|&f| f <= centreline.len() / 100));
     for file in ["q.npy", "qdot.npy", "thigmo_force.npy"] {
-        let array = hagfish_sim::npy::read_npy(&dir.join(file)).expect(file);
+        let array = hagfish_run::npy::read_npy(&dir.join(file)).expect(file);
         assert!(array.rows >= saved && array.rows <= saved + 1, "{file}: {}", array.rows);
         assert_eq!(array.columns, 150);
     }

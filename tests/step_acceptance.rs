@@ -123,7 +123,7 @@ fn a_chain_blowing_up_without_contact_is_stopped_before_it_is_recorded() {
     let (code, stderr) = code_and_stderr(&output);
     assert_eq!(code, Some(3), "{stderr}");
     assert!(stderr.contains("rad/s (bound 100 rad/s)"), "{stderr}");
-    let rates = hagfish_sim::npy::read_npy(&dir.join("qdot.npy")).expect("qdot.npy");
+    let rates = hagfish_run::npy::read_npy(&dir.join("qdot.npy")).expect("qdot.npy");
     let fastest = rates.values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     assert!(fastest <= 100.0, "a recorded frame turns at {fastest} rad/s");
     assert_eq!(manifest(&dir)["status"], "diverged");

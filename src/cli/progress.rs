@@ -6,7 +6,7 @@
 use std::io::{IsTerminal, Write};
 use std::time::{Duration, Instant};
 
-use hagfish_sim::Progress;
+use hagfish_run::Progress;
 use indicatif::{ProgressBar, ProgressStyle};
 
 /// Wall time after which a plain line is printed even within a simulated second.

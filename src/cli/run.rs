@@ -10,7 +10,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use clap::Args;
 use hagfish_control::Phase;
-use hagfish_sim::{DynamicsBackend, Override};
+use hagfish_scenario::Override;
+use hagfish_sim::DynamicsBackend;
 
 use super::progress::Reporter;
 use crate::CliError;

@@ -18,7 +18,7 @@ use hagfish_bench_support::{
     KnotRun, LoosenTighten, TABLE_HEADER, Variant, family, signed_percent,
 };
 use hagfish_control::Phase;
-use hagfish_sim::LoadedScenario;
+use hagfish_scenario::LoadedScenario;
 
 use crate::python::target_directory;
 use crate::test_all::cargo;

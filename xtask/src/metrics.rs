@@ -4,7 +4,8 @@
 //! compared. "Knotted frames" are the frames whose knot analysis found a knot with a
 //! position (a non-trivial type); travels and speeds run from the first to the last of them.
 
-use hagfish_sim::{Frame, FrameSink, RunSummary, SimError, state_hash};
+use hagfish_run::{Frame, FrameSink, RunError, RunSummary};
+use hagfish_sim::state_hash;
 use hagfish_tree::State;
 use serde::{Deserialize, Serialize};
 
@@ -42,7 +43,7 @@ struct FrameSample {
 pub struct Samples(Vec<FrameSample>);
 
 impl FrameSink for Samples {
-    fn record(&mut self, frame: &Frame<'_>) -> Result<(), SimError> {
+    fn record(&mut self, frame: &Frame<'_>) -> Result<(), RunError> {
         let groups = &frame.forces.values;
         let thigmo = &groups[2];
         let dofs = groups.iter().map(Vec::len).max().unwrap_or(0);

@@ -8,7 +8,8 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
-use hagfish_sim::{LoadedScenario, RunOptions};
+use hagfish_run::RunOptions;
+use hagfish_scenario::LoadedScenario;
 
 use crate::golden::{Golden, Platform};
 use crate::metrics::{Samples, Value, metrics};
@@ -158,7 +159,7 @@ fn run_one(path: &Path, perturbation: f64) -> Result<Metrics, String> {
     let mut loaded = LoadedScenario::load(path).map_err(|e| e.to_string())?;
     loaded.scenario.time_step_s *= 1.0 + perturbation;
     let mut samples = Samples::default();
-    let outcome = hagfish_sim::run(&loaded, RunOptions::default(), &mut samples, &mut |_| {})
+    let outcome = hagfish_run::run(&loaded, RunOptions::default(), &mut samples, &mut |_| {})
         .map_err(|e| e.to_string())?;
     let end = outcome.state.clone();
     let summary = outcome.finished().map_err(|e| e.to_string())?;

@@ -43,6 +43,7 @@ mod locate;
 mod model;
 mod profile;
 mod rod;
+mod segment_chain;
 mod table;
 mod validate;
 
@@ -55,4 +56,5 @@ pub use load::DataFile;
 pub use model::cylinder_inertia;
 pub use profile::interpolate_clamped;
 pub use rod::Rod;
+pub use segment_chain::segment_chain;
 pub use table::{BodyRow, BodyTable, LimitDeg, joint_kind};

@@ -8,7 +8,9 @@
 use std::path::Path;
 
 use hagfish_control::PhasedController;
-use hagfish_sim::{LoadedScenario, Override, SimError, World};
+use hagfish_scenario::ScenarioError;
+use hagfish_scenario::{LoadedScenario, Override};
+use hagfish_sim::World;
 
 /// The scenario of the knotted benchmark state, relative to the workspace root.
 pub const KNOTTED_SCENARIO: &str = "data/scenarios/form.ron";
@@ -18,7 +20,7 @@ pub const KNOTTED_TIME_S: f64 = 23.13;
 
 /// The world (and the scenario's controller) at the knotted benchmark state, with the
 /// scenario loaded from `workspace_root`.
-pub fn knotted_world(workspace_root: &Path) -> Result<(World, PhasedController), SimError> {
+pub fn knotted_world(workspace_root: &Path) -> Result<(World, PhasedController), ScenarioError> {
     LoadedScenario::load(workspace_root.join(KNOTTED_SCENARIO))?.build_at(KNOTTED_TIME_S)
 }
 

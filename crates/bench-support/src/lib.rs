@@ -1,22 +1,14 @@
 //! Scaffolding of the hagfish workspace's benchmarks and tests, kept out of the simulator's
 //! public API: the knotted benchmark state (a scenario file found relative to the workspace
-//! root), the same animal knotted at 1000 bodies, uniform long chains for the scaling
-//! benchmarks, and the family of bodies the knot scenarios are judged on with the measures of
+//! root), the same animal knotted at 1000 bodies, and the family of bodies the knot scenarios are judged on with the measures of
 //! a knot run: its slide, and its loosen and tighten (`tests/tie_family.rs`,
 //! `tests/knot_size.rs`, `cargo xtask family`).
-//!
-//! ```
-//! let chain = hagfish_bench_support::segment_chain(20)?;
-//! assert_eq!((chain.body_count(), chain.dof_count()), (20, 30));
-//! # Ok::<(), hagfish_tree::TreeError>(())
-//! ```
 
 mod family;
 mod knot_run;
 mod knotted_state;
 mod loosen_tighten;
 mod metrics_csv;
-mod segment_chain;
 
 pub use family::{Variant, edited, family, length_edits};
 pub use knot_run::{KnotRun, TABLE_HEADER, signed_percent};
@@ -26,4 +18,3 @@ pub use knotted_state::{
     KNOTTED_SCENARIO, KNOTTED_TIME_S, LONG_KNOTTED_BODIES, LONG_KNOTTED_TIME_S, knotted_world,
     long_knotted_world,
 };
-pub use segment_chain::segment_chain;

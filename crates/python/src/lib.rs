@@ -16,7 +16,8 @@ use hagfish::CliError;
 use hagfish::runner::{Existing, RunRequest, Source, body_override, run_into_directory};
 use hagfish::study::RunRow;
 use hagfish::sweep::{Plan, RunResult};
-use hagfish_sim::{LoadedScenario, Override, PARAMETERS, Progress};
+use hagfish_run::Progress;
+use hagfish_scenario::{LoadedScenario, Override, PARAMETERS};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::create_exception;
 use pyo3::exceptions::PyException;
@@ -36,14 +37,14 @@ fn raise(error: &CliError) -> PyErr {
     HagfishError::new_err((error.to_string(), error.exit_code()))
 }
 
-/// The Python exception of a simulation-crate error.
-fn raise_sim(error: hagfish_sim::SimError) -> PyErr {
+/// The Python exception of a scenario-crate error.
+fn raise_scenario(error: hagfish_scenario::ScenarioError) -> PyErr {
     raise(&CliError::from(error))
 }
 
 /// Parses `PATH=VALUE` overrides.
 fn parse_overrides(texts: &[String]) -> PyResult<Vec<Override>> {
-    texts.iter().map(|t| Override::parse(t).map_err(raise_sim)).collect()
+    texts.iter().map(|t| Override::parse(t).map_err(raise_scenario)).collect()
 }
 
 /// The scenario `path` with `overrides` (and `body`, a body file, if given) applied, as the
@@ -52,7 +53,7 @@ fn parse_overrides(texts: &[String]) -> PyResult<Vec<Override>> {
 #[pyo3(signature = (path, overrides, body=None))]
 fn resolve(path: PathBuf, overrides: Vec<String>, body: Option<PathBuf>) -> PyResult<String> {
     let overrides = with_body(parse_overrides(&overrides)?, body.as_deref())?;
-    let loaded = LoadedScenario::load_with(&path, &overrides).map_err(raise_sim)?;
+    let loaded = LoadedScenario::load_with(&path, &overrides).map_err(raise_scenario)?;
     Ok(loaded.resolved_text())
 }
 

@@ -78,10 +78,10 @@ pub(crate) fn own_files_in(dir: &Path, own: fn(&str) -> bool) -> Result<Vec<Path
 }
 
 /// Writes `bytes` as `path` atomically, replacing a file or link of that name and never
-/// writing through a link ([`hagfish_sim::replace_file`]).
+/// writing through a link ([`hagfish_run::replace_file`]).
 pub(crate) fn write_file(path: &Path, bytes: &[u8]) -> Result<(), ReportError> {
-    hagfish_sim::replace_file(path, bytes).map_err(|e| match e {
-        hagfish_sim::SimError::Output { source, .. } => ReportError::write(path)(source),
+    hagfish_run::replace_file(path, bytes).map_err(|e| match e {
+        hagfish_run::RunError::Output { source, .. } => ReportError::write(path)(source),
         other => ReportError::write(path)(std::io::Error::other(other.to_string())),
     })
 }

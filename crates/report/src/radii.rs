@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use hagfish_sim::LoadedScenario;
+use hagfish_scenario::LoadedScenario;
 
 /// The radius used when the run directory does not give the body (cm): about the mean
 /// radius of ES103.

@@ -6,7 +6,7 @@ use std::ops::Deref;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use hagfish_sim::{CENTRELINE_HEADER, FORCES_HEADER, METRICS_HEADER};
+use hagfish_run::{CENTRELINE_HEADER, FORCES_HEADER, METRICS_HEADER};
 
 use crate::centreline::Centreline;
 

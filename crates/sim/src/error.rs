@@ -1,70 +1,19 @@
-//! Errors of the step pipeline.
+//! Errors of the step: building a world, and a step that fails or is rejected.
 
 use hagfish_geometry::GeometryError;
 use hagfish_solver::{SolveStatus, SolverError};
 use hagfish_tree::TreeError;
 
-/// What can stop a scenario or a step. Every variant says at which step and simulation time it happened.
+/// What can stop building a world or taking a step. A step's error says at which step and
+/// simulation time it happened.
 #[derive(Debug, thiserror::Error)]
 pub enum SimError {
-    /// A scenario or biometrics file is unreadable or invalid (message has file:line:column).
-    #[error(transparent)]
-    DataFile(#[from] hagfish_anatomy::AnatomyError),
-    /// The body file a scenario names cannot be read (the position is the scenario's `body`).
-    #[error("{at}: body: {source}")]
-    BodyFile {
-        /// Where the scenario names the body file.
-        at: hagfish_anatomy::Origin,
-        /// The underlying error.
-        source: Box<hagfish_anatomy::AnatomyError>,
-    },
     /// The model could not be built.
     #[error("building the model: {0}")]
     Model(#[from] TreeError),
     /// The sparse backend cannot take the model.
     #[error("sparse backend: {0}")]
     Sparse(#[from] hagfish_sparse::SparseError),
-    /// An output file could not be written.
-    #[error("{}: cannot write: {source}", path.display())]
-    Output {
-        /// The file.
-        path: std::path::PathBuf,
-        /// The underlying error.
-        source: std::io::Error,
-    },
-    /// An `.npy` file that is not a 2-D f64 array as the recorder writes them.
-    #[error("{}: not a readable .npy array: {what}", path.display())]
-    InvalidNpy {
-        /// The file.
-        path: std::path::PathBuf,
-        /// What is wrong.
-        what: String,
-    },
-    /// A run cannot be resumed from its checkpoint (unreadable, or not of this scenario).
-    #[error("{}: cannot resume: {reason}", path.display())]
-    Checkpoint {
-        /// The checkpoint file.
-        path: std::path::PathBuf,
-        /// Why not.
-        reason: String,
-    },
-    /// A `--set PATH=VALUE` override that cannot be applied (`overrides.rs`).
-    #[error("--set {given}: {reason}")]
-    Override {
-        /// The override as given.
-        given: String,
-        /// Why it cannot be applied.
-        reason: String,
-    },
-    /// The scenario with its overrides applied fails a check (the location is in the
-    /// overridden scenario, as its run directory's `scenario.ron` records it).
-    #[error("with --set {overrides}: {source}")]
-    Overridden {
-        /// The overrides, as given.
-        overrides: String,
-        /// The failed check.
-        source: Box<SimError>,
-    },
     /// The step buffers of the body would not fit in the memory available
     /// (`memory.rs` explains the estimate).
     #[error(
@@ -83,20 +32,6 @@ pub enum SimError {
         /// Available memory (bytes).
         available: u64,
     },
-    /// The scenario needs more steps than the run may take ([`crate::RunOptions::max_steps`]).
-    #[error(
-        "the scenario needs {steps:e} steps (duration_s / time_step_s), more than the cap of \
-         {cap}: shorten it, raise the time step, or allow more with --max-steps"
-    )]
-    TooManySteps {
-        /// duration / time step.
-        steps: f64,
-        /// The cap.
-        cap: u64,
-    },
-    /// A tie phase did not tie its knot ([`hagfish_control::TiePhase`]).
-    #[error("the tie phase did not tie {0}")]
-    TieFailed(hagfish_control::TieFailure),
     /// The controller could not return to a saved state (a retried step, a resume).
     #[error("controller: {0}")]
     Controller(#[from] hagfish_control::ControlError),

@@ -10,81 +10,60 @@
 //! result's check (its kinematics and contacts, kept for the next step; [`StepAcceptance`]).
 //! CGS units throughout.
 //!
-//! Half a second of the shipped tie scenario, stepped by hand (what `hagfish run` does between
-//! its recorded frames):
+//! **Invariant: a model, options and a state in; the next state and a step report out.** No
+//! files and no scenario format: a [`World`] is built from a [`hagfish_tree::Model`] (from a
+//! body file by `hagfish-anatomy`, or by hand) and stepped with any
+//! [`hagfish_control::Controller`].
+//!
+//! A hundred steps of the ES103 hagfish at rest, its head at the wall:
 //!
 //! ```
-//! use hagfish_sim::LoadedScenario;
+//! use hagfish_control::Passive;
+//! use hagfish_sim::{StepOptions, World};
+//! use hagfish_tree::State;
 //!
-//! let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/scenarios/tie.ron");
-//! let loaded = LoadedScenario::load(path)?;
-//! let (mut world, mut controller) = loaded.build()?;
-//! for _ in 0..50 {
-//!     let report = world.step(&mut controller)?;
-//!     assert!(report.max_self_penetration_relative < 0.1);
+//! let body = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/hagfish/es103.ron");
+//! let model = hagfish_anatomy::Body::load(body)?.to_model()?;
+//! let state = State::rest(&model);
+//! let mut world = World::new(model, StepOptions::default(), state)?;
+//! for _ in 0..100 {
+//!     world.step(&mut Passive)?;
 //! }
-//! assert!((world.state().t - 0.5).abs() < 1e-9);
-//! assert_eq!(controller.phase_name(), "tie");
+//! assert!((world.state().t - 1.0).abs() < 1e-9);
 //! let mut centres = Vec::new();
 //! world.body_centres(&mut centres);
 //! let head = glam::DVec3::new(0.5 * 42.4 / 100.0, 0.0, 0.0); // body 0's centre, ℓ/2 along +X
 //! assert!(centres[0].distance(head) < 1e-6, "the head stays at the wall");
-//! # Ok::<(), hagfish_sim::SimError>(())
+//! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
 mod acceptance;
 mod backend;
-mod checkpoint;
 mod contact_prediction;
 mod error;
-mod force_columns;
-mod force_field;
 mod forces;
 mod hash;
-mod initial_shape;
 mod internal_forces;
-mod knot_core;
+mod maxima;
 mod memory;
-pub mod npy;
 mod options;
-mod output_file;
-mod override_value;
-mod overrides;
-mod parameters;
 pub mod pipeline;
-mod recorder;
 mod report;
+mod retry;
 pub mod rows;
-mod run;
-mod scenario;
-mod scenario_check;
-mod scientific;
 mod step_data;
 mod world;
 
 pub use acceptance::{EndOfStep, Rejection, StepAcceptance};
 pub use backend::DynamicsBackend;
-pub use checkpoint::{CHECKPOINT_FILE, CHECKPOINT_FORMAT, Checkpoint, ExactF64s};
 pub use error::SimError;
-pub use force_field::{ForceFieldLog, ForceFieldStats};
 pub use forces::{DofLabel, GroupForces, RECORDED_GROUPS, dof_labels};
-pub use hash::state_hash;
-pub use initial_shape::{InitialShape, OpenTorusKnot};
+pub use hash::{fnv1a64, state_hash};
 pub use internal_forces::{InternalForces, JointLoad};
-pub use knot_core::KnotCore;
+pub use maxima::IntervalMaxima;
 pub use memory::{available_memory, check_memory, step_memory_estimate};
 pub use options::{FINEST_RESOLVED_CHAIN, RESOLVED_CLUSTER_BODIES, StepOptions};
-pub use output_file::replace_file;
-pub use overrides::{Override, apply_overrides};
-pub use parameters::{PARAMETERS, Parameter};
-pub use recorder::{
-    CENTRELINE_HEADER, CONTACTS_HEADER, FORCES_HEADER, Frame, FrameSink, IntervalMaxima,
-    METRICS_HEADER, RecordedFile, Recorder,
-};
 pub use report::{StageTimings, StepReport};
-pub use run::{
-    DEFAULT_MAX_STEPS, KnotSample, Progress, RunEnd, RunOptions, RunOutcome, RunSummary, run,
-};
-pub use scenario::{LoadedScenario, MIN_TIME_STEP_S, Scenario};
+pub use retry::{Attempt, ContactResolution, RetryableController, StepOutcome, StepTally};
 pub use step_data::StepData;
 pub use world::World;

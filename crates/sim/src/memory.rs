@@ -74,7 +74,7 @@ mod tests {
 
     #[test]
     fn the_dense_estimate_grows_with_the_square_and_the_sparse_one_linearly() {
-        let chain = |bodies| hagfish_bench_support::segment_chain(bodies).expect("chain");
+        let chain = |bodies| hagfish_anatomy::segment_chain(bodies).expect("chain");
         let dense = |bodies| step_memory_estimate(&chain(bodies), DynamicsBackend::DenseReduced);
         let sparse = |bodies| step_memory_estimate(&chain(bodies), DynamicsBackend::SparseMaximal);
         let n = chain(100).dof_count() as u64;

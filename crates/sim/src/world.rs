@@ -7,6 +7,7 @@ use crate::error::SimError;
 use crate::options::StepOptions;
 use crate::pipeline;
 use crate::report::StepReport;
+use crate::retry::{Attempt, ContactResolution};
 use crate::step_data::StepData;
 
 /// A simulated body with everything needed to step it. The model and options never change
@@ -120,39 +121,44 @@ impl World {
         pipeline::limit_excess(&self.model, &self.state.q)
     }
 
-    /// Advances one step of `options.time_step` with `controller` deciding the actuation. A
-    /// step that fails or whose result is rejected ([`crate::StepAcceptance`]) leaves the
-    /// state as it was (the controller is the caller's to restore).
+    /// Advances one step of `options.time_step` with `controller` deciding the actuation, its
+    /// self contacts at the body-relative resolution. A step that fails or whose result is
+    /// rejected ([`crate::StepAcceptance`]) leaves the state as it was (the controller is the
+    /// caller's to restore); [`World::advance`] retries it.
     pub fn step(&mut self, controller: &mut dyn Controller) -> Result<&StepReport, SimError> {
-        self.substep(controller, self.options.time_step)?;
+        let whole = Attempt {
+            time_step: self.options.time_step,
+            contacts: ContactResolution::BodyRelative,
+        };
+        self.attempt(controller, whole)?;
         self.steps += 1;
         Ok(&self.data.report)
     }
 
-    /// Advances the state by `time_step` (a part of `options.time_step`: the runner divides a
-    /// rejected step into substeps) without counting a step; on failure the state is left as
-    /// it was, as by [`World::step`].
-    pub fn substep(
+    /// Advances the state by `attempt.time_step` (the whole step, or a part of it: a rejected
+    /// step is retried as substeps) with its self contacts at `attempt.contacts`, without
+    /// counting a step; on failure the state is left as it was, as by [`World::step`].
+    pub fn attempt(
         &mut self,
         controller: &mut dyn Controller,
-        time_step: f64,
+        attempt: Attempt,
     ) -> Result<&StepReport, SimError> {
+        self.set_contact_resolution(attempt.contacts)?;
         // Field by field: the derived `State::clone_from` would allocate new vectors.
         self.start.t = self.state.t;
         self.start.q.clone_from(&self.state.q);
         self.start.qdot.clone_from(&self.state.qdot);
-        let result = if time_step == self.options.time_step {
+        let result = if attempt.time_step == self.options.time_step {
             let (model, options) = (&self.model, &self.options);
             pipeline::step(model, options, &mut self.state, self.steps, &mut self.data, controller)
         } else {
             // A substep corrects a penetration or a head error at the speed the whole step
             // would (β·d/h, not β·d/h_sub): pushed out over h_sub, a 2 % penetration left by the
             // last accepted step came out 16× faster in h/16 substeps, turning a joint past
-            // the rate bound at every subdivision (a 300-body run stopped diverged at 256
-            // substeps: docs/physics.md).
-            let scale = time_step / self.options.time_step;
+            // the rate bound at every subdivision (docs/decisions/).
+            let scale = attempt.time_step / self.options.time_step;
             let options = StepOptions {
-                time_step,
+                time_step: attempt.time_step,
                 push_out: self.options.push_out * scale,
                 head_correction: self.options.head_correction * scale,
                 ..self.options.clone()
@@ -168,19 +174,24 @@ impl World {
         Ok(&self.data.report)
     }
 
-    /// Switches self-contact detection between the body-relative cluster radius (`false`, as
-    /// built) and the chain's resolution (`true`,
-    /// [`StepOptions::resolved_cluster_radius`]), and detects the current state's contacts
-    /// again. Returns false, doing nothing, on chains whose body-relative radius is already
-    /// that fine (ES103 and coarser).
-    pub fn set_resolved_contacts(&mut self, resolved: bool) -> Result<bool, SimError> {
-        let coarse = self.options.detector_options(&self.model).cluster_radius;
-        let fine = self.options.resolved_cluster_radius(&self.model);
-        if fine >= coarse {
+    /// Detects self contacts at `resolution` from now on, and the current state's contacts
+    /// again if that changes their cluster radius. Returns whether it did: the chain's
+    /// resolution changes nothing on chains whose body-relative radius is already that fine
+    /// (ES103 and coarser).
+    pub fn set_contact_resolution(
+        &mut self,
+        resolution: ContactResolution,
+    ) -> Result<bool, SimError> {
+        let radius = match resolution {
+            ContactResolution::BodyRelative => {
+                self.options.detector_options(&self.model).cluster_radius
+            }
+            ContactResolution::Chain => self.options.resolved_cluster_radius(&self.model),
+        };
+        if radius == self.data.detector.options().cluster_radius {
             return Ok(false);
         }
         let (step, time) = (self.steps, self.state.t);
-        let radius = if resolved { fine } else { coarse };
         self.data.detector.set_cluster_radius(radius).map_err(|source| SimError::Geometry {
             step,
             time,
@@ -190,8 +201,8 @@ impl World {
         Ok(true)
     }
 
-    /// Counts a step made of substeps ([`World::substep`]) as taken.
-    pub fn count_step(&mut self) {
+    /// Counts a step taken (whole, or as substeps) by [`World::advance`].
+    pub(crate) fn count_step(&mut self) {
         self.steps += 1;
     }
 }

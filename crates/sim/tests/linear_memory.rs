@@ -6,7 +6,7 @@
 
 use std::alloc::System;
 
-use hagfish_bench_support::segment_chain;
+use hagfish_anatomy::segment_chain;
 use hagfish_control::Passive;
 use hagfish_sim::{DynamicsBackend, StepOptions, World};
 use hagfish_tree::State;

@@ -13,7 +13,7 @@ use std::path::Path;
 use glam::DVec3;
 use hagfish_anatomy::Body;
 use hagfish_control::Phase;
-use hagfish_sim::LoadedScenario;
+use hagfish_scenario::LoadedScenario;
 
 use crate::check::Check;
 use crate::elastica::elastica_tip;

@@ -3,7 +3,10 @@
 /// What can stop a validation case.
 #[derive(Debug, thiserror::Error)]
 pub enum ValidationError {
-    /// The scenario or its body could not be loaded, or a step failed.
+    /// The scenario or its body could not be loaded or built.
+    #[error(transparent)]
+    Load(#[from] hagfish_scenario::ScenarioError),
+    /// A step failed.
     #[error(transparent)]
     Sim(#[from] hagfish_sim::SimError),
     /// The scenario is not the kind the case needs.

@@ -22,7 +22,7 @@ use glam::DVec3;
 use hagfish_anatomy::Body;
 use hagfish_control::Phase;
 use hagfish_knots::{KnotOptions, analyse_knot};
-use hagfish_sim::{InitialShape, LoadedScenario};
+use hagfish_scenario::{InitialShape, LoadedScenario};
 use hagfish_tree::JointKind;
 
 use crate::check::Check;

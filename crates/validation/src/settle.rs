@@ -2,7 +2,8 @@
 
 use hagfish_anatomy::Rod;
 use hagfish_control::{LoadPhase, Phase, PhasedController};
-use hagfish_sim::{LoadedScenario, World};
+use hagfish_scenario::LoadedScenario;
+use hagfish_sim::World;
 
 use crate::error::ValidationError;
 

@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use hagfish_sim::LoadedScenario;
+use hagfish_scenario::LoadedScenario;
 
 use crate::check::Check;
 use crate::error::ValidationError;

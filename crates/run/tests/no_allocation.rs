@@ -11,7 +11,8 @@ use std::alloc::System;
 
 use hagfish_bench_support::{knotted_world, long_knotted_world};
 use hagfish_control::PhasedController;
-use hagfish_sim::{DynamicsBackend, LoadedScenario, StepOptions, World};
+use hagfish_scenario::LoadedScenario;
+use hagfish_sim::{DynamicsBackend, StepOptions, World};
 use stats_alloc::{INSTRUMENTED_SYSTEM, Region, StatsAlloc};
 
 #[global_allocator]

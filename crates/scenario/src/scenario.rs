@@ -20,14 +20,12 @@ use hagfish_control::{Phase, PhasedController, WaterDrag, diameters_tail_ward};
 use hagfish_tree::{Model, State};
 use serde::{Deserialize, Serialize};
 
-use crate::acceptance::StepAcceptance;
-use crate::backend::DynamicsBackend;
-use crate::error::SimError;
+use hagfish_sim::{DynamicsBackend, StepAcceptance, StepOptions, World, fnv1a64};
+
+use crate::error::ScenarioError;
 use crate::initial_shape::InitialShape;
-use crate::options::StepOptions;
 use crate::overrides::{Override, apply_overrides};
 use crate::scenario_check::check_scenario;
-use crate::world::World;
 
 /// The content of a scenario file.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -110,7 +108,7 @@ pub struct LoadedScenario {
 impl LoadedScenario {
     /// Reads the scenario at `path`, checks its values (each error at its `file:line:column`)
     /// and loads the body file it names.
-    pub fn load(path: impl AsRef<Path>) -> Result<Self, SimError> {
+    pub fn load(path: impl AsRef<Path>) -> Result<Self, ScenarioError> {
         Self::checked(DataFile::<Scenario>::read(path.as_ref())?)
     }
 
@@ -118,7 +116,10 @@ impl LoadedScenario {
     /// (`overrides.rs`) before its values are checked. A check that fails on the overridden
     /// scenario is reported with the overrides and a location in the overridden text (as
     /// [`resolved_text`](Self::resolved_text) writes it, body path aside).
-    pub fn load_with(path: impl AsRef<Path>, overrides: &[Override]) -> Result<Self, SimError> {
+    pub fn load_with(
+        path: impl AsRef<Path>,
+        overrides: &[Override],
+    ) -> Result<Self, ScenarioError> {
         let path = path.as_ref();
         if overrides.is_empty() {
             return Self::load(path);
@@ -128,7 +129,7 @@ impl LoadedScenario {
         let text = pretty_ron(&scenario);
         let label = PathBuf::from(format!("{} [with overrides]", path.display()));
         let mut loaded =
-            Self::parse(text.as_bytes(), &label).map_err(|source| SimError::Overridden {
+            Self::parse(text.as_bytes(), &label).map_err(|source| ScenarioError::Overridden {
                 overrides: overrides.iter().map(Override::text).collect::<Vec<_>>().join(" "),
                 source: Box::new(source),
             })?;
@@ -138,27 +139,27 @@ impl LoadedScenario {
 
     /// Parses scenario `bytes` as if read from `path` (which names the source in messages and
     /// locates the body file), then checks it as [`load`](Self::load) does.
-    pub fn parse(bytes: &[u8], path: &Path) -> Result<Self, SimError> {
+    pub fn parse(bytes: &[u8], path: &Path) -> Result<Self, ScenarioError> {
         Self::checked(DataFile::<Scenario>::parse(bytes, path)?)
     }
 
-    fn checked(file: DataFile<Scenario>) -> Result<Self, SimError> {
+    fn checked(file: DataFile<Scenario>) -> Result<Self, ScenarioError> {
         let directory = file.path.parent().unwrap_or(Path::new("."));
         let body = directory.join(&file.value.body);
         let loaded = Body::load(&body).map_err(|source| match source {
-            AnatomyError::Io { .. } => SimError::BodyFile {
+            AnatomyError::Io { .. } => ScenarioError::BodyFile {
                 at: file.locate(&Field::whole("body")),
                 source: Box::new(source),
             },
-            other => SimError::DataFile(other),
+            other => ScenarioError::DataFile(other),
         })?;
         let diameters = diameters_tail_ward(loaded.to_model()?.bodies(), 0.0);
         check_scenario(&file, loaded.body_count(), loaded.length_cm(), diameters)?;
-        let bytes = std::fs::read(&body).map_err(|source| SimError::BodyFile {
+        let bytes = std::fs::read(&body).map_err(|source| ScenarioError::BodyFile {
             at: file.locate(&Field::whole("body")),
             source: Box::new(AnatomyError::Io { path: body.clone(), source }),
         })?;
-        let body_hash = format!("{:016x}", crate::hash::fnv1a64(&bytes));
+        let body_hash = format!("{:016x}", fnv1a64(&bytes));
         let body = std::fs::canonicalize(&body).unwrap_or(body);
         let resolved = Scenario { body, ..file.value };
         Ok(Self { scenario: resolved, body: loaded, path: file.path, body_hash })
@@ -172,7 +173,7 @@ impl LoadedScenario {
 
     /// FNV-1a hash of [`resolved_text`](Self::resolved_text), as 16 hex digits.
     pub fn hash(&self) -> String {
-        format!("{:016x}", crate::hash::fnv1a64(self.resolved_text().as_bytes()))
+        format!("{:016x}", fnv1a64(self.resolved_text().as_bytes()))
     }
 
     /// The scenario's phases placed on `model`, the model of its body: each tie's crossover
@@ -183,7 +184,7 @@ impl LoadedScenario {
 
     /// Where each tie phase makes its crossover on this body, in phase order (fraction of the
     /// body length from the head): its `at`, or head-ward of it by its `min_tail_d`.
-    pub fn tie_crossovers_l(&self) -> Result<Vec<f64>, SimError> {
+    pub fn tie_crossovers_l(&self) -> Result<Vec<f64>, ScenarioError> {
         let phases = self.phases_on(&self.body.to_model()?);
         Ok(phases
             .iter()
@@ -192,7 +193,7 @@ impl LoadedScenario {
     }
 
     /// The world at rest and the scenario's controller, ready to run.
-    pub fn build(&self) -> Result<(World, PhasedController), SimError> {
+    pub fn build(&self) -> Result<(World, PhasedController), ScenarioError> {
         let model = self.body.to_model()?;
         let mut state = State::rest(&model);
         if let Some(shape) = &self.scenario.initial_shape {
@@ -212,7 +213,7 @@ impl LoadedScenario {
 
     /// The world and controller after running the scenario from rest to time `time_s`
     /// (rounded to whole steps; no recording): e.g. the knotted state of the benchmarks.
-    pub fn build_at(&self, time_s: f64) -> Result<(World, PhasedController), SimError> {
+    pub fn build_at(&self, time_s: f64) -> Result<(World, PhasedController), ScenarioError> {
         let (mut world, mut controller) = self.build()?;
         let steps = (time_s / self.scenario.time_step_s).round() as u64;
         for _ in 0..steps {

@@ -21,15 +21,15 @@ use hagfish_tree::State;
 use serde::{Deserialize, Serialize};
 
 use crate::checkpoint::{CHECKPOINT_FILE, Checkpoint};
-use crate::error::SimError;
+use crate::error::RunError;
 use crate::force_columns::ForceColumns;
-use crate::forces::{DofLabel, GroupForces, RECORDED_GROUPS};
-use crate::internal_forces::JointLoad;
 use crate::knot_core::KnotCore;
 use crate::npy::NpyWriter;
 use crate::output_file::OutputFile;
-use crate::report::StepReport;
 use crate::scientific::Scientific;
+use hagfish_sim::StepReport;
+use hagfish_sim::{DofLabel, GroupForces, RECORDED_GROUPS};
+use hagfish_sim::{IntervalMaxima, JointLoad};
 
 /// Header of `forces.csv`: generalized constraint forces per joint, axis and group, averaged
 /// over the steps since the previous frame (dyn·cm).
@@ -60,46 +60,13 @@ a_x_cm,a_y_cm,a_z_cm,b_x_cm,b_y_cm,b_z_cm";
 pub const INTERNAL_HEADER: &str = "frame,time_s,joint,s_cm,tension_dyn,shear_y_dyn,shear_z_dyn,\
 twist_dyn_cm,bend_y_dyn_cm,bend_z_dyn_cm";
 
-/// Worst values over the steps between two frames.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct IntervalMaxima {
-    /// Deepest self penetration (cm).
-    pub self_penetration: f64,
-    /// Deepest self penetration relative to the local radius.
-    pub self_penetration_relative: f64,
-    /// Deepest wall penetration (cm).
-    pub wall_penetration: f64,
-    /// Largest excess of a joint over a limit (rad).
-    pub limit_excess: f64,
-}
-
-impl IntervalMaxima {
-    /// Takes the maxima of `self` and the step's.
-    pub fn include(&mut self, step: &StepReport, limit_excess: f64) {
-        self.self_penetration = self.self_penetration.max(step.max_self_penetration);
-        self.self_penetration_relative =
-            self.self_penetration_relative.max(step.max_self_penetration_relative);
-        self.wall_penetration = self.wall_penetration.max(step.max_wall_penetration);
-        self.limit_excess = self.limit_excess.max(limit_excess);
-    }
-
-    /// The maxima of both.
-    pub fn merge(&mut self, other: &IntervalMaxima) {
-        self.self_penetration = self.self_penetration.max(other.self_penetration);
-        self.self_penetration_relative =
-            self.self_penetration_relative.max(other.self_penetration_relative);
-        self.wall_penetration = self.wall_penetration.max(other.wall_penetration);
-        self.limit_excess = self.limit_excess.max(other.limit_excess);
-    }
-}
-
 /// Where a run's frames go: files ([`Recorder`]) or memory (tests).
 pub trait FrameSink {
     /// Takes one frame.
-    fn record(&mut self, frame: &Frame<'_>) -> Result<(), SimError>;
+    fn record(&mut self, frame: &Frame<'_>) -> Result<(), RunError>;
 
     /// Takes the checkpoint of the frame just recorded (files keep it; memory sinks need not).
-    fn checkpoint(&mut self, _checkpoint: &mut Checkpoint) -> Result<(), SimError> {
+    fn checkpoint(&mut self, _checkpoint: &mut Checkpoint) -> Result<(), RunError> {
         Ok(())
     }
 }
@@ -204,10 +171,10 @@ impl Recorder {
 
     /// Creates `directory` (and parents) and the output files (CSV with their headers, `.npy`
     /// with `dofs` columns, or six per joint, and no rows).
-    pub fn create(directory: &Path, dofs: usize, joints: usize) -> Result<Self, SimError> {
+    pub fn create(directory: &Path, dofs: usize, joints: usize) -> Result<Self, RunError> {
         std::fs::create_dir_all(directory)
-            .map_err(|source| SimError::Output { path: directory.to_path_buf(), source })?;
-        let csv = |(name, header): (&str, &str)| -> Result<OutputFile, SimError> {
+            .map_err(|source| RunError::Output { path: directory.to_path_buf(), source })?;
+        let csv = |(name, header): (&str, &str)| -> Result<OutputFile, RunError> {
             let mut file = OutputFile::create(&directory.join(name))?;
             file.line(format_args!("{header}"))?;
             file.flush()?;
@@ -227,10 +194,10 @@ impl Recorder {
         dofs: usize,
         joints: usize,
         checkpoint: &Checkpoint,
-    ) -> Result<Self, SimError> {
+    ) -> Result<Self, RunError> {
         let length = |name: &str| {
             checkpoint.files.iter().find(|f| f.name == name).map(|f| f.bytes).ok_or_else(|| {
-                SimError::Checkpoint {
+                RunError::Checkpoint {
                     path: directory.join(CHECKPOINT_FILE),
                     reason: format!("no length of {name}"),
                 }
@@ -251,9 +218,9 @@ impl Recorder {
     /// `.npy` writers (in [`NPY_FILES`] order), or the first error among them.
     fn from_files(
         directory: &Path,
-        csv: [Result<OutputFile, SimError>; 5],
-        npy: [Result<NpyWriter, SimError>; 4],
-    ) -> Result<Self, SimError> {
+        csv: [Result<OutputFile, RunError>; 5],
+        npy: [Result<NpyWriter, RunError>; 4],
+    ) -> Result<Self, RunError> {
         let [centreline, metrics, forces, contacts, internal] = csv;
         let [q, qdot, thigmo, internal_npy] = npy;
         Ok(Self {
@@ -280,7 +247,7 @@ impl Recorder {
         csv.into_iter().chain(npy).collect()
     }
 
-    fn write_centreline(&mut self, frame: &Frame<'_>, prefix: &str) -> Result<(), SimError> {
+    fn write_centreline(&mut self, frame: &Frame<'_>, prefix: &str) -> Result<(), RunError> {
         for (body, c) in frame.centres.iter().enumerate() {
             self.centreline
                 .line(format_args!("{prefix},{body},{:.6},{:.6},{:.6}", c.x, c.y, c.z))?;
@@ -288,7 +255,7 @@ impl Recorder {
         Ok(())
     }
 
-    fn write_metrics(&mut self, frame: &Frame<'_>, prefix: &str) -> Result<(), SimError> {
+    fn write_metrics(&mut self, frame: &Frame<'_>, prefix: &str) -> Result<(), RunError> {
         let (knot, agreement, first, last, position) = match frame.knot {
             Some(k) => (
                 k.knot.to_string(),
@@ -344,7 +311,7 @@ impl Recorder {
         ))
     }
 
-    fn write_forces(&mut self, frame: &Frame<'_>, prefix: &str) -> Result<(), SimError> {
+    fn write_forces(&mut self, frame: &Frame<'_>, prefix: &str) -> Result<(), RunError> {
         let columns = self.force_columns.for_labels(frame.labels);
         for (values, columns) in frame.forces.values.iter().zip(columns) {
             for (columns, value) in columns.iter().zip(values) {
@@ -356,7 +323,7 @@ impl Recorder {
         Ok(())
     }
 
-    fn write_contacts(&mut self, frame: &Frame<'_>, prefix: &str) -> Result<(), SimError> {
+    fn write_contacts(&mut self, frame: &Frame<'_>, prefix: &str) -> Result<(), RunError> {
         for (k, c) in frame.contacts.iter().enumerate() {
             let (a, b) = (c.point_a, c.point_b);
             self.contacts.line(format_args!(
@@ -391,7 +358,7 @@ fn load_values(load: &JointLoad) -> [f64; INTERNAL_VALUES_PER_JOINT] {
 }
 
 impl Recorder {
-    fn write_internal(&mut self, frame: &Frame<'_>, prefix: &str) -> Result<(), SimError> {
+    fn write_internal(&mut self, frame: &Frame<'_>, prefix: &str) -> Result<(), RunError> {
         let spacing = frame.body_length_cm / frame.internal.len().max(1) as f64;
         for (joint, load) in frame.internal.iter().enumerate() {
             let [n, sy, sz, t, my, mz] = load_values(load).map(Scientific);
@@ -406,7 +373,7 @@ impl Recorder {
 impl FrameSink for Recorder {
     /// Appends one frame to every file, each file's rows in one write. Every CSV row starts
     /// with the frame's index and time, formatted once.
-    fn record(&mut self, frame: &Frame<'_>) -> Result<(), SimError> {
+    fn record(&mut self, frame: &Frame<'_>) -> Result<(), RunError> {
         let prefix = format!("{},{:.4}", frame.index, frame.time);
         self.write_centreline(frame, &prefix)?;
         self.write_metrics(frame, &prefix)?;
@@ -424,14 +391,14 @@ impl FrameSink for Recorder {
         }
         self.q.append(&frame.state.q)?;
         self.qdot.append(&frame.state.qdot)?;
-        let thigmo = RECORDED_GROUPS.iter().position(|g| *g == crate::rows::RowGroup::Thigmo);
+        let thigmo = RECORDED_GROUPS.iter().position(|g| *g == hagfish_sim::rows::RowGroup::Thigmo);
         self.thigmo.append(thigmo.map_or(&[][..], |g| &frame.forces.values[g]))?;
         let loads: Vec<f64> = frame.internal.iter().flat_map(load_values).collect();
         self.internal_npy.append(&loads)
     }
 
     /// Writes `checkpoint.ron` (atomically) with the current file lengths.
-    fn checkpoint(&mut self, checkpoint: &mut Checkpoint) -> Result<(), SimError> {
+    fn checkpoint(&mut self, checkpoint: &mut Checkpoint) -> Result<(), RunError> {
         checkpoint.files = self.files();
         checkpoint.write(&self.directory.join(CHECKPOINT_FILE))
     }

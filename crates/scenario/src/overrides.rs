@@ -21,7 +21,7 @@
 
 use serde_json::{Map, Value};
 
-use crate::error::SimError;
+use crate::error::ScenarioError;
 use crate::override_value::parse_override_value;
 use crate::scenario::Scenario;
 
@@ -41,10 +41,12 @@ impl Override {
     /// Parses `PATH=VALUE` (the first `=` separates them; spaces around either are trimmed).
     ///
     /// # Errors
-    /// [`SimError::Override`] if there is no `=` or the path or the value is empty.
-    pub fn parse(text: &str) -> Result<Self, SimError> {
-        let invalid =
-            |reason: &str| SimError::Override { given: text.to_owned(), reason: reason.to_owned() };
+    /// [`ScenarioError::Override`] if there is no `=` or the path or the value is empty.
+    pub fn parse(text: &str) -> Result<Self, ScenarioError> {
+        let invalid = |reason: &str| ScenarioError::Override {
+            given: text.to_owned(),
+            reason: reason.to_owned(),
+        };
         let (path, value) = text.split_once('=').ok_or_else(|| invalid("expected PATH=VALUE"))?;
         let (path, value) = (path.trim(), value.trim());
         if path.is_empty() || value.is_empty() {
@@ -58,18 +60,21 @@ impl Override {
         format!("{}={}", self.path, self.value)
     }
 
-    fn error(&self, reason: impl Into<String>) -> SimError {
-        SimError::Override { given: self.text(), reason: reason.into() }
+    fn error(&self, reason: impl Into<String>) -> ScenarioError {
+        ScenarioError::Override { given: self.text(), reason: reason.into() }
     }
 }
 
 /// `scenario` with `overrides` applied in order.
 ///
 /// # Errors
-/// [`SimError::Override`] naming the override: a path that names no field, a value that does
+/// [`ScenarioError::Override`] naming the override: a path that names no field, a value that does
 /// not parse, or one of the wrong type for its field.
-pub fn apply_overrides(scenario: &Scenario, overrides: &[Override]) -> Result<Scenario, SimError> {
-    let mut tree = serde_json::to_value(scenario).map_err(|e| SimError::Override {
+pub fn apply_overrides(
+    scenario: &Scenario,
+    overrides: &[Override],
+) -> Result<Scenario, ScenarioError> {
+    let mut tree = serde_json::to_value(scenario).map_err(|e| ScenarioError::Override {
         given: String::new(),
         reason: format!("the scenario has no data model: {e}"),
     })?;
@@ -95,7 +100,7 @@ pub fn apply_overrides(scenario: &Scenario, overrides: &[Override]) -> Result<Sc
             given.error(format!("wrong value for {}: {}", given.path, explain(&e, &given.value)))
         })?;
     }
-    serde_json::from_value(tree).map_err(|e| SimError::Override {
+    serde_json::from_value(tree).map_err(|e| ScenarioError::Override {
         given: overrides.iter().map(Override::text).collect::<Vec<_>>().join(" "),
         reason: e.to_string(),
     })
@@ -181,7 +186,7 @@ mod tests {
         crate::LoadedScenario::load(path).expect("thesis_scripted.ron").scenario
     }
 
-    fn set_one(text: &str) -> Result<Scenario, SimError> {
+    fn set_one(text: &str) -> Result<Scenario, ScenarioError> {
         apply_overrides(&scenario(), &[Override::parse(text)?])
     }
 
@@ -206,7 +211,7 @@ mod tests {
         let drag = set_one("drag.quadratic_g_per_cm3=1.0").expect("applies");
         assert_eq!(drag.drag.map(|d| d.quadratic_g_per_cm3), Some(1.0));
         let sparse = set_one("backend=SparseMaximal").expect("applies");
-        assert_eq!(sparse.backend, crate::DynamicsBackend::SparseMaximal);
+        assert_eq!(sparse.backend, hagfish_sim::DynamicsBackend::SparseMaximal);
         assert_eq!(set_one("drag=None").expect("applies").drag, None);
     }
 

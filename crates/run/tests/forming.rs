@@ -4,14 +4,16 @@
 //! `hagfish run` command in the workspace's `tests/`.)
 
 use hagfish_knots::KnotType;
-use hagfish_sim::{Frame, FrameSink, IntervalMaxima, LoadedScenario, SimError};
+use hagfish_run::{Frame, FrameSink, RunError};
+use hagfish_scenario::LoadedScenario;
+use hagfish_sim::IntervalMaxima;
 
 /// Keeps the knot type and agreement of every frame.
 #[derive(Default)]
 struct Knots(Vec<(f64, Option<(KnotType, f64)>)>);
 
 impl FrameSink for Knots {
-    fn record(&mut self, frame: &Frame<'_>) -> Result<(), SimError> {
+    fn record(&mut self, frame: &Frame<'_>) -> Result<(), RunError> {
         self.0.push((frame.time, frame.knot.map(|k| (k.knot.clone(), k.agreement))));
         Ok(())
     }
@@ -26,8 +28,8 @@ fn form_scenario() -> LoadedScenario {
 /// 2 s and limits within 0.5°; returns the largest penetration relative to the radius.
 fn assert_ties_trefoil(loaded: &LoadedScenario, label: &str) -> f64 {
     let mut knots = Knots::default();
-    let options = hagfish_sim::RunOptions::default();
-    let outcome = hagfish_sim::run(loaded, options, &mut knots, &mut |_| {}).expect("run starts");
+    let options = hagfish_run::RunOptions::default();
+    let outcome = hagfish_run::run(loaded, options, &mut knots, &mut |_| {}).expect("run starts");
     let summary = outcome.finished().expect("run succeeds");
     let end = loaded.scenario.duration_s;
     let first_trefoil = knots.0.iter().find(|(_, k)| matches!(k, Some((KnotType::Trefoil, _))));

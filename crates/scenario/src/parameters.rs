@@ -469,8 +469,8 @@ mod tests {
                 start_l: 0.15,
                 mirror: true,
             })),
-            backend: crate::DynamicsBackend::DenseReduced,
-            acceptance: crate::StepAcceptance::default(),
+            backend: hagfish_sim::DynamicsBackend::DenseReduced,
+            acceptance: hagfish_sim::StepAcceptance::default(),
             phases: vec![
                 Phase::Form(FormingScript {
                     gains: TailGains::default(),

@@ -1,7 +1,7 @@
 //! The middle columns of `forces.csv` — `,joint,axis,group,` — which are the same in every
 //! frame: formatted once per run rather than once per row.
 
-use crate::forces::{DofLabel, GroupForces, RECORDED_GROUPS};
+use hagfish_sim::{DofLabel, GroupForces, RECORDED_GROUPS};
 
 /// The `,joint,axis,group,` text of every row of a frame, in row order (group by group, DOF
 /// by DOF), for the labels it was made from.

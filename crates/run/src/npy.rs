@@ -9,7 +9,7 @@
 
 use std::path::Path;
 
-use crate::error::SimError;
+use crate::error::RunError;
 use crate::output_file::OutputFile;
 
 /// Length of the header (magic, version, header length and the padded dictionary).
@@ -39,7 +39,7 @@ pub(crate) struct NpyWriter {
 
 impl NpyWriter {
     /// Creates the file at `path` with zero rows of `columns` values.
-    pub(crate) fn create(path: &Path, columns: usize) -> Result<Self, SimError> {
+    pub(crate) fn create(path: &Path, columns: usize) -> Result<Self, RunError> {
         let mut file = OutputFile::create(path)?;
         file.bytes(&header(0, columns));
         file.flush()?;
@@ -47,7 +47,7 @@ impl NpyWriter {
     }
 
     /// Reopens the file at `path`, keeping its first `rows` rows of `columns` values.
-    pub(crate) fn reopen(path: &Path, columns: usize, rows: usize) -> Result<Self, SimError> {
+    pub(crate) fn reopen(path: &Path, columns: usize, rows: usize) -> Result<Self, RunError> {
         let length = (HEADER_BYTES + 8 * rows * columns) as u64;
         let mut file = OutputFile::reopen(path, length)?;
         file.overwrite(0, &header(rows, columns))?;
@@ -56,7 +56,7 @@ impl NpyWriter {
 
     /// Appends one row (`values.len()` must be the width; shorter rows are padded with NaN,
     /// longer ones cut) and updates the header's row count.
-    pub(crate) fn append(&mut self, values: &[f64]) -> Result<(), SimError> {
+    pub(crate) fn append(&mut self, values: &[f64]) -> Result<(), RunError> {
         self.buffer.clear();
         let padded = values.iter().copied().chain(std::iter::repeat(f64::NAN));
         for v in padded.take(self.columns) {
@@ -93,10 +93,10 @@ pub struct NpyArray {
 /// Reads a 2-D little-endian f64 C-order `.npy` file (format 1.0, as written here). Bytes
 /// beyond the rows counted in the header are ignored; fewer bytes than the header counts are
 /// an error.
-pub fn read_npy(path: &Path) -> Result<NpyArray, SimError> {
+pub fn read_npy(path: &Path) -> Result<NpyArray, RunError> {
     let bytes = std::fs::read(path)
-        .map_err(|source| SimError::Output { path: path.to_path_buf(), source })?;
-    let invalid = |what: &str| SimError::InvalidNpy { path: path.to_path_buf(), what: what.into() };
+        .map_err(|source| RunError::Output { path: path.to_path_buf(), source })?;
+    let invalid = |what: &str| RunError::InvalidNpy { path: path.to_path_buf(), what: what.into() };
     if bytes.len() < 10 || &bytes[..8] != b"\x93NUMPY\x01\x00" {
         return Err(invalid("no NPY 1.0 magic"));
     }
@@ -138,12 +138,12 @@ mod tests {
     use super::*;
 
     #[test]
-    fn header_is_aligned_and_rows_survive_a_reopen() -> Result<(), SimError> {
+    fn header_is_aligned_and_rows_survive_a_reopen() -> Result<(), RunError> {
         assert_eq!(header(123, 150).len(), HEADER_BYTES);
         assert_eq!(HEADER_BYTES % 64, 0);
         let dir = std::env::temp_dir().join(format!("hagfish-npy-{}", std::process::id()));
         std::fs::create_dir_all(&dir)
-            .map_err(|source| SimError::Output { path: dir.clone(), source })?;
+            .map_err(|source| RunError::Output { path: dir.clone(), source })?;
         let path = dir.join("a.npy");
         let mut writer = NpyWriter::create(&path, 3)?;
         for k in 0..4 {
@@ -162,13 +162,13 @@ mod tests {
         assert!(read.values[8].is_nan());
         // Bytes of a row cut short beyond the counted rows are ignored.
         let mut bytes = std::fs::read(&path)
-            .map_err(|source| SimError::Output { path: path.clone(), source })?;
+            .map_err(|source| RunError::Output { path: path.clone(), source })?;
         bytes.extend_from_slice(&[1, 2, 3]);
         std::fs::write(&path, &bytes)
-            .map_err(|source| SimError::Output { path: path.clone(), source })?;
+            .map_err(|source| RunError::Output { path: path.clone(), source })?;
         assert_eq!(read_npy(&path)?.rows, 3);
         drop(writer);
-        std::fs::remove_dir_all(&dir).map_err(|source| SimError::Output { path: dir, source })?;
+        std::fs::remove_dir_all(&dir).map_err(|source| RunError::Output { path: dir, source })?;
         Ok(())
     }
 }

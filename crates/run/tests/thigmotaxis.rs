@@ -17,8 +17,10 @@ use hagfish_control::{
     Actuation, ControlContext, Controller, KnotSpan, SlidingTargets, ThigmoParameters,
 };
 use hagfish_knots::KnotType;
+use hagfish_run::{Frame, FrameSink, RunError, RunOptions, RunSummary};
+use hagfish_scenario::LoadedScenario;
 use hagfish_sim::rows::RowGroup;
-use hagfish_sim::{Frame, FrameSink, LoadedScenario, RunOptions, RunSummary, SimError};
+
 use hagfish_tree::{Data, Model, position_kinematics};
 
 /// Relative changes of the time step: the scenario as written, then seven rounding-level
@@ -50,7 +52,7 @@ struct Records {
 const HEAD_POINT: DVec3 = DVec3::new(0.212, 0.89, 0.0);
 
 impl FrameSink for Records {
-    fn record(&mut self, frame: &Frame<'_>) -> Result<(), SimError> {
+    fn record(&mut self, frame: &Frame<'_>) -> Result<(), RunError> {
         position_kinematics(&self.model, &frame.state.q, &mut self.data);
         self.frames.push(Record {
             time: frame.time,
@@ -73,7 +75,7 @@ fn run(name: &str, perturbation: f64) -> (Vec<Record>, RunSummary) {
     let model = loaded.body.to_model().expect("model builds");
     let data = Data::new(&model);
     let mut records = Records { frames: Vec::new(), model, data };
-    let outcome = hagfish_sim::run(&loaded, RunOptions::default(), &mut records, &mut |_| {})
+    let outcome = hagfish_run::run(&loaded, RunOptions::default(), &mut records, &mut |_| {})
         .unwrap_or_else(|e| panic!("{name}: run does not start: {e}"));
     let summary = outcome.finished().unwrap_or_else(|e| {
         panic!("{name} (δh/h = {perturbation:e}): run diverged (a failed solve stops the run): {e}")

@@ -4,14 +4,15 @@
 //! 2601 and 2466 steps with frames every 0.1, 0.5 and 0.05 s (its phases ended at other
 //! times).
 
-use hagfish_sim::{Frame, FrameSink, LoadedScenario, Override, RunEnd, SimError};
+use hagfish_run::{Frame, FrameSink, RunEnd, RunError};
+use hagfish_scenario::{LoadedScenario, Override};
 
 /// The times of the recorded frames.
 #[derive(Default)]
 struct Times(Vec<f64>);
 
 impl FrameSink for Times {
-    fn record(&mut self, frame: &Frame<'_>) -> Result<(), SimError> {
+    fn record(&mut self, frame: &Frame<'_>) -> Result<(), RunError> {
         self.0.push(frame.time);
         Ok(())
     }
@@ -27,7 +28,7 @@ fn run(scenario: &str, overrides: &[(&str, &str)]) -> (RunEnd, Vec<u64>, Vec<f64
     let path = format!("{}/../../data/scenarios/{scenario}", env!("CARGO_MANIFEST_DIR"));
     let loaded = LoadedScenario::load_with(&path, &overrides).expect("the scenario loads");
     let mut times = Times::default();
-    let outcome = hagfish_sim::run(&loaded, Default::default(), &mut times, &mut |_| {})
+    let outcome = hagfish_run::run(&loaded, Default::default(), &mut times, &mut |_| {})
         .expect("the run starts");
     let bits = outcome.state.q.iter().chain(&outcome.state.qdot).map(|x| x.to_bits()).collect();
     (outcome.end, bits, times.0)

@@ -1,6 +1,12 @@
-//! The long chains that the scaling benchmark (`benches/scaling.rs`) and the sparse-backend
-//! tests step: `bodies` ES103-like segments of the same length, so 200, 400 or 1000 bodies
-//! make a longer animal, not a finer one.
+//! Uniform long chains, the bodies of the scaling benchmark (`benches/scaling.rs`) and of
+//! the step's memory and sparse-backend tests: `bodies` ES103-like segments of the same
+//! length, so 200, 400 or 1000 bodies make a longer animal, not a finer one.
+//!
+//! ```
+//! let chain = hagfish_anatomy::segment_chain(20)?;
+//! assert_eq!((chain.body_count(), chain.dof_count()), (20, 30));
+//! # Ok::<(), hagfish_tree::TreeError>(())
+//! ```
 
 use glam::DVec3;
 use hagfish_tree::{BodySpec, DofParams, JointKind, Model, ModelBuilder, Transform, TreeError};

@@ -6,12 +6,14 @@
 //! the whole `form.ron` run on it ties the same trefoil, and a 1000-body chain steps stably
 //! on it.
 
+#[path = "../../sim/tests/common/mod.rs"]
 mod common;
 
 use common::SweepingTailForce;
 use hagfish_control::{Controller, WaterDrag};
+use hagfish_scenario::LoadedScenario;
 use hagfish_sim::rows::RowGroup;
-use hagfish_sim::{DynamicsBackend, LoadedScenario, StepOptions, World};
+use hagfish_sim::{DynamicsBackend, StepOptions, World};
 use hagfish_solver::SolvePath;
 use hagfish_tree::{Model, State};
 
@@ -173,7 +175,7 @@ fn the_sparse_backend_ties_the_trefoil_of_form_ron() {
 
 #[test]
 fn a_thousand_body_chain_steps_stably_on_the_sparse_backend() {
-    let model = hagfish_bench_support::segment_chain(1000).expect("chain");
+    let model = hagfish_anatomy::segment_chain(1000).expect("chain");
     let options = StepOptions {
         backend: DynamicsBackend::SparseMaximal,
         wall: None,

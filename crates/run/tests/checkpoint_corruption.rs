@@ -4,10 +4,11 @@
 //! change, the parser what is left).
 
 use hagfish_control::ControllerState;
-use hagfish_sim::{
-    CHECKPOINT_FILE, CHECKPOINT_FORMAT, Checkpoint, ExactF64s, IntervalMaxima, RecordedFile,
-    SimError,
+use hagfish_run::{
+    CHECKPOINT_FILE, CHECKPOINT_FORMAT, Checkpoint, ExactF64s, RecordedFile, RunError,
 };
+use hagfish_scenario::ScenarioError;
+use hagfish_sim::IntervalMaxima;
 use proptest::prelude::*;
 
 /// A checkpoint of realistic size (150 DOFs) with awkward values.
@@ -99,8 +100,8 @@ proptest! {
         let path = dir.join(CHECKPOINT_FILE);
         std::fs::write(&path, &bytes).expect("write");
         match Checkpoint::read(&path) {
-            Err(SimError::Checkpoint { path: named, .. }) => prop_assert_eq!(named, path),
-            Err(SimError::DataFile(e)) => prop_assert!(e.to_string().contains(CHECKPOINT_FILE)),
+            Err(RunError::Checkpoint { path: named, .. }) => prop_assert_eq!(named, path),
+            Err(RunError::Scenario(ScenarioError::DataFile(e))) => prop_assert!(e.to_string().contains(CHECKPOINT_FILE)),
             other => prop_assert!(false, "accepted or odd: {other:?}"),
         }
     }

@@ -7,7 +7,8 @@
 use glam::DVec3;
 use hagfish_control::PhasedController;
 use hagfish_geometry::{Centreline, ContactDetector, DetectorOptions, closest_points};
-use hagfish_sim::{LoadedScenario, Override, StepData, StepOptions, World};
+use hagfish_scenario::{LoadedScenario, Override};
+use hagfish_sim::{Attempt, ContactResolution, StepData, StepOptions, World};
 use hagfish_tree::State;
 
 fn forming_world(self_contact: bool) -> (World, PhasedController) {
@@ -188,7 +189,7 @@ fn forming_world_of(body_count: usize) -> (World, PhasedController) {
 fn a_fine_chain_resolves_its_contacts_every_one_and_a_half_bodies_on_request() {
     // ES103's body-relative cluster radius is already 1.5 bodies: nothing to resolve.
     let (mut es103, _) = forming_world_of(100);
-    assert!(!es103.set_resolved_contacts(true).expect("ES103"));
+    assert!(!es103.set_contact_resolution(ContactResolution::Chain).expect("ES103"));
     // At 300 bodies it is 4.7 bodies; step the forming knot to 20 s, where strands lie along
     // each other.
     let (mut world, mut controller) = forming_world_of(300);
@@ -200,18 +201,16 @@ fn a_fine_chain_resolves_its_contacts_every_one_and_a_half_bodies_on_request() {
     // The contacts a step from that state works with (detected at its start), with the
     // body-relative radius, resolved, and body-relative again.
     let (start, saved) = (world.state().clone(), controller.state());
-    let mut contacts_of_a_step = |world: &mut World, resolved: Option<bool>| {
+    let time_step = world.options().time_step;
+    let mut contacts_of_a_step = |world: &mut World, contacts: ContactResolution| {
         world.set_state(start.clone()).expect("the start state");
-        if let Some(resolved) = resolved {
-            assert!(world.set_resolved_contacts(resolved).expect("switch the radius"));
-        }
         controller.restore(&saved).expect("the controller");
-        world.step(&mut controller).expect("step");
+        world.attempt(&mut controller, Attempt { time_step, contacts }).expect("step");
         world.data().self_contacts.clone()
     };
-    let coarse = contacts_of_a_step(&mut world, None);
-    let resolved = contacts_of_a_step(&mut world, Some(true));
-    let coarse_again = contacts_of_a_step(&mut world, Some(false));
+    let coarse = contacts_of_a_step(&mut world, ContactResolution::BodyRelative);
+    let resolved = contacts_of_a_step(&mut world, ContactResolution::Chain);
+    let coarse_again = contacts_of_a_step(&mut world, ContactResolution::BodyRelative);
     println!("{} contacts at 4.7 bodies, {} at 1.5", coarse.len(), resolved.len());
     assert!(resolved.len() > coarse.len());
     // The same deepest record; every coarse record within the coarse radius of a resolved

@@ -5,21 +5,21 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use crate::rows::RowGroup;
 use glam::DVec3;
-use hagfish_control::{ControllerState, KnotObservation, KnotSpan, PhasedController};
+use hagfish_control::{KnotObservation, KnotSpan, PhasedController};
 use hagfish_knots::{KnotAnalyser, KnotOptions, KnotReport};
+use hagfish_scenario::{LoadedScenario, Scenario};
+use hagfish_sim::rows::RowGroup;
+use hagfish_sim::{
+    DofLabel, IntervalMaxima, SimError, StageTimings, StepOutcome, StepTally, World, dof_labels,
+};
 use hagfish_tree::State;
 
 use crate::checkpoint::{CHECKPOINT_FILE, CHECKPOINT_FORMAT, Checkpoint, ExactF64s};
-use crate::error::SimError;
+use crate::error::RunError;
 use crate::force_field::ForceFieldLog;
-use crate::forces::{GroupForces, dof_labels};
 use crate::knot_core::KnotCore;
-use crate::recorder::{Frame, FrameSink, IntervalMaxima};
-use crate::report::{StageTimings, StepReport};
-use crate::scenario::{LoadedScenario, Scenario};
-use crate::world::World;
+use crate::recorder::{Frame, FrameSink};
 
 /// Progress of a run, given to the caller after every recorded frame.
 #[derive(Clone, Copy, Debug)]
@@ -137,10 +137,10 @@ pub struct RunOutcome {
 
 impl RunOutcome {
     /// The summary of a run that did not diverge, or the error that made it diverge.
-    pub fn finished(self) -> Result<RunSummary, SimError> {
+    pub fn finished(self) -> Result<RunSummary, RunError> {
         match self.end {
-            RunEnd::Diverged { error, .. } => Err(error),
-            RunEnd::TieFailed(failure) => Err(SimError::TieFailed(failure)),
+            RunEnd::Diverged { error, .. } => Err(error.into()),
+            RunEnd::TieFailed(failure) => Err(RunError::TieFailed(failure)),
             RunEnd::Completed | RunEnd::Interrupted => Ok(self.summary),
         }
     }
@@ -154,7 +154,7 @@ pub fn run(
     options: RunOptions<'_>,
     sink: &mut dyn FrameSink,
     progress: &mut dyn FnMut(&Progress<'_>),
-) -> Result<RunOutcome, SimError> {
+) -> Result<RunOutcome, RunError> {
     let (mut world, mut controller) = loaded.build()?;
     let mut summary = RunSummary {
         force_field: ForceFieldLog::new(dof_labels(world.model()), dof_arc_lengths(&mut world)),
@@ -162,7 +162,7 @@ pub fn run(
     };
     if let Some(checkpoint) = options.resume {
         world.resume(checkpoint.state(), checkpoint.steps, &checkpoint.multipliers.0)?;
-        controller.restore(&checkpoint.controller).map_err(|e| SimError::Checkpoint {
+        controller.restore(&checkpoint.controller).map_err(|e| RunError::Checkpoint {
             path: CHECKPOINT_FILE.into(),
             reason: e.to_string(),
         })?;
@@ -177,7 +177,7 @@ pub fn run(
     let steps = (scenario.duration_s / scenario.time_step_s).round();
     let cap = options.max_steps.unwrap_or(DEFAULT_MAX_STEPS);
     if steps.is_nan() || steps > cap as f64 {
-        return Err(SimError::TooManySteps { steps, cap });
+        return Err(RunError::TooManySteps { steps, cap });
     }
     let steps = steps as u64;
     let record_every = whole_steps(scenario.record_every_s, scenario.time_step_s);
@@ -225,9 +225,17 @@ pub fn run(
         world.set_internal_forces_due(
             scenario.end_after_phases || next % record_every == 0 || next % observe_every == 0,
         );
-        if let Err(error) = recording.advance(&mut world, &mut controller, &mut summary) {
-            let at = Box::new(recording.checkpoint(&world, &controller, &summary));
-            break RunEnd::Diverged { error, at };
+        match world.advance(&mut controller, &mut recording.tally) {
+            StepOutcome::Accepted => {}
+            StepOutcome::ResolvedContacts => summary.resolved_steps += 1,
+            StepOutcome::Substeps { divisions } => {
+                summary.substepped_steps += 1;
+                summary.max_substeps = summary.max_substeps.max(divisions);
+            }
+            StepOutcome::Failed(error) => {
+                let at = Box::new(recording.checkpoint(&world, &controller, &summary));
+                break RunEnd::Diverged { error, at };
+            }
         }
         let phases_over = scenario.end_after_phases && controller.finished();
         record = world.steps() % record_every == 0 || phases_over;
@@ -237,6 +245,7 @@ pub fn run(
         }
     };
     summary.steps = world.steps();
+    summary.timings = recording.tally.timings;
     summary.unfinished_phase = controller.unfinished_phase();
     summary.resolved_cluster_bodies = world.options().resolved_cluster_radius(world.model());
     Ok(RunOutcome { summary, end, state: world.state().clone() })
@@ -248,8 +257,8 @@ fn whole_steps(interval_s: f64, time_step_s: f64) -> u64 {
     ((interval_s / time_step_s).round() as u64).max(1)
 }
 
-/// The scratch of recording frames: buffers, labels, the latest step report and the maxima
-/// since the previous frame.
+/// The scratch of recording frames: buffers, labels, and what the steps since the previous
+/// frame add up to.
 struct Recording {
     hash: String,
     body_hash: String,
@@ -260,14 +269,10 @@ struct Recording {
     /// The knot analysis of the current state, by [`Recording::analyse_knot`].
     knot: Option<KnotReport>,
     centres: Vec<DVec3>,
-    labels: Vec<crate::forces::DofLabel>,
-    forces: GroupForces,
-    last_report: StepReport,
-    maxima: IntervalMaxima,
-    /// The forces and maxima of the substeps of a step being retried, kept only if every
-    /// substep is accepted.
-    attempt_forces: GroupForces,
-    attempt_maxima: IntervalMaxima,
+    labels: Vec<DofLabel>,
+    /// The forces, maxima and last report of the steps since the previous frame, and the
+    /// stage timings of the whole call.
+    tally: StepTally,
 }
 
 impl Recording {
@@ -282,132 +287,8 @@ impl Recording {
             knot: None,
             centres: Vec::with_capacity(world.model().body_count()),
             labels: dof_labels(world.model()),
-            forces: GroupForces::default(),
-            last_report: StepReport::default(),
-            maxima: IntervalMaxima::default(),
-            attempt_forces: GroupForces::default(),
-            attempt_maxima: IntervalMaxima::default(),
+            tally: StepTally::default(),
         }
-    }
-
-    /// Takes one step of h: whole; if the whole step fails or its result is rejected, whole
-    /// again with the self contacts at the chain's resolution (`acceptance.resolve_contacts`,
-    /// where that changes them); then as 2, 4, … 2^k substeps (k = `acceptance.max_halvings`),
-    /// each accepted, from the same start (state and controller), still with those contacts.
-    /// The step's forces and maxima are added once it is taken.
-    fn advance(
-        &mut self,
-        world: &mut World,
-        controller: &mut PhasedController,
-        summary: &mut RunSummary,
-    ) -> Result<(), SimError> {
-        let saved = controller.state();
-        let first = match self.whole_step(world, controller, summary) {
-            Ok(()) => return Ok(()),
-            Err(error) => error,
-        };
-        let resolved =
-            world.options().acceptance.resolve_contacts && world.set_resolved_contacts(true)?;
-        let outcome = if resolved {
-            controller.restore(&saved)?;
-            match self.whole_step(world, controller, summary) {
-                Ok(()) => {
-                    summary.resolved_steps += 1;
-                    Ok(())
-                }
-                Err(_) => self.subdivide(world, controller, summary, &saved, first),
-            }
-        } else {
-            self.subdivide(world, controller, summary, &saved, first)
-        };
-        if resolved {
-            world.set_resolved_contacts(false)?;
-        }
-        outcome
-    }
-
-    /// One whole step of h; its forces and maxima are added if it is accepted.
-    fn whole_step(
-        &mut self,
-        world: &mut World,
-        controller: &mut PhasedController,
-        summary: &mut RunSummary,
-    ) -> Result<(), SimError> {
-        let report = *world.step(controller)?;
-        self.last_report = report;
-        self.forces.add_step(world.data(), world.model().dof_count());
-        self.maxima.include(&report, world.max_limit_excess());
-        summary.timings.accumulate(&report.timings);
-        Ok(())
-    }
-
-    /// The step as 2, 4, … 2^k substeps (k = `acceptance.max_halvings`) from the same start
-    /// (state and controller `saved`), the first division whose substeps are all accepted;
-    /// `first` is the whole step's error, reported if none is.
-    fn subdivide(
-        &mut self,
-        world: &mut World,
-        controller: &mut PhasedController,
-        summary: &mut RunSummary,
-        saved: &ControllerState,
-        first: SimError,
-    ) -> Result<(), SimError> {
-        let dofs = world.model().dof_count();
-        let h = world.options().time_step;
-        let start = world.state().clone();
-        let mut last = None;
-        for halvings in 1..=world.options().acceptance.max_halvings {
-            let divisions = 1u32 << halvings;
-            controller.restore(saved)?;
-            self.attempt_forces.clear();
-            self.attempt_maxima = IntervalMaxima::default();
-            match self.substeps(world, controller, summary, divisions, h) {
-                Ok(()) => {
-                    world.count_step();
-                    self.attempt_forces.count_as_one_step();
-                    self.forces.absorb(&self.attempt_forces, dofs);
-                    self.maxima.merge(&self.attempt_maxima);
-                    summary.substepped_steps += 1;
-                    summary.max_substeps = summary.max_substeps.max(divisions);
-                    return Ok(());
-                }
-                Err(error) => {
-                    world.set_state(start.clone())?;
-                    last = Some((divisions, error));
-                }
-            }
-        }
-        controller.restore(saved)?;
-        Err(match last {
-            None => first,
-            Some((divisions, last)) => SimError::StepFailedWithSubsteps {
-                first: Box::new(first),
-                divisions,
-                substep_s: h / f64::from(divisions),
-                last: Box::new(last),
-            },
-        })
-    }
-
-    /// `divisions` substeps of `h / divisions`, each accepted, adding their forces and maxima
-    /// to the attempt's.
-    fn substeps(
-        &mut self,
-        world: &mut World,
-        controller: &mut PhasedController,
-        summary: &mut RunSummary,
-        divisions: u32,
-        h: f64,
-    ) -> Result<(), SimError> {
-        let dofs = world.model().dof_count();
-        for _ in 0..divisions {
-            let report = *world.substep(controller, h / f64::from(divisions))?;
-            self.last_report = report;
-            self.attempt_forces.add_impulses(world.data(), dofs);
-            self.attempt_maxima.include(&report, world.max_limit_excess());
-            summary.timings.accumulate(&report.timings);
-        }
-        Ok(())
     }
 
     /// Analyses the knot of the current state into `self.knot` (`None` where the analysis
@@ -446,22 +327,27 @@ impl Recording {
         sink: &mut dyn FrameSink,
         progress: &mut dyn FnMut(&Progress<'_>),
         scenario: &Scenario,
-    ) -> Result<(), SimError> {
+    ) -> Result<(), RunError> {
         let knot = self.knot.take();
         let dofs = world.model().dof_count();
-        self.forces.finish_interval(dofs, world.options().time_step);
+        self.tally.forces.finish_interval(dofs, world.options().time_step);
         let data = world.data();
         let span = KnotSpan::of(&data.self_contacts, &data.centreline);
         let phase = controller.phase_name();
-        summary.force_field.push(world.state().t, phase, span, self.forces.group(RowGroup::Thigmo));
+        summary.force_field.push(
+            world.state().t,
+            phase,
+            span,
+            self.tally.forces.group(RowGroup::Thigmo),
+        );
         sink.record(&Frame {
             index: summary.frames,
             time: world.state().t,
             phase,
             state: world.state(),
             centres: &self.centres,
-            step: &self.last_report,
-            maxima: &self.maxima,
+            step: &self.tally.last_report,
+            maxima: &self.tally.maxima,
             knot: knot.as_ref(),
             radii: &self.radii,
             body_length_cm: self.body_length_cm,
@@ -469,12 +355,12 @@ impl Recording {
             contacts: &data.self_contacts,
             centreline: &data.centreline,
             labels: &self.labels,
-            forces: &self.forces,
+            forces: &self.tally.forces,
             internal: &data.internal.loads,
         })?;
-        summary.maxima.merge(&self.maxima);
-        self.maxima = IntervalMaxima::default();
-        self.forces.clear();
+        summary.maxima.merge(&self.tally.maxima);
+        self.tally.maxima = IntervalMaxima::default();
+        self.tally.forces.clear();
         summary.frames += 1;
         summary.steps = world.steps();
         sink.checkpoint(&mut self.checkpoint(world, controller, summary))?;
@@ -500,7 +386,7 @@ impl Recording {
     ) -> Checkpoint {
         let state = world.state();
         let mut maxima = summary.maxima;
-        maxima.merge(&self.maxima);
+        maxima.merge(&self.tally.maxima);
         Checkpoint {
             format: CHECKPOINT_FORMAT,
             scenario_hash: self.hash.clone(),

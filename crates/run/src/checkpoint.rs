@@ -17,9 +17,10 @@ use hagfish_control::ControllerState;
 use hagfish_tree::State;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-use crate::error::SimError;
-use crate::hash::fnv1a64;
-use crate::recorder::{IntervalMaxima, RecordedFile};
+use crate::error::RunError;
+use crate::recorder::RecordedFile;
+use hagfish_scenario::ScenarioError;
+use hagfish_sim::{IntervalMaxima, fnv1a64};
 
 /// Name of the checkpoint file in a run directory.
 pub const CHECKPOINT_FILE: &str = "checkpoint.ron";
@@ -113,8 +114,8 @@ impl Checkpoint {
 
     /// Reads a checkpoint: its first line must hold the checksum of the rest (any changed or
     /// lost byte is refused), then the RON is parsed (errors at their `file:line:column`).
-    pub fn read(path: &Path) -> Result<Self, SimError> {
-        let refuse = |reason: String| SimError::Checkpoint { path: path.to_path_buf(), reason };
+    pub fn read(path: &Path) -> Result<Self, RunError> {
+        let refuse = |reason: String| RunError::Checkpoint { path: path.to_path_buf(), reason };
         let bytes = std::fs::read(path).map_err(|e| refuse(e.to_string()))?;
         let (first, rest) = match bytes.iter().position(|&b| b == b'\n') {
             Some(end) => (&bytes[..end], &bytes[end + 1..]),
@@ -127,9 +128,10 @@ impl Checkpoint {
                  follows; the file was changed or damaged after it was written"
             )));
         }
-        let checkpoint = DataFile::<Checkpoint>::parse(&bytes, path)?.value;
+        let checkpoint =
+            DataFile::<Checkpoint>::parse(&bytes, path).map_err(ScenarioError::from)?.value;
         if checkpoint.format != CHECKPOINT_FORMAT || checkpoint.t.0.len() != 1 {
-            return Err(SimError::Checkpoint {
+            return Err(RunError::Checkpoint {
                 path: path.to_path_buf(),
                 reason: format!(
                     "format {} with {} time values (expected format {CHECKPOINT_FORMAT}, one)",
@@ -143,8 +145,8 @@ impl Checkpoint {
 
     /// Writes the checkpoint to `path` atomically: to a temporary file beside it, then renamed
     /// over it, so a killed run leaves either the old or the new checkpoint.
-    pub fn write(&self, path: &Path) -> Result<(), SimError> {
-        let fail = |source| SimError::Output { path: path.to_path_buf(), source };
+    pub fn write(&self, path: &Path) -> Result<(), RunError> {
+        let fail = |source| RunError::Output { path: path.to_path_buf(), source };
         // Every string of a checkpoint (hash, hexadecimal words, file names) is plain ASCII
         // without quotes or backslashes, which RON writes alike escaped or not; not escaping
         // spares a pass over every character.
@@ -161,7 +163,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_checkpoint_comes_back_bit_for_bit() -> Result<(), SimError> {
+    fn a_checkpoint_comes_back_bit_for_bit() -> Result<(), RunError> {
         let awkward = vec![0.1, -0.0, f64::MIN_POSITIVE, 1.0 / 3.0, f64::MAX, f64::NAN];
         let checkpoint = Checkpoint {
             format: CHECKPOINT_FORMAT,
@@ -182,7 +184,7 @@ mod tests {
         };
         let dir = std::env::temp_dir().join(format!("hagfish-checkpoint-{}", std::process::id()));
         std::fs::create_dir_all(&dir)
-            .map_err(|source| SimError::Output { path: dir.clone(), source })?;
+            .map_err(|source| RunError::Output { path: dir.clone(), source })?;
         let path = dir.join(CHECKPOINT_FILE);
         checkpoint.write(&path)?;
         let back = Checkpoint::read(&path)?;
@@ -192,7 +194,7 @@ mod tests {
         assert_eq!(back.state().t.to_bits(), 0.7000000000000005f64.to_bits());
         assert_eq!(back.maxima, checkpoint.maxima);
         assert_eq!(back.files, checkpoint.files);
-        std::fs::remove_dir_all(&dir).map_err(|source| SimError::Output { path: dir, source })?;
+        std::fs::remove_dir_all(&dir).map_err(|source| RunError::Output { path: dir, source })?;
         Ok(())
     }
 }

@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use hagfish_sim::LoadedScenario;
+use hagfish_scenario::LoadedScenario;
 use proptest::prelude::*;
 
 const SCENARIO: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/scenarios/form.ron");

@@ -12,7 +12,7 @@ use std::fs::{File, OpenOptions};
 use std::io::{Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 
-use crate::error::SimError;
+use crate::error::RunError;
 
 /// An output file being appended to.
 #[derive(Debug)]
@@ -28,7 +28,7 @@ pub(crate) struct OutputFile {
 impl OutputFile {
     /// Creates the file at `path`, replacing a file or symbolic link of that name (the link
     /// itself, never what it points to).
-    pub(crate) fn create(path: &Path) -> Result<Self, SimError> {
+    pub(crate) fn create(path: &Path) -> Result<Self, RunError> {
         remove_if_present(path)?;
         let file = OpenOptions::new()
             .write(true)
@@ -39,7 +39,7 @@ impl OutputFile {
     }
 
     /// Opens the existing file at `path`, cuts it to `length` bytes and appends from there.
-    pub(crate) fn reopen(path: &Path, length: u64) -> Result<Self, SimError> {
+    pub(crate) fn reopen(path: &Path, length: u64) -> Result<Self, RunError> {
         let fail = |source| output(path, source);
         refuse_symlink(path)?;
         let mut file = OpenOptions::new().write(true).open(path).map_err(fail)?;
@@ -64,7 +64,7 @@ impl OutputFile {
     }
 
     /// Appends `line` and a newline (in memory until the next flush).
-    pub(crate) fn line(&mut self, line: std::fmt::Arguments<'_>) -> Result<(), SimError> {
+    pub(crate) fn line(&mut self, line: std::fmt::Arguments<'_>) -> Result<(), RunError> {
         self.pending.write_fmt(line).map_err(|source| output(&self.path, source))?;
         self.pending.push(b'\n');
         Ok(())
@@ -77,7 +77,7 @@ impl OutputFile {
 
     /// Writes what was gathered, then `bytes` at `offset` from the start, and returns to the
     /// end.
-    pub(crate) fn overwrite(&mut self, offset: u64, bytes: &[u8]) -> Result<(), SimError> {
+    pub(crate) fn overwrite(&mut self, offset: u64, bytes: &[u8]) -> Result<(), RunError> {
         self.flush()?;
         let fail = |source| output(&self.path, source);
         self.file.seek(SeekFrom::Start(offset)).map_err(fail)?;
@@ -87,7 +87,7 @@ impl OutputFile {
     }
 
     /// Writes everything gathered to the file in one call.
-    pub(crate) fn flush(&mut self) -> Result<(), SimError> {
+    pub(crate) fn flush(&mut self) -> Result<(), RunError> {
         if self.pending.is_empty() {
             return Ok(());
         }
@@ -107,7 +107,7 @@ impl OutputFile {
 /// a new file beside it (`NAME.partial`, created exclusively), then renamed over `path`, which
 /// replaces a file or a link of that name but never writes through a link. A reader sees the
 /// old content or the new, never a part.
-pub fn replace_file(path: &Path, bytes: &[u8]) -> Result<(), SimError> {
+pub fn replace_file(path: &Path, bytes: &[u8]) -> Result<(), RunError> {
     let mut name = path.file_name().unwrap_or_default().to_os_string();
     name.push(".partial");
     let temporary = path.with_file_name(name);
@@ -121,7 +121,7 @@ pub fn replace_file(path: &Path, bytes: &[u8]) -> Result<(), SimError> {
 }
 
 /// Removes the file or symbolic link at `path` if there is one.
-fn remove_if_present(path: &Path) -> Result<(), SimError> {
+fn remove_if_present(path: &Path) -> Result<(), RunError> {
     match std::fs::remove_file(path) {
         Err(e) if e.kind() != std::io::ErrorKind::NotFound => Err(output(path, e)),
         _ => Ok(()),
@@ -129,7 +129,7 @@ fn remove_if_present(path: &Path) -> Result<(), SimError> {
 }
 
 /// Refuses a symbolic link at `path`: a run appends only to files of its own.
-fn refuse_symlink(path: &Path) -> Result<(), SimError> {
+fn refuse_symlink(path: &Path) -> Result<(), RunError> {
     match std::fs::symlink_metadata(path) {
         Ok(meta) if meta.file_type().is_symlink() => Err(output(
             path,
@@ -139,6 +139,6 @@ fn refuse_symlink(path: &Path) -> Result<(), SimError> {
     }
 }
 
-fn output(path: &Path, source: std::io::Error) -> SimError {
-    SimError::Output { path: path.to_path_buf(), source }
+fn output(path: &Path, source: std::io::Error) -> RunError {
+    RunError::Output { path: path.to_path_buf(), source }
 }

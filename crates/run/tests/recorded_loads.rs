@@ -3,14 +3,16 @@
 //! recording every step, which computes them on every step, records the same loads, bit for
 //! bit, at the common frames.
 
-use hagfish_sim::{Frame, FrameSink, JointLoad, LoadedScenario, Override, SimError};
+use hagfish_run::{Frame, FrameSink, RunError};
+use hagfish_scenario::{LoadedScenario, Override};
+use hagfish_sim::JointLoad;
 
 /// The time and joint loads of every frame.
 #[derive(Default)]
 struct Loads(Vec<(f64, Vec<JointLoad>)>);
 
 impl FrameSink for Loads {
-    fn record(&mut self, frame: &Frame<'_>) -> Result<(), SimError> {
+    fn record(&mut self, frame: &Frame<'_>) -> Result<(), RunError> {
         self.0.push((frame.time, frame.internal.to_vec()));
         Ok(())
     }
@@ -24,7 +26,7 @@ fn loads(record_every_s: &str) -> Vec<(f64, Vec<JointLoad>)> {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/scenarios/form.ron");
     let loaded = LoadedScenario::load_with(path, &overrides).expect("form.ron loads");
     let mut sink = Loads::default();
-    let outcome = hagfish_sim::run(&loaded, Default::default(), &mut sink, &mut |_| {})
+    let outcome = hagfish_run::run(&loaded, Default::default(), &mut sink, &mut |_| {})
         .expect("the run starts");
     outcome.finished().expect("the run completes");
     sink.0

@@ -11,7 +11,7 @@ use std::collections::HashMap;
 
 use hagfish_control::KnotSpan;
 
-use crate::forces::DofLabel;
+use hagfish_sim::DofLabel;
 
 /// The sums of one recorded frame that the quarter means need (the phase's first and last
 /// times are known only at its end).
