@@ -113,3 +113,37 @@ pub enum SimError {
         rows: usize,
     },
 }
+
+/// Where in a run a step is: its index and its start time (s), which every error of the
+/// step carries ([`InStep::in_step`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct StepAt {
+    /// Step index.
+    pub(crate) step: u64,
+    /// Simulation time at the step's start (s).
+    pub(crate) time: f64,
+}
+
+/// An error of a stage, placed at its step and time as a [`SimError`].
+pub(crate) trait InStep<T> {
+    /// The error, if any, with the step and time of `at`.
+    fn in_step(self, at: StepAt) -> Result<T, SimError>;
+}
+
+impl<T> InStep<T> for Result<T, TreeError> {
+    fn in_step(self, StepAt { step, time }: StepAt) -> Result<T, SimError> {
+        self.map_err(|source| SimError::Tree { step, time, source })
+    }
+}
+
+impl<T> InStep<T> for Result<T, GeometryError> {
+    fn in_step(self, StepAt { step, time }: StepAt) -> Result<T, SimError> {
+        self.map_err(|source| SimError::Geometry { step, time, source })
+    }
+}
+
+impl<T> InStep<T> for Result<T, SolverError> {
+    fn in_step(self, StepAt { step, time }: StepAt) -> Result<T, SimError> {
+        self.map_err(|source| SimError::Solver { step, time, source })
+    }
+}

@@ -39,6 +39,7 @@
 
 mod acceptance;
 mod backend;
+mod carried_contacts;
 mod contact_prediction;
 mod error;
 mod forces;
@@ -63,7 +64,7 @@ pub use internal_forces::{InternalForces, JointLoad};
 pub use maxima::IntervalMaxima;
 pub use memory::{available_memory, check_memory, step_memory_estimate};
 pub use options::{FINEST_RESOLVED_CHAIN, RESOLVED_CLUSTER_BODIES, StepOptions};
-pub use report::{StageTimings, StepReport};
+pub use report::{Stage, StageTimings, StepReport};
 pub use retry::{Attempt, ContactResolution, RetryableController, StepOutcome, StepTally};
 pub use step_data::StepData;
 pub use world::World;

@@ -13,18 +13,19 @@
 //! Each stage is a public function of the immutable model and options and the mutable step
 //! data, so tests and benchmarks can run any prefix.
 
-use std::time::Instant;
-
 use hagfish_control::{ControlContext, Controller};
 use hagfish_solver::SolveStatus;
 use hagfish_tree::{Model, State};
 
+use hagfish_geometry::DetectionReport;
+
 use crate::acceptance::EndOfStep;
 use crate::backend;
-use crate::error::SimError;
+use crate::carried_contacts::Carried;
+use crate::error::{InStep, SimError, StepAt};
 pub use crate::internal_forces::internal_forces;
 use crate::options::StepOptions;
-use crate::report::{StageTimings, StepReport};
+use crate::report::{Stage, StageClock, StepReport};
 use crate::rows::{
     add_head_rows, add_limit_rows, add_overshooting_limit_rows, add_self_contact_rows,
     add_thigmo_rows, add_wall_rows, overshoots_limit,
@@ -40,27 +41,29 @@ pub fn kinematics(model: &Model, state: &State, data: &mut StepData) {
     hagfish_tree::forward_kinematics(model, &state.q, &state.qdot, &mut data.tree);
 }
 
-/// Stage 2: centreline through the body centres, self contacts and wall contacts.
+/// Stage 2: centreline through the body centres, self contacts and wall contacts; returns
+/// the self-contact detection's counts.
 pub fn detect_contacts(
     model: &Model,
     options: &StepOptions,
     data: &mut StepData,
-) -> Result<(), hagfish_geometry::GeometryError> {
+) -> Result<DetectionReport, hagfish_geometry::GeometryError> {
     for (i, centre) in data.centres.iter_mut().enumerate() {
         *centre = data.tree.body_centre(i);
     }
     debug_assert_eq!(data.centres.len(), model.body_count());
     data.centreline.update(&data.centres, &data.radii)?;
     data.self_contacts.clear();
-    if options.self_contact {
-        data.report.detection =
-            data.detector.detect(&data.centreline, &data.lengths, &mut data.self_contacts)?;
-    }
+    let detection = if options.self_contact {
+        data.detector.detect(&data.centreline, &data.lengths, &mut data.self_contacts)?
+    } else {
+        DetectionReport::default()
+    };
     data.wall_contacts.clear();
     if let Some(wall) = &data.wall {
         wall.contacts(&data.centreline, &mut data.wall_contacts);
     }
-    Ok(())
+    Ok(detection)
 }
 
 /// Stage 3: the controller sees the state, kinematics and contacts and sets this step's
@@ -162,72 +165,53 @@ pub fn step(
     data: &mut StepData,
     controller: &mut dyn Controller,
 ) -> Result<(), SimError> {
-    let time = state.t;
-    state.validate(model).map_err(|source| SimError::Tree { step: step_index, time, source })?;
-    data.report = StepReport { step: step_index, time, ..StepReport::default() };
-    let mut timings = StageTimings::default();
-    let clock = Instant::now();
-    let mut lap = lap_timer(clock);
-    if data.next.current {
-        // The previous step's check left this state's kinematics in `data.tree`.
-        data.swap_next();
-        data.report.detection = data.next.detection;
-        data.next.current = false;
-    } else {
+    let at = StepAt { step: step_index, time: state.t };
+    state.validate(model).in_step(at)?;
+    data.report = StepReport { step: step_index, time: state.t, ..StepReport::default() };
+    let mut clock = StageClock::start();
+    if data.take_over_carried() == Carried::Stale {
         kinematics(model, state, data);
-        timings.kinematics = lap();
-        detect_contacts(model, options, data).map_err(|source| SimError::Geometry {
-            step: step_index,
-            time,
-            source,
-        })?;
+        clock.lap(Stage::Kinematics);
+        data.report.detection = detect_contacts(model, options, data).in_step(at)?;
     }
     measure_penetration(data);
-    timings.detect_contacts = lap();
+    clock.lap(Stage::DetectContacts);
     control(model, options, state, data, controller);
-    timings.control = lap();
+    clock.lap(Stage::Control);
     dynamics(model, options, state, data);
-    timings.dynamics = lap();
+    clock.lap(Stage::Dynamics);
     build_rows(model, options, state, data);
-    timings.build_rows = lap();
-    solve_and_resolve(model, options, state, data).map_err(|source| SimError::Solver {
-        step: step_index,
-        time,
-        source,
-    })?;
-    timings.solve = lap();
-    let status = data.report.solve.status;
-    if !status.is_solved() {
-        return Err(SimError::SolveFailed {
-            step: step_index,
-            time,
-            status,
-            rows: data.rows.len(),
-        });
-    }
+    clock.lap(Stage::BuildRows);
+    solve_and_resolve(model, options, state, data).in_step(at)?;
+    require_solved(data, at)?;
+    clock.lap(Stage::Solve);
     if data.internal_forces_due {
         internal_forces(model, options, state, data);
     }
-    timings.internal_forces = lap();
-    hagfish_tree::integrate(state, data.solver.velocity(), options.time_step)
-        .map_err(|source| SimError::Tree { step: step_index, time, source })?;
-    timings.integrate = lap();
-    let end = check_result(model, options, state, data).map_err(|source| SimError::Geometry {
-        step: step_index,
-        time,
-        source,
-    })?;
-    timings.check = lap();
-    data.report.timings = timings;
+    clock.lap(Stage::InternalForces);
+    hagfish_tree::integrate(state, data.solver.velocity(), options.time_step).in_step(at)?;
+    clock.lap(Stage::Integrate);
+    let end = check_result(model, options, state, data).in_step(at)?;
+    clock.lap(Stage::Check);
+    data.report.timings = clock.timings();
     match options.acceptance.judge(&end) {
         None => Ok(()),
-        Some(rejection) => Err(SimError::StepRejected { step: step_index, time, rejection }),
+        Some(rejection) => Err(SimError::StepRejected { step: at.step, time: at.time, rejection }),
     }
 }
 
-/// Last stage: the kinematics and contacts of the step's result `state` (kept in
-/// `data.next` for the next step, and the kinematics in `data.tree`), and what its
-/// acceptance is judged on. The contacts of the step's start stay in `data` for the report.
+/// The velocity solve's answer is usable, or the step fails with its status.
+fn require_solved(data: &StepData, at: StepAt) -> Result<(), SimError> {
+    let status = data.report.solve.status;
+    if status.is_solved() {
+        return Ok(());
+    }
+    Err(SimError::SolveFailed { step: at.step, time: at.time, status, rows: data.rows.len() })
+}
+
+/// Last stage: the kinematics and contacts of the step's result `state` (carried over to the
+/// next step, and the kinematics in `data.tree`), and what its acceptance is judged on. The
+/// contacts of the step's start stay in `data` for the report.
 pub fn check_result(
     model: &Model,
     options: &StepOptions,
@@ -235,14 +219,12 @@ pub fn check_result(
     data: &mut StepData,
 ) -> Result<EndOfStep, hagfish_geometry::GeometryError> {
     kinematics(model, state, data);
-    data.swap_next();
-    let start_detection = data.report.detection;
-    let detected = detect_contacts(model, options, data);
-    data.next.detection = std::mem::replace(&mut data.report.detection, start_detection);
-    let penetration = penetration(data);
-    data.swap_next();
-    detected?;
-    data.next.current = true;
+    let (detected, penetration) = data.with_carried(|data| {
+        let detected = detect_contacts(model, options, data);
+        (detected, penetration(data))
+    });
+    data.carried.detection = detected?;
+    data.carried.status = Carried::Current;
     let solve = &data.report.solve;
     let inexact = solve.status == SolveStatus::SolvedInexact;
     Ok(EndOfStep {
@@ -363,19 +345,8 @@ fn solve_with_resolves(
     Ok(())
 }
 
-/// A closure returning the seconds since its previous call (the first: since `start`).
-fn lap_timer(start: Instant) -> impl FnMut() -> f64 {
-    let mut last = start;
-    move || {
-        let now = Instant::now();
-        let seconds = (now - last).as_secs_f64();
-        last = now;
-        seconds
-    }
-}
-
 /// The deepest penetrations of the contacts in `data`'s contact fields (those of the step's
-/// start, or of its end while [`check_result`] has them swapped in).
+/// start, or of its end while [`check_result`] has the carried ones in their place).
 #[derive(Debug, Clone, Copy, Default)]
 struct Penetration {
     /// Self, cm.

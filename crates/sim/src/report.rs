@@ -31,68 +31,118 @@ pub struct StepReport {
     pub timings: StageTimings,
 }
 
-/// Seconds of wall-clock time per stage of one step.
+/// The stages of a step, in pipeline order ([`crate::pipeline`]): the keys of its timings.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Stage {
+    /// Frames, axes, twists.
+    Kinematics,
+    /// Centreline, broad and narrow phase, wall (or taking over the carried contacts).
+    DetectContacts,
+    /// The controller.
+    Control,
+    /// M̃, momentum, generalized force.
+    Dynamics,
+    /// Constraint rows.
+    BuildRows,
+    /// Every velocity solve of the step, with the velocity-product refreshes and added rows.
+    Solve,
+    /// The load each joint transmits (backward pass over the tree).
+    InternalForces,
+    /// Position update.
+    Integrate,
+    /// The result's kinematics and contacts (taken over by the next step) and its judgement.
+    Check,
+}
+
+impl Stage {
+    /// Every stage, in pipeline order.
+    pub const ALL: [Stage; 9] = [
+        Stage::Kinematics,
+        Stage::DetectContacts,
+        Stage::Control,
+        Stage::Dynamics,
+        Stage::BuildRows,
+        Stage::Solve,
+        Stage::InternalForces,
+        Stage::Integrate,
+        Stage::Check,
+    ];
+
+    /// The stage's name, as the pipeline's function (`detect_contacts`, …).
+    pub fn name(self) -> &'static str {
+        match self {
+            Stage::Kinematics => "kinematics",
+            Stage::DetectContacts => "detect_contacts",
+            Stage::Control => "control",
+            Stage::Dynamics => "dynamics",
+            Stage::BuildRows => "build_rows",
+            Stage::Solve => "solve",
+            Stage::InternalForces => "internal_forces",
+            Stage::Integrate => "integrate",
+            Stage::Check => "check",
+        }
+    }
+}
+
+/// Seconds of wall-clock time per stage of one step (or summed over steps), keyed by
+/// [`Stage`].
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct StageTimings {
-    /// Frames, axes, twists.
-    pub kinematics: f64,
-    /// Centreline, broad and narrow phase, wall.
-    pub detect_contacts: f64,
-    /// The controller.
-    pub control: f64,
-    /// M̃, momentum, generalized force.
-    pub dynamics: f64,
-    /// Constraint rows.
-    pub build_rows: f64,
-    /// Every velocity solve of the step, with the velocity-product refreshes and added rows.
-    pub solve: f64,
-    /// The load each joint transmits (backward pass over the tree).
-    pub internal_forces: f64,
-    /// Position update.
-    pub integrate: f64,
-    /// The result's kinematics and contacts (taken over by the next step) and its judgement.
-    pub check: f64,
+    seconds: [f64; Stage::ALL.len()],
 }
 
 impl StageTimings {
+    /// The seconds of `stage`.
+    pub fn get(&self, stage: Stage) -> f64 {
+        self.seconds[stage as usize]
+    }
+
+    /// Adds `seconds` to `stage`.
+    pub fn add(&mut self, stage: Stage, seconds: f64) {
+        self.seconds[stage as usize] += seconds;
+    }
+
     /// Adds another step's timings.
     pub fn accumulate(&mut self, other: &StageTimings) {
-        self.kinematics += other.kinematics;
-        self.detect_contacts += other.detect_contacts;
-        self.control += other.control;
-        self.dynamics += other.dynamics;
-        self.build_rows += other.build_rows;
-        self.solve += other.solve;
-        self.internal_forces += other.internal_forces;
-        self.integrate += other.integrate;
-        self.check += other.check;
+        for (mine, theirs) in self.seconds.iter_mut().zip(other.seconds) {
+            *mine += theirs;
+        }
     }
 
     /// The named stages and their seconds, in pipeline order.
-    pub fn stages(&self) -> [(&'static str, f64); 9] {
-        [
-            ("kinematics", self.kinematics),
-            ("detect_contacts", self.detect_contacts),
-            ("control", self.control),
-            ("dynamics", self.dynamics),
-            ("build_rows", self.build_rows),
-            ("solve", self.solve),
-            ("internal_forces", self.internal_forces),
-            ("integrate", self.integrate),
-            ("check", self.check),
-        ]
+    pub fn stages(&self) -> [(&'static str, f64); Stage::ALL.len()] {
+        Stage::ALL.map(|stage| (stage.name(), self.get(stage)))
     }
 
     /// Sum of all stages (s).
     pub fn total(&self) -> f64 {
-        self.kinematics
-            + self.detect_contacts
-            + self.control
-            + self.dynamics
-            + self.build_rows
-            + self.solve
-            + self.internal_forces
-            + self.integrate
-            + self.check
+        self.seconds.iter().sum()
+    }
+}
+
+/// The clock of one step's stages: each [`StageClock::lap`] charges the time since the last
+/// one to a stage.
+#[derive(Debug)]
+pub(crate) struct StageClock {
+    last: std::time::Instant,
+    timings: StageTimings,
+}
+
+impl StageClock {
+    /// A clock started now, with no time charged.
+    pub(crate) fn start() -> Self {
+        Self { last: std::time::Instant::now(), timings: StageTimings::default() }
+    }
+
+    /// Charges the time since the previous lap (or the start) to `stage`.
+    pub(crate) fn lap(&mut self, stage: Stage) {
+        let now = std::time::Instant::now();
+        self.timings.add(stage, (now - self.last).as_secs_f64());
+        self.last = now;
+    }
+
+    /// The time charged to each stage.
+    pub(crate) fn timings(&self) -> StageTimings {
+        self.timings
     }
 }

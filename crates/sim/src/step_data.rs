@@ -12,6 +12,7 @@ use hagfish_sparse::TreeFactor;
 use hagfish_tree::{Data, Model, State, position_kinematics};
 
 use crate::backend::DynamicsBackend;
+use crate::carried_contacts::{Carried, CarriedContacts};
 use crate::contact_prediction::ContactPredictor;
 use crate::error::SimError;
 use crate::internal_forces::InternalForces;
@@ -78,22 +79,8 @@ pub struct StepData {
     /// prediction asks for more.
     pub(crate) bounds: Vec<f64>,
     pub(crate) predictor: ContactPredictor,
-    pub(crate) next: NextContacts,
-}
-
-/// The contacts of the state a step ended in, detected by its last stage
-/// ([`crate::pipeline::check_result`]) to judge the result, and taken over by the next step
-/// instead of detecting them again: detection runs once per step, as before the check existed.
-#[derive(Debug)]
-pub(crate) struct NextContacts {
-    centres: Vec<DVec3>,
-    centreline: Centreline,
-    self_contacts: Vec<SelfContact>,
-    wall_contacts: Vec<WallContact>,
-    /// The counts of that detection.
-    pub(crate) detection: DetectionReport,
-    /// True while these (and the tree kinematics) are those of the world's current state.
-    pub(crate) current: bool,
+    /// The contacts of the state the last step ended in, for the next step to take over.
+    pub(crate) carried: CarriedContacts,
 }
 
 /// The wall of `options`, testing only the bodies from the first one whose sphere clears the
@@ -138,13 +125,13 @@ impl StepData {
         solver.reserve(model.dof_count(), reserve);
         let predictor = ContactPredictor::new(model, &centreline);
         let pairs = PAIRS_PER_BODY * model.body_count();
-        let next = NextContacts {
+        let carried = CarriedContacts {
             centres: centres.clone(),
             centreline: centreline.clone(),
             self_contacts: Vec::with_capacity(pairs),
             wall_contacts: Vec::new(),
             detection: DetectionReport::default(),
-            current: false,
+            status: Carried::Stale,
         };
         Ok(Self {
             tree,
@@ -170,17 +157,8 @@ impl StepData {
             effective_mass: Mat::zeros(0, 0),
             bounds: Vec::with_capacity(reserve),
             predictor,
-            next,
+            carried,
         })
-    }
-
-    /// Exchanges the contact geometry (centres, centreline, self and wall contacts) with the
-    /// one kept for the next step: O(1), no copies.
-    pub(crate) fn swap_next(&mut self) {
-        std::mem::swap(&mut self.centres, &mut self.next.centres);
-        std::mem::swap(&mut self.centreline, &mut self.next.centreline);
-        std::mem::swap(&mut self.self_contacts, &mut self.next.self_contacts);
-        std::mem::swap(&mut self.wall_contacts, &mut self.next.wall_contacts);
     }
 
     /// The generalized force of a row group over the last step, `C_gᵀλ_g / h` (dyn·cm per
