@@ -17,9 +17,11 @@
 //! 12 mean local diameters D, held for 0.3 s.
 //!
 //! ```
-//! use hagfish_control::{KnotSpan, Observation, Until};
+//! use hagfish_control::{Condition, Direction, KnotSpan, Observation, Quantity, Threshold, Until};
 //!
-//! let until = Until { seconds: 6.0, hold_s: 0.3, span_below_d: Some(12.0), ..Until::default() };
+//! // In a scenario file: `until: (seconds: 6.0, hold_s: 0.3, when: [(Span, Below, D(12.0))])`.
+//! let small = Condition::new(Quantity::Span, Direction::Below, Threshold::D(12.0))?;
+//! let until = Until { seconds: 6.0, hold_s: 0.3, when: vec![small] };
 //! let span = |length_cm: f64, diameter_cm: f64| KnotSpan {
 //!     start_cm: 10.0,
 //!     end_cm: 10.0 + length_cm,
@@ -43,6 +45,7 @@
 //! // On a body a sixth thinner the same 20 cm span is 13.6 D: not tight enough.
 //! let mut since = None;
 //! assert!(!until.over(1.5, 1.5, &seen(&span(20.0, 1.47)), &mut since));
+//! # Ok::<(), hagfish_control::ControlError>(())
 //! ```
 
 mod controller;
@@ -81,4 +84,4 @@ pub use tie::{
     TieProgress,
 };
 pub use tube_length::{diameters_tail_ward, fraction_leaving};
-pub use until::{Observation, Until};
+pub use until::{Condition, Direction, Observation, Quantity, Threshold, Until};

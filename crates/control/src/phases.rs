@@ -105,20 +105,20 @@ pub struct PhaseProgress {
     pub phase: usize,
     /// Time the current phase started (s).
     pub started_at: f64,
-    /// Since when a knot condition of the current phase's [`Until`] has held without
+    /// Since when a condition of the current phase's [`Until`] has held without
     /// interruption (s), or `None`.
     #[serde(default)]
     pub condition_since: Option<f64>,
     /// The knotted core's head-ward end at the latest observation (fraction of L), or
-    /// `None` if the body was not knotted then ([`Until::core_start_below_l`]).
+    /// `None` if the body was not knotted then (for [`crate::Quantity::CoreStart`]).
     #[serde(default)]
     pub core_start_l: Option<f64>,
     /// The knotted core's length at the latest observation (local diameters), or `None`
-    /// ([`Until::core_length_above_d`], [`Until::core_length_below_d`]).
+    /// (for [`crate::Quantity::CoreLength`]).
     #[serde(default)]
     pub core_length_d: Option<f64>,
     /// [`PhaseProgress::core_length_d`] when the current phase started
-    /// ([`Until::core_growth_above`], [`Until::core_shrink_above`]).
+    /// (for [`crate::Quantity::CoreGrowth`] and [`crate::Quantity::CoreShrink`]).
     #[serde(default)]
     pub core_length_d_at_start: Option<f64>,
 }
@@ -172,9 +172,9 @@ impl PhasedController {
     }
 
     /// Takes the knot analysis of an observation at time `t` (`None` if it failed). Its
-    /// core's head-ward end and length are kept for [`Until::core_start_below_l`] and the core
-    /// length conditions. A tie phase ends on it (the knot shown for `hold_s`), or starts its
-    /// plan again, or fails (`settle_s` after its plan without the knot).
+    /// core's head-ward end and length are kept for the core conditions of an [`Until`]
+    /// ([`crate::Quantity`]). A tie phase ends on it (the knot shown for `hold_s`), or starts
+    /// its plan again, or fails (`settle_s` after its plan without the knot).
     pub fn observe_knot(&mut self, t: f64, knot: Option<KnotObservation<'_>>) {
         self.progress.core_start_l = knot.and_then(|k| k.core_start_l);
         self.progress.core_length_d = knot.and_then(|k| k.core_length_d);
