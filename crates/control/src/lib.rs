@@ -7,7 +7,8 @@
 //! - [`WaterDrag`]: implicit linear + quadratic drag on every body.
 //! - [`FormingController`]: the scripted knot-forming tail pull (thesis §3.3.1, §5.1).
 //! - [`TiePhase`]: a knot tied by control from the body's current state, with the tube it
-//!   plans with kept on any body ([`diameters_tail_ward`]).
+//!   plans with kept on any body ([`diameters_tail_ward`]); its plan is a [`TiePlan`] of
+//!   named steps, each carrying the crossing check that runs after it.
 //! - [`PhasedController`]: drag plus a scenario's phases in order.
 //!
 //! CGS units throughout.
@@ -61,6 +62,7 @@ mod phases;
 mod tail_pd;
 mod thigmotaxis;
 mod tie;
+mod tie_plan;
 mod tube_length;
 mod until;
 
@@ -83,5 +85,6 @@ pub use tie::{
     CrossingCheck, CrossingMiss, Handedness, LayerCode, MIN_AGREEMENT, TieKnot, TiePhase,
     TieProgress,
 };
+pub use tie_plan::{PlanStep, TiePlan};
 pub use tube_length::{diameters_tail_ward, fraction_leaving};
 pub use until::{Condition, Direction, Observation, Quantity, Threshold, Until};

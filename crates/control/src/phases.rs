@@ -200,7 +200,7 @@ impl PhasedController {
         }
     }
 
-    /// Runs the tie phase's crossing checks whose step has ended ([`crate::CrossingCheck`])
+    /// Runs the tie phase's crossing checks whose step has ended ([`crate::PlanStep::check`])
     /// on the body's crossings seen from above, from the crossover on.
     fn check_crossings(&mut self, context: &ControlContext<'_>) {
         let Some(Phase::Tie(phase)) = self.phases.get(self.progress.phase) else {
@@ -215,14 +215,15 @@ impl PhasedController {
         self.observe_crossings(&found);
     }
 
-    /// The tie phase and its next crossing check, if the check's step has ended.
-    fn crossing_check_due(&self) -> Option<(&TiePhase, &'static CrossingCheck)> {
+    /// The tie phase and its next crossing check, if the plan step carrying it has ended.
+    fn crossing_check_due(&self) -> Option<(&TiePhase, CrossingCheck)> {
         let Some(Phase::Tie(phase)) = self.phases.get(self.progress.phase) else {
             return None;
         };
         let step = self.forming.as_ref()?.progress().step;
-        let check = phase.crossing_checks().get(self.tie.checks_done as usize)?;
-        (step > check.after_step && !self.tie.failed).then_some((phase, check))
+        let plan = phase.plan_for(self.tie.attempt);
+        let (after_step, check) = plan.checks().nth(self.tie.checks_done as usize)?;
+        (step > after_step && !self.tie.failed).then_some((phase, check))
     }
 
     /// Runs the due crossing checks on the crossings `found`. A failed check is recorded
@@ -230,8 +231,8 @@ impl PhasedController {
     /// ends as before, on the knot analysis: a check is a diagnosis, the analysis the judge.
     pub(crate) fn observe_crossings(&mut self, found: &[Layer]) {
         while let Some((phase, check)) = self.crossing_check_due() {
-            let checks = phase.crossing_checks().len() as u32;
-            if phase.passes(check, found) || self.tie.shown_since.is_some() {
+            let checks = phase.plan_for(self.tie.attempt).checks().count() as u32;
+            if phase.passes(&check, found) || self.tie.shown_since.is_some() {
                 self.tie.checks_done += 1;
                 continue;
             }
@@ -258,9 +259,10 @@ impl PhasedController {
 
     /// A crossing miss in words, with the check's name and what the plan makes.
     fn describe(phase: &TiePhase, miss: CrossingMiss) -> String {
-        let check = phase.crossing_checks().get(miss.check as usize);
-        let (name, expected) = check
-            .map_or(("a check", String::new()), |c| (c.name, phase.expected_code(c).to_string()));
+        let check = phase.plan_for(miss.attempt).checks().nth(miss.check as usize);
+        let (name, expected) = check.map_or(("a check", String::new()), |(_, c)| {
+            (c.name, phase.expected_code(&c).to_string())
+        });
         format!(
             "attempt {}: after {name} the tail's crossings seen from above were {}; the plan makes {expected}",
             miss.attempt, miss.found
