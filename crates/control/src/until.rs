@@ -111,14 +111,15 @@ impl Quantity {
     /// fraction holds as the phase starts); kinetic energy in erg, `Below` only (settled).
     pub fn admits(self, direction: Direction, threshold: Threshold) -> bool {
         use Threshold::{Cm, D, Erg, Fraction, L};
-        match (self, direction, threshold) {
-            (Quantity::KnotStart, _, Cm(_) | L(_)) => true,
-            (Quantity::Span, _, Cm(_) | L(_) | D(_)) => true,
-            (Quantity::CoreStart, _, L(_)) | (Quantity::CoreLength, _, D(_)) => true,
-            (Quantity::CoreGrowth | Quantity::CoreShrink, Direction::Above, Fraction(_)) => true,
-            (Quantity::KineticEnergy, Direction::Below, Erg(_)) => true,
-            _ => false,
-        }
+        matches!(
+            (self, direction, threshold),
+            (Quantity::KnotStart, _, Cm(_) | L(_))
+                | (Quantity::Span, _, Cm(_) | L(_) | D(_))
+                | (Quantity::CoreStart, _, L(_))
+                | (Quantity::CoreLength, _, D(_))
+                | (Quantity::CoreGrowth | Quantity::CoreShrink, Direction::Above, Fraction(_))
+                | (Quantity::KineticEnergy, Direction::Below, Erg(_))
+        )
     }
 
     /// What [`Quantity::admits`], in words for an error message.
