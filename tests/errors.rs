@@ -217,3 +217,18 @@ fn out_of_range_phase_values_are_located_at_their_occurrence() {
         "speed = 0 is out of range: expected finite and > 0",
     );
 }
+
+/// A phase end condition whose quantity cannot be read in its unit is refused as the file is
+/// read, at the end of the condition (ron's position: its closing parenthesis).
+#[test]
+fn an_end_condition_in_a_unit_its_quantity_has_not_is_refused() {
+    let load = "Load((force_dyn: 0.0, direction: TailTangent, \
+                until: (seconds: 0.5, when: [(KineticEnergy, Below, Cm(1.0))])))";
+    assert_user_error(
+        "error_condition_unit",
+        |t| t.replace("Hold(0.5)", load),
+        "18:114",
+        "(KineticEnergy, Below, Cm(…)) is not an end condition: KineticEnergy is compared \
+         Below, in Erg",
+    );
+}

@@ -78,17 +78,24 @@ fn bad_overrides_are_exit_2_naming_the_override() {
 }
 
 /// A knot-size end condition out of its range is exit 2 at its place in the overridden text:
-/// sizes in diameters > 0, growth > 0, shrinkage a proportion in (0, 1).
+/// sizes in diameters > 0, growth > 0, shrinkage a proportion in (0, 1). A whole list of
+/// conditions or one condition by its index can be set.
 #[test]
 fn knot_size_end_conditions_are_checked() {
     let dir = fresh_dir("overrides_knot_size");
     let scenario = format!("{ROOT}/data/scenarios/loosen_tighten.ron");
     let cases = [
-        ("phases[1].Thigmotaxis.until.core_length_above_d=0.0", "core_length_above_d = 0"),
-        ("phases[2].Thigmotaxis.until.core_length_below_d=-1.0", "core_length_below_d = -1"),
-        ("phases[1].Thigmotaxis.until.core_growth_above=-0.5", "expected finite and > 0"),
-        ("phases[2].Thigmotaxis.until.core_shrink_above=1.5", "expected a proportion in (0, 1)"),
-        ("phases[1].Thigmotaxis.until.span_above_d=0.0", "span_above_d = 0"),
+        ("phases[1].Thigmotaxis.until.when=[(CoreLength, Above, D(0.0))]", "when.D = 0"),
+        ("phases[2].Thigmotaxis.until.when=[(CoreLength, Below, D(-1.0))]", "when.D = -1"),
+        (
+            "phases[1].Thigmotaxis.until.when[0]=(CoreGrowth, Above, Fraction(-0.5))",
+            "expected finite and > 0",
+        ),
+        (
+            "phases[2].Thigmotaxis.until.when[0]=(CoreShrink, Above, Fraction(1.5))",
+            "expected a proportion in (0, 1)",
+        ),
+        ("phases[1].Thigmotaxis.until.when=[(Span, Above, D(0.0))]", "when.D = 0"),
     ];
     for (given, expected) in cases {
         let out = dir.join("run").display().to_string();
@@ -98,4 +105,13 @@ fn knot_size_end_conditions_are_checked() {
         assert!(stderr.contains("[with overrides]:"), "{given}: no location in {stderr}");
         assert!(stderr.contains(expected), "{given}: expected {expected:?} in {stderr}");
     }
+    // A quantity in a unit it cannot be read in is refused, naming what it admits.
+    let given = "phases[1].Thigmotaxis.until.when[0]=(KnotStart, Below, D(3.0))";
+    let out = dir.join("run").display().to_string();
+    let output = run_hagfish(["run", &scenario, "--quiet", "--out", &out, "--set", given]);
+    let (code, stderr) = code_and_stderr(&output);
+    assert_eq!(code, Some(2), "{stderr}");
+    let expected = "(KnotStart, Below, D(…)) is not an end condition: KnotStart is compared \
+                    Below or Above, in Cm or L";
+    assert!(stderr.contains(expected), "expected {expected:?} in {stderr}");
 }

@@ -7,7 +7,8 @@
 //! - [`WaterDrag`]: implicit linear + quadratic drag on every body.
 //! - [`FormingController`]: the scripted knot-forming tail pull (thesis §3.3.1, §5.1).
 //! - [`TiePhase`]: a knot tied by control from the body's current state, with the tube it
-//!   plans with kept on any body ([`diameters_tail_ward`]).
+//!   plans with kept on any body ([`diameters_tail_ward`]); its plan is a [`TiePlan`] of
+//!   named steps, each carrying the crossing check that runs after it.
 //! - [`PhasedController`]: drag plus a scenario's phases in order.
 //!
 //! CGS units throughout.
@@ -17,9 +18,11 @@
 //! 12 mean local diameters D, held for 0.3 s.
 //!
 //! ```
-//! use hagfish_control::{KnotSpan, Observation, Until};
+//! use hagfish_control::{Condition, Direction, KnotSpan, Observation, Quantity, Threshold, Until};
 //!
-//! let until = Until { seconds: 6.0, hold_s: 0.3, span_below_d: Some(12.0), ..Until::default() };
+//! // In a scenario file: `until: (seconds: 6.0, hold_s: 0.3, when: [(Span, Below, D(12.0))])`.
+//! let small = Condition::new(Quantity::Span, Direction::Below, Threshold::D(12.0))?;
+//! let until = Until { seconds: 6.0, hold_s: 0.3, when: vec![small] };
 //! let span = |length_cm: f64, diameter_cm: f64| KnotSpan {
 //!     start_cm: 10.0,
 //!     end_cm: 10.0 + length_cm,
@@ -43,6 +46,7 @@
 //! // On a body a sixth thinner the same 20 cm span is 13.6 D: not tight enough.
 //! let mut since = None;
 //! assert!(!until.over(1.5, 1.5, &seen(&span(20.0, 1.47)), &mut since));
+//! # Ok::<(), hagfish_control::ControlError>(())
 //! ```
 
 mod controller;
@@ -58,6 +62,7 @@ mod phases;
 mod tail_pd;
 mod thigmotaxis;
 mod tie;
+mod tie_plan;
 mod tube_length;
 mod until;
 
@@ -80,5 +85,6 @@ pub use tie::{
     CrossingCheck, CrossingMiss, Handedness, LayerCode, MIN_AGREEMENT, TieKnot, TiePhase,
     TieProgress,
 };
+pub use tie_plan::{PlanStep, TiePlan};
 pub use tube_length::{diameters_tail_ward, fraction_leaving};
-pub use until::{Observation, Until};
+pub use until::{Condition, Direction, Observation, Quantity, Threshold, Until};

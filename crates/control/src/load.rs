@@ -30,8 +30,8 @@ pub struct LoadPhase {
     /// Time to ramp the magnitude up from 0 (s), ≥ 0 (0: at once).
     #[serde(default)]
     pub ramp_s: f64,
-    /// When the phase ends, e.g. `(seconds: 20.0, kinetic_energy_below_erg: Some(1e-9),
-    /// hold_s: 0.5)`: settled.
+    /// When the phase ends, e.g. `(seconds: 20.0, hold_s: 0.5, when: [(KineticEnergy, Below,
+    /// Erg(1e-9))])`: settled.
     pub until: Until,
 }
 

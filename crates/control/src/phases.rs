@@ -105,20 +105,20 @@ pub struct PhaseProgress {
     pub phase: usize,
     /// Time the current phase started (s).
     pub started_at: f64,
-    /// Since when a knot condition of the current phase's [`Until`] has held without
+    /// Since when a condition of the current phase's [`Until`] has held without
     /// interruption (s), or `None`.
     #[serde(default)]
     pub condition_since: Option<f64>,
     /// The knotted core's head-ward end at the latest observation (fraction of L), or
-    /// `None` if the body was not knotted then ([`Until::core_start_below_l`]).
+    /// `None` if the body was not knotted then (for [`crate::Quantity::CoreStart`]).
     #[serde(default)]
     pub core_start_l: Option<f64>,
     /// The knotted core's length at the latest observation (local diameters), or `None`
-    /// ([`Until::core_length_above_d`], [`Until::core_length_below_d`]).
+    /// (for [`crate::Quantity::CoreLength`]).
     #[serde(default)]
     pub core_length_d: Option<f64>,
     /// [`PhaseProgress::core_length_d`] when the current phase started
-    /// ([`Until::core_growth_above`], [`Until::core_shrink_above`]).
+    /// (for [`crate::Quantity::CoreGrowth`] and [`crate::Quantity::CoreShrink`]).
     #[serde(default)]
     pub core_length_d_at_start: Option<f64>,
 }
@@ -172,9 +172,9 @@ impl PhasedController {
     }
 
     /// Takes the knot analysis of an observation at time `t` (`None` if it failed). Its
-    /// core's head-ward end and length are kept for [`Until::core_start_below_l`] and the core
-    /// length conditions. A tie phase ends on it (the knot shown for `hold_s`), or starts its
-    /// plan again, or fails (`settle_s` after its plan without the knot).
+    /// core's head-ward end and length are kept for the core conditions of an [`Until`]
+    /// ([`crate::Quantity`]). A tie phase ends on it (the knot shown for `hold_s`), or starts
+    /// its plan again, or fails (`settle_s` after its plan without the knot).
     pub fn observe_knot(&mut self, t: f64, knot: Option<KnotObservation<'_>>) {
         self.progress.core_start_l = knot.and_then(|k| k.core_start_l);
         self.progress.core_length_d = knot.and_then(|k| k.core_length_d);
@@ -200,7 +200,7 @@ impl PhasedController {
         }
     }
 
-    /// Runs the tie phase's crossing checks whose step has ended ([`crate::CrossingCheck`])
+    /// Runs the tie phase's crossing checks whose step has ended ([`crate::PlanStep::check`])
     /// on the body's crossings seen from above, from the crossover on.
     fn check_crossings(&mut self, context: &ControlContext<'_>) {
         let Some(Phase::Tie(phase)) = self.phases.get(self.progress.phase) else {
@@ -215,14 +215,15 @@ impl PhasedController {
         self.observe_crossings(&found);
     }
 
-    /// The tie phase and its next crossing check, if the check's step has ended.
-    fn crossing_check_due(&self) -> Option<(&TiePhase, &'static CrossingCheck)> {
+    /// The tie phase and its next crossing check, if the plan step carrying it has ended.
+    fn crossing_check_due(&self) -> Option<(&TiePhase, CrossingCheck)> {
         let Some(Phase::Tie(phase)) = self.phases.get(self.progress.phase) else {
             return None;
         };
         let step = self.forming.as_ref()?.progress().step;
-        let check = phase.crossing_checks().get(self.tie.checks_done as usize)?;
-        (step > check.after_step && !self.tie.failed).then_some((phase, check))
+        let plan = phase.plan_for(self.tie.attempt);
+        let (after_step, check) = plan.checks().nth(self.tie.checks_done as usize)?;
+        (step > after_step && !self.tie.failed).then_some((phase, check))
     }
 
     /// Runs the due crossing checks on the crossings `found`. A failed check is recorded
@@ -230,8 +231,8 @@ impl PhasedController {
     /// ends as before, on the knot analysis: a check is a diagnosis, the analysis the judge.
     pub(crate) fn observe_crossings(&mut self, found: &[Layer]) {
         while let Some((phase, check)) = self.crossing_check_due() {
-            let checks = phase.crossing_checks().len() as u32;
-            if phase.passes(check, found) || self.tie.shown_since.is_some() {
+            let checks = phase.plan_for(self.tie.attempt).checks().count() as u32;
+            if phase.passes(&check, found) || self.tie.shown_since.is_some() {
                 self.tie.checks_done += 1;
                 continue;
             }
@@ -258,9 +259,10 @@ impl PhasedController {
 
     /// A crossing miss in words, with the check's name and what the plan makes.
     fn describe(phase: &TiePhase, miss: CrossingMiss) -> String {
-        let check = phase.crossing_checks().get(miss.check as usize);
-        let (name, expected) = check
-            .map_or(("a check", String::new()), |c| (c.name, phase.expected_code(c).to_string()));
+        let check = phase.plan_for(miss.attempt).checks().nth(miss.check as usize);
+        let (name, expected) = check.map_or(("a check", String::new()), |(_, c)| {
+            (c.name, phase.expected_code(&c).to_string())
+        });
         format!(
             "attempt {}: after {name} the tail's crossings seen from above were {}; the plan makes {expected}",
             miss.attempt, miss.found

@@ -4,14 +4,15 @@
 //! A [`TiePhase`] plans crossover → wrap → insertion in body-relative terms — the crossover
 //! at a fraction `at` of the body length L, the sweep in fractions of L, every offset in
 //! local radii — and executes it with the PD tail pull of the forming script, each waypoint
-//! resolved from the body's shape when the move toward it starts. The knot is then checked
+//! resolved from the body's shape when the move toward it starts (the plan, as named steps:
+//! [`TiePlan`](crate::TiePlan) in `tie_plan.rs`). The knot is then checked
 //! by the knot analysis of the controller's observations (type, agreement and handedness,
 //! from the knotted core's writhe): tied and held for `hold_s`, the phase ends; not tied `settle_s`
 //! after the plan, the plan is tried again from the current shape, up to `attempts` times,
 //! and then the phase fails (the run ends with its own status, never a hang).
 //!
-//! Each crossing is checked as it is made ([`CrossingCheck`]): once a step that makes one has
-//! ended, the tail's crossings seen from above ([`tail_crossings`], from the crossover on)
+//! Each crossing is checked as it is made ([`CrossingCheck`]): once the plan step carrying
+//! the check has ended (the step after the move that makes the crossing), the tail's crossings seen from above ([`tail_crossings`], from the crossover on)
 //! must begin with the over/under sequence the plan makes. A crossing lost or made the wrong
 //! way (a loop that slipped open, a tail that went round instead of through) is kept
 //! ([`CrossingMiss`]) for the run's failure message and ends the checks of that attempt;
@@ -28,7 +29,6 @@ use hagfish_tree::Body;
 use serde::{Deserialize, Serialize};
 
 use crate::crossings::Layer;
-use crate::forming::{FormingScript, ScriptStep, Waypoint};
 use crate::tail_pd::TailGains;
 use crate::tube_length::fraction_leaving;
 
@@ -75,41 +75,17 @@ impl TieKnot {
 /// The agreement over closure directions a tied knot must reach.
 pub const MIN_AGREEMENT: f64 = 0.9;
 
-/// A check of the crossings made so far, once step `after_step` of the plan has ended: the
-/// tail's crossings seen from above, from the crossover on, must begin with `expected` (as
-/// planned for the right-handed trefoil and the figure-eight; mirrored for the left-handed
-/// trefoil). Each check runs one step after the move that makes its crossing, since the tail
-/// lags its target (read step by step on 33 ties of 11 bodies: every one that succeeded made
-/// the sequences below; `docs/physics.md` has the one exception seen since).
+/// A check of the crossings made so far, run once the plan step that carries it has ended
+/// ([`PlanStep::check`](crate::PlanStep::check)): the tail's crossings seen from above, from
+/// the crossover on, must begin with `expected` (as planned for the right-handed trefoil and
+/// the figure-eight; mirrored for the left-handed trefoil).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct CrossingCheck {
-    /// The step of the plan after whose end the check runs.
-    pub after_step: usize,
     /// What the check is of, for messages ("the crossover").
     pub name: &'static str,
     /// How the crossings begin, walking from the crossover to the tail.
     pub expected: &'static [Layer],
 }
-
-const fn check(after_step: usize, name: &'static str, expected: &'static [Layer]) -> CrossingCheck {
-    CrossingCheck { after_step, name, expected }
-}
-
-use Layer::{Over, Under};
-
-/// The trefoil's checks: over the body at the crossover (checked after the first insertion
-/// move), then under the loop's strand and up through the loop (checked after the plan).
-const TREFOIL_CHECKS: [CrossingCheck; 2] =
-    [check(6, "the crossover", &[Over]), check(9, "the insertion", &[Over, Under])];
-
-/// The figure-eight's checks: the crossover, under the loop's strand for the wrap, over it
-/// on the way to above the loop, and still so once down through the loop and after the plan.
-const FIGURE_EIGHT_CHECKS: [CrossingCheck; 4] = [
-    check(6, "the crossover", &[Over]),
-    check(8, "the wrap", &[Over, Under]),
-    check(10, "the threading", &[Over, Under, Over]),
-    check(12, "the insertion", &[Over, Under, Over]),
-];
 
 /// A crossing check that failed: in which attempt, which check, and the crossings found.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -139,7 +115,7 @@ impl LayerCode {
         let over_bits = kept
             .iter()
             .enumerate()
-            .filter(|(_, l)| **l == Over)
+            .filter(|(_, l)| **l == Layer::Over)
             .fold(0, |bits, (k, _)| bits | 1 << k);
         Self { over_bits, len: kept.len() as u32 }
     }
@@ -243,14 +219,6 @@ impl TiePhase {
         TiePhase { at, ..self.clone() }
     }
 
-    /// The crossing checks of the plan ([`TiePhase::script`]), in order.
-    pub fn crossing_checks(&self) -> &'static [CrossingCheck] {
-        match self.knot {
-            TieKnot::Trefoil(_) => &TREFOIL_CHECKS,
-            TieKnot::FigureEight => &FIGURE_EIGHT_CHECKS,
-        }
-    }
-
     /// The crossings `check` expects of this knot: as listed, or every layer flipped for the
     /// left-handed trefoil (the mirror image).
     fn expected<'c>(&self, check: &'c CrossingCheck) -> impl Iterator<Item = Layer> + 'c {
@@ -267,74 +235,7 @@ impl TiePhase {
     pub fn expected_code(&self, check: &CrossingCheck) -> LayerCode {
         LayerCode::of(&self.expected(check).collect::<Vec<_>>())
     }
-
-    /// The plan of one attempt as a forming script, in body lengths (crossover at `a = at`,
-    /// remaining length R = 1 − a) and local radii r:
-    /// - the loop: sweep the tail wide, to (a + 0.63R, 0.6R, 0)·L then back to
-    ///   (a + 0.17R, 0.45R, 0)·L so the body lies as a "C", hold 1 s; cross over the body at
-    ///   `at` (3.5 r to one side and 3 r up, over to 4.7 r on the other side, down to 3 r below);
-    /// - trefoil: go under the loop's centroid (3 r below), up through it (3.5 r above) and 6 r
-    ///   further (a tail end left just through the loop slips back out: measured on ES103, the
-    ///   knot showed for one frame). Crossing over first gives the right-handed trefoil
-    ///   (writhe ≈ +2.3 on ES103); the left-handed one is the mirror image in z (under first);
-    /// - figure-eight: wrap the loop's own strand tail-ward of the crossover, at
-    ///   `a + FIGURE_EIGHT_WRAP` (under it to 4.7 r on the first side, up to 3.5 r above),
-    ///   then thread the loop from above (3.5 r above its centroid, 3.5 r below, 6 r
-    ///   further). Wrapping the standing part head-ward of the crossover instead ties a
-    ///   trefoil (measured at `a − 0.04`, `a − 0.08`);
-    /// - then hold 1 s.
-    pub fn script(&self) -> FormingScript {
-        self.script_for(1)
-    }
-
-    /// The plan of attempt `attempt` (from 1): [`TiePhase::script`], at `retry_speed_cm_s`
-    /// after the first attempt where that is set.
-    pub fn script_for(&self, attempt: u32) -> FormingScript {
-        let speed = match self.retry_speed_cm_s {
-            Some(retry) if attempt > 1 => retry,
-            _ => self.speed_cm_s,
-        };
-        let z = match self.knot {
-            TieKnot::Trefoil(Handedness::Left) => -1.0,
-            TieKnot::Trefoil(Handedness::Right) | TieKnot::FigureEight => 1.0,
-        };
-        let (a, rest) = (self.at, 1.0 - self.at);
-        let step = |to| ScriptStep::Move { to, speed };
-        let arc =
-            |at: f64, y: f64, up: f64| Waypoint::FromArc { at, offset_radii: [0.0, y, z * up] };
-        let centroid = |up: f64| step(Waypoint::FromLoopCentroidRadii([0.0, 0.0, z * up]));
-        let further = |up: f64| step(Waypoint::FromTargetRadii([0.0, 0.0, z * up]));
-        let mut steps = vec![
-            step(Waypoint::BodyLengths([a + 0.63 * rest, 0.6 * rest, 0.0])),
-            step(Waypoint::BodyLengths([a + 0.17 * rest, 0.45 * rest, 0.0])),
-            ScriptStep::Hold(1.0),
-            step(arc(a, 3.5, 3.0)),
-            step(arc(a, -4.7, 3.0)),
-            step(arc(a, -4.7, -3.0)),
-        ];
-        match self.knot {
-            // Up through the loop from below.
-            TieKnot::Trefoil(_) => steps.extend([centroid(-3.0), centroid(3.5), further(6.0)]),
-            // Around the loop's strand, then down through the loop from above.
-            TieKnot::FigureEight => {
-                let wrap = a + FIGURE_EIGHT_WRAP;
-                steps.extend([
-                    step(arc(wrap, -4.7, -3.0)),
-                    step(arc(wrap, 4.7, -3.0)),
-                    step(arc(wrap, 4.7, 3.5)),
-                    centroid(3.5),
-                    centroid(-3.5),
-                    further(-6.0),
-                ]);
-            }
-        }
-        steps.push(ScriptStep::Hold(1.0));
-        FormingScript { gains: self.gains, steps }
-    }
 }
-
-/// How far tail-ward of the crossover (fraction of L) the figure-eight's tail wraps the loop.
-const FIGURE_EIGHT_WRAP: f64 = 0.04;
 
 /// Progress of a tie phase: the controller state a checkpoint must keep (with the forming
 /// script's progress).
@@ -364,59 +265,6 @@ mod tests {
 
     fn phase(handedness: Handedness) -> TiePhase {
         TiePhase::new(TieKnot::Trefoil(handedness), 0.31)
-    }
-
-    #[test]
-    fn attempts_after_the_first_move_at_the_retry_speed() {
-        let speeds = |tie: &TiePhase, attempt| -> Vec<f64> {
-            let script = tie.script_for(attempt);
-            let moves = script.steps.iter().filter_map(|step| match step {
-                ScriptStep::Move { speed, .. } => Some(*speed),
-                ScriptStep::Hold(_) => None,
-            });
-            moves.collect()
-        };
-        let mut tie = TiePhase::new(TieKnot::FigureEight, 0.31);
-        assert!(speeds(&tie, 2).iter().all(|&v| v == 5.0), "{:?}", speeds(&tie, 2));
-        tie.speed_cm_s = 3.0;
-        tie.retry_speed_cm_s = Some(5.0);
-        assert_eq!(tie.script(), tie.script_for(1));
-        assert!(speeds(&tie, 1).iter().all(|&v| v == 3.0), "{:?}", speeds(&tie, 1));
-        for attempt in [2, 3] {
-            assert!(speeds(&tie, attempt).iter().all(|&v| v == 5.0), "attempt {attempt}");
-        }
-    }
-
-    #[test]
-    fn the_left_handed_plan_is_the_right_handed_one_mirrored_in_z() {
-        let (right, left) = (phase(Handedness::Right).script(), phase(Handedness::Left).script());
-        assert_eq!(right.steps.len(), left.steps.len());
-        let mirrored = |w: Waypoint| match w {
-            Waypoint::FromArc { at, offset_radii: [x, y, z] } => {
-                Waypoint::FromArc { at, offset_radii: [x, y, -z] }
-            }
-            Waypoint::FromLoopCentroidRadii([x, y, z]) => {
-                Waypoint::FromLoopCentroidRadii([x, y, -z])
-            }
-            Waypoint::FromTargetRadii([x, y, z]) => Waypoint::FromTargetRadii([x, y, -z]),
-            other => other,
-        };
-        for (r, l) in right.steps.iter().zip(&left.steps) {
-            match (*r, *l) {
-                (ScriptStep::Move { to: a, .. }, ScriptStep::Move { to: b, .. }) => {
-                    assert_eq!(mirrored(a), b);
-                }
-                (a, b) => assert_eq!(a, b),
-            }
-        }
-        // Crossing over first (positive z at the crossover) is the right-handed trefoil.
-        let over = right.steps.iter().find_map(|s| match s {
-            ScriptStep::Move { to: Waypoint::FromArc { offset_radii, .. }, .. } => {
-                Some(offset_radii[2])
-            }
-            _ => None,
-        });
-        assert!(over.is_some_and(|z| z > 0.0));
     }
 
     /// A uniform tube of 40 bodies 0.5 cm long and `radius` cm in radius: 10 / radius diameters.
@@ -482,29 +330,6 @@ mod tests {
         controller.observe_knot(42.0, None);
         let failure = controller.tie_failure().expect("failed");
         assert_eq!((failure.knot, failure.attempts), (TieKnot::Trefoil(Handedness::Right), 2));
-    }
-
-    /// Each check runs after a step of the plan, in order; the first after the crossover's
-    /// move down past the body, the last after the plan's final hold.
-    #[test]
-    fn the_crossing_checks_follow_the_plan() {
-        for knot in [TieKnot::Trefoil(Handedness::Right), TieKnot::FigureEight] {
-            let phase = TiePhase::new(knot, 0.31);
-            let (steps, checks) = (phase.script().steps, phase.crossing_checks());
-            let descent = steps
-                .iter()
-                .position(|s| {
-                    matches!(s, ScriptStep::Move { to: Waypoint::FromArc { at, offset_radii }, .. }
-                        if *at == 0.31 && offset_radii[1] < 0.0 && offset_radii[2] < 0.0)
-                })
-                .expect("the crossover's move down");
-            assert_eq!(checks[0].after_step, descent + 1, "{knot:?}: one step after the crossover");
-            assert!(checks.windows(2).all(|w| w[0].after_step < w[1].after_step));
-            assert!(checks.windows(2).all(|w| w[1].expected.starts_with(w[0].expected)));
-            let last = checks.last().expect("checks");
-            assert_eq!(last.after_step, steps.len() - 1, "{knot:?}: the last after the plan");
-            assert!(matches!(steps[last.after_step], ScriptStep::Hold(_)));
-        }
     }
 
     fn tie_controller(knot: TieKnot, attempts: u32) -> PhasedController {

@@ -327,94 +327,27 @@ pub const PARAMETERS: &[Parameter] = &[
         "Thigmotaxis.until.hold_s",
         "s",
         "0",
-        "a knot condition must hold this long without interruption to end the phase",
+        "a condition of when must hold this long without interruption to end the phase",
     ),
     p(
-        "Thigmotaxis.until.knot_start_below_cm",
-        "cm",
-        "None",
-        "end once the knot's anterior end is this close to the head",
-    ),
-    p(
-        "Thigmotaxis.until.knot_start_above_cm",
-        "cm",
-        "None",
-        "end once the knot's anterior end is this far from the head",
-    ),
-    p(
-        "Thigmotaxis.until.span_below_cm",
-        "cm",
-        "None",
-        "end once the knot's contact span is at most this long (tightening)",
-    ),
-    p(
-        "Thigmotaxis.until.span_above_cm",
-        "cm",
-        "None",
-        "end once the knot's contact span is at least this long (loosening)",
-    ),
-    p(
-        "Thigmotaxis.until.knot_start_below_l",
-        "L",
-        "None",
-        "knot_start_below_cm as a fraction of the body length (carries over to other bodies)",
-    ),
-    p(
-        "Thigmotaxis.until.knot_start_above_l",
-        "L",
-        "None",
-        "knot_start_above_cm as a fraction of L",
-    ),
-    p("Thigmotaxis.until.span_below_l", "L", "None", "span_below_cm as a fraction of L"),
-    p("Thigmotaxis.until.span_above_l", "L", "None", "span_above_cm as a fraction of L"),
-    p(
-        "Thigmotaxis.until.span_below_d",
-        "D",
-        "None",
-        "span_below_cm in mean local diameters over the span (carries over to any body)",
-    ),
-    p(
-        "Thigmotaxis.until.span_above_d",
-        "D",
-        "None",
-        "span_above_cm in mean local diameters over the span",
-    ),
-    p(
-        "Thigmotaxis.until.core_start_below_l",
-        "L",
-        "None",
-        "end once the knotted core's head-ward end is this close to the head (latest frame)",
-    ),
-    p(
-        "Thigmotaxis.until.core_length_above_d",
-        "D",
-        "None",
-        "end once the knotted core is at least this many local diameters long (latest frame)",
-    ),
-    p(
-        "Thigmotaxis.until.core_length_below_d",
-        "D",
-        "None",
-        "end once the knotted core is at most this many local diameters long (latest frame)",
-    ),
-    p(
-        "Thigmotaxis.until.core_growth_above",
+        "Thigmotaxis.until.when",
         "-",
-        "None",
-        "end once the knotted core is this fraction longer than when the phase started",
+        "[]",
+        "conditions (QUANTITY, Below|Above, THRESHOLD), any of which ends the phase once held \
+         for hold_s, e.g. [(Span, Below, D(12.6))]; QUANTITY: KnotStart (Cm, L), Span (Cm, L, \
+         D), CoreStart (L), CoreLength (D), CoreGrowth and CoreShrink (Above, Fraction), \
+         KineticEnergy (Below, Erg)",
     ),
+    p("Thigmotaxis.until.when[].Cm", "cm", "-", "threshold in cm of arc length"),
+    p("Thigmotaxis.until.when[].L", "L", "-", "threshold as a fraction of the body length"),
+    p("Thigmotaxis.until.when[].D", "D", "-", "threshold in mean local diameters"),
     p(
-        "Thigmotaxis.until.core_shrink_above",
+        "Thigmotaxis.until.when[].Fraction",
         "-",
-        "None",
-        "end once the knotted core is this fraction shorter than when the phase started",
+        "-",
+        "threshold as a fraction of the knotted core's length when the phase started",
     ),
-    p(
-        "Thigmotaxis.until.kinetic_energy_below_erg",
-        "erg",
-        "None",
-        "ends once the kinetic energy is at most this for hold_s (settled)",
-    ),
+    p("Thigmotaxis.until.when[].Erg", "erg", "-", "threshold of the kinetic energy"),
     p(
         "phases[].Load",
         "-",
@@ -438,8 +371,9 @@ mod tests {
     use std::collections::BTreeSet;
 
     use hagfish_control::{
-        FormingScript, Handedness, LoadDirection, LoadPhase, Phase, ScriptStep, SlidingTargets,
-        TailGains, ThigmoParameters, ThigmoPhase, TieKnot, TiePhase, Until, WaterDrag, Waypoint,
+        Condition, Direction, FormingScript, Handedness, LoadDirection, LoadPhase, Phase, Quantity,
+        ScriptStep, SlidingTargets, TailGains, ThigmoParameters, ThigmoPhase, Threshold, TieKnot,
+        TiePhase, Until, WaterDrag, Waypoint,
     };
 
     use super::*;
@@ -499,22 +433,16 @@ mod tests {
                     until: Until {
                         seconds: 1.0,
                         hold_s: 0.2,
-                        knot_start_below_cm: Some(3.0),
-                        knot_start_above_cm: Some(30.0),
-                        span_below_cm: Some(20.0),
-                        span_above_cm: Some(30.0),
-                        knot_start_below_l: Some(0.05),
-                        knot_start_above_l: Some(0.7),
-                        span_below_l: Some(0.5),
-                        span_above_l: Some(0.7),
-                        span_below_d: Some(12.0),
-                        span_above_d: Some(15.0),
-                        core_start_below_l: Some(0.04),
-                        core_length_above_d: Some(18.0),
-                        core_length_below_d: Some(13.0),
-                        core_growth_above: Some(0.3),
-                        core_shrink_above: Some(0.25),
-                        kinetic_energy_below_erg: Some(1e-6),
+                        when: [
+                            (Quantity::KnotStart, Direction::Below, Threshold::Cm(3.0)),
+                            (Quantity::Span, Direction::Above, Threshold::L(0.7)),
+                            (Quantity::Span, Direction::Below, Threshold::D(12.0)),
+                            (Quantity::CoreGrowth, Direction::Above, Threshold::Fraction(0.3)),
+                            (Quantity::KineticEnergy, Direction::Below, Threshold::Erg(1e-6)),
+                        ]
+                        .into_iter()
+                        .map(|c| Condition::try_from(c).expect("admitted"))
+                        .collect(),
                     },
                 }),
                 Phase::Load(LoadPhase {
@@ -582,14 +510,8 @@ mod tests {
         let Some(Phase::Thigmotaxis(phase)) = scenario.phases.first() else {
             panic!("one thigmotaxis phase")
         };
-        assert_eq!(default("Thigmotaxis.until.knot_start_below_cm"), "None");
-        assert_eq!(phase.until.knot_start_below_cm, None);
-        assert_eq!(default("Thigmotaxis.until.knot_start_above_cm"), "None");
-        assert_eq!(phase.until.knot_start_above_cm, None);
-        assert_eq!(default("Thigmotaxis.until.span_below_cm"), "None");
-        assert_eq!(phase.until.span_below_cm, None);
-        assert_eq!(default("Thigmotaxis.until.span_above_cm"), "None");
-        assert_eq!(phase.until.span_above_cm, None);
+        assert_eq!(default("Thigmotaxis.until.when"), "[]");
+        assert!(phase.until.when.is_empty());
         assert_eq!(default("Thigmotaxis.name"), format!("{:?}", phase.name));
         let drag = WaterDrag::default();
         assert_eq!(drag.quadratic_g_per_cm3, 0.5);

@@ -11,8 +11,8 @@ use std::collections::HashMap;
 
 use hagfish_anatomy::{AnatomyError, DataFile, Field};
 use hagfish_control::{
-    FormingScript, LoadDirection, LoadPhase, Phase, ScriptStep, TailGains, ThigmoPhase, TiePhase,
-    Until, Waypoint,
+    FormingScript, LoadDirection, LoadPhase, Phase, Quantity, ScriptStep, TailGains, ThigmoPhase,
+    Threshold, TiePhase, Until, Waypoint,
 };
 
 use crate::initial_shape::{InitialShape, OpenTorusKnot};
@@ -253,29 +253,19 @@ impl Checker<'_> {
     fn until(&mut self, until: &Until) -> Result<(), AnatomyError> {
         self.check("seconds", until.seconds, Range::NonNegative)?;
         self.check("hold_s", until.hold_s, Range::NonNegative)?;
-        // The optional end conditions in file order, each with its range.
-        let optional = [
-            ("knot_start_below_cm", until.knot_start_below_cm, Range::Finite),
-            ("knot_start_above_cm", until.knot_start_above_cm, Range::Finite),
-            ("span_below_cm", until.span_below_cm, Range::Finite),
-            ("span_above_cm", until.span_above_cm, Range::Finite),
-            ("knot_start_below_l", until.knot_start_below_l, Range::Fraction),
-            ("knot_start_above_l", until.knot_start_above_l, Range::Fraction),
-            ("span_below_l", until.span_below_l, Range::Fraction),
-            ("span_above_l", until.span_above_l, Range::Fraction),
-            ("span_below_d", until.span_below_d, Range::Positive),
-            ("span_above_d", until.span_above_d, Range::Positive),
-            ("core_start_below_l", until.core_start_below_l, Range::Fraction),
-            ("core_length_above_d", until.core_length_above_d, Range::Positive),
-            ("core_length_below_d", until.core_length_below_d, Range::Positive),
-            ("core_growth_above", until.core_growth_above, Range::Positive),
-            ("core_shrink_above", until.core_shrink_above, Range::Proportion),
-            ("kinetic_energy_below_erg", until.kinetic_energy_below_erg, Range::NonNegative),
-        ];
-        for (key, value, range) in optional {
-            if let Some(value) = value {
-                self.check(key, value, range)?;
-            }
+        // The end conditions in file order, each found by its unit (`D(12.6)`) with its range.
+        for condition in &until.when {
+            let (key, range) = match (condition.quantity(), condition.threshold()) {
+                (_, Threshold::Cm(_)) => ("when.Cm", Range::Finite),
+                (_, Threshold::L(_)) => ("when.L", Range::Fraction),
+                (_, Threshold::D(_)) => ("when.D", Range::Positive),
+                (Quantity::CoreShrink, Threshold::Fraction(_)) => {
+                    ("when.Fraction", Range::Proportion)
+                }
+                (_, Threshold::Fraction(_)) => ("when.Fraction", Range::Positive),
+                (_, Threshold::Erg(_)) => ("when.Erg", Range::NonNegative),
+            };
+            self.check(key, condition.threshold().value(), range)?;
         }
         Ok(())
     }
