@@ -147,11 +147,7 @@ impl Manifest {
 
     /// Reads the manifest of the run in `directory`.
     pub fn read(directory: &Path) -> Result<Self, CliError> {
-        let path = directory.join(MANIFEST_FILE);
-        let text = std::fs::read_to_string(&path)
-            .map_err(|e| CliError::RunDirectory { path: path.clone(), reason: e.to_string() })?;
-        serde_json::from_str(&text)
-            .map_err(|e| CliError::RunDirectory { path, reason: e.to_string() })
+        read_json(directory.join(MANIFEST_FILE))
     }
 
     /// Lists the files of `directory` and writes the manifest there (atomically).
@@ -194,4 +190,12 @@ fn list_files(directory: &Path) -> Result<Vec<FileEntry>, CliError> {
     }
     files.sort_by(|a, b| a.name.cmp(&b.name));
     Ok(files)
+}
+
+/// Reads the JSON file at `path` (a run's or a sweep's record); a missing or malformed file
+/// is a [`CliError::RunDirectory`].
+pub(crate) fn read_json<T: serde::de::DeserializeOwned>(path: PathBuf) -> Result<T, CliError> {
+    let text = std::fs::read_to_string(&path)
+        .map_err(|e| CliError::RunDirectory { path: path.clone(), reason: e.to_string() })?;
+    serde_json::from_str(&text).map_err(|e| CliError::RunDirectory { path, reason: e.to_string() })
 }

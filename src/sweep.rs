@@ -211,11 +211,7 @@ impl Plan {
     /// # Errors
     /// [`CliError::RunDirectory`] if `plan.json` is missing or malformed.
     pub fn read(folder: &Path) -> Result<Self, CliError> {
-        let path = folder.join(PLAN_FILE);
-        let text = std::fs::read_to_string(&path)
-            .map_err(|e| CliError::RunDirectory { path: path.clone(), reason: e.to_string() })?;
-        serde_json::from_str(&text)
-            .map_err(|e| CliError::RunDirectory { path, reason: e.to_string() })
+        crate::manifest::read_json(folder.join(PLAN_FILE))
     }
 
     /// The run directory of `run` in the sweep folder `folder`.

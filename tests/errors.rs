@@ -37,71 +37,38 @@ fn assert_user_error(name: &str, edit: impl Fn(&str) -> String, position: &str, 
     assert!(!stderr.contains("panicked"), "{stderr}");
 }
 
-#[test]
-fn syntax_error() {
-    assert_user_error(
-        "error_syntax",
-        |t| t.replace("duration_s: 1.5,", "duration_s: 1.5"),
-        "8:5",
-        "Expected comma",
-    );
+/// One test a case: `name`'s output directory is `error_name`, `from => to` the edit of
+/// form.ron, then the expected `LINE:COLUMN` and the start of the message (see
+/// [`assert_user_error`]).
+macro_rules! user_error {
+    ($name:ident, $from:expr => $to:expr, $position:expr, $message:expr) => {
+        #[test]
+        fn $name() {
+            let name = concat!("error_", stringify!($name));
+            assert_user_error(name, |t| t.replace($from, $to), $position, $message);
+        }
+    };
 }
 
-#[test]
-fn unknown_field() {
-    assert_user_error(
-        "error_unknown_field",
-        |t| t.replace("record_every_s", "record_evry_s"),
-        "8:5",
-        "unknown field `record_evry_s`, expected one of: name, body, time_step_s, duration_s, end_after_phases, record_every_s, observe_every_s, drag, initial_shape, phases",
-    );
-}
-
-#[test]
-fn wrong_type() {
-    assert_user_error(
-        "error_wrong_type",
-        |t| t.replace("time_step_s: 0.01", "time_step_s: \"fast\""),
-        "6:17",
-        "Expected float",
-    );
-}
-
-#[test]
-fn an_initial_knot_that_is_no_torus_knot_is_located_at_its_value() {
-    assert_user_error(
-        "error_initial_shape",
-        |t| {
-            t.replace(
-                "    phases: [",
-                "    initial_shape: Some(OpenTorusKnot((crossings: 4, radius_l: 0.02, start_l: \
-                 0.1))),\n    phases: [",
-            )
-        },
-        "10:51",
-        "crossings = 4 is out of range: expected an odd number ≥ 3",
-    );
-}
-
-#[test]
-fn negative_time_step() {
-    assert_user_error(
-        "error_negative_time_step",
-        |t| t.replace("time_step_s: 0.01", "time_step_s: -0.01"),
-        "6:18",
-        "time_step_s = -0.01 is out of range: expected finite and ≥ 1e-6",
-    );
-}
-
-#[test]
-fn time_step_below_the_floor() {
-    assert_user_error(
-        "error_tiny_time_step",
-        |t| t.replace("time_step_s: 0.01", "time_step_s: 1e-300"),
-        "6:18",
-        "time_step_s = 1e-300 is out of range: expected finite and ≥ 1e-6",
-    );
-}
+user_error!(syntax_error, "duration_s: 1.5," => "duration_s: 1.5", "8:5", "Expected comma");
+user_error!(unknown_field, "record_every_s" => "record_evry_s", "8:5",
+    "unknown field `record_evry_s`, expected one of: name, body, time_step_s, duration_s, end_after_phases, record_every_s, observe_every_s, drag, initial_shape, phases");
+user_error!(wrong_type, "time_step_s: 0.01" => "time_step_s: \"fast\"", "6:17", "Expected float");
+user_error!(negative_time_step, "time_step_s: 0.01" => "time_step_s: -0.01", "6:18",
+    "time_step_s = -0.01 is out of range: expected finite and ≥ 1e-6");
+user_error!(time_step_below_the_floor, "time_step_s: 0.01" => "time_step_s: 1e-300", "6:18",
+    "time_step_s = 1e-300 is out of range: expected finite and ≥ 1e-6");
+user_error!(unknown_phase, "Hold(0.5)" => "Wait(0.5)", "18:9",
+    "Unexpected variant named `Wait` in enum `Phase`, expected one of `Form`, `Hold`, `Thigmotaxis`, `Tie`, or `Load` instead");
+user_error!(
+    an_initial_knot_that_is_no_torus_knot_is_located_at_its_value,
+    "    phases: [" => "    initial_shape: Some(OpenTorusKnot((crossings: 4, radius_l: 0.02, start_l: \
+                       0.1))),\n    phases: [",
+    "10:51",
+    "crossings = 4 is out of range: expected an odd number ≥ 3"
+);
+user_error!(missing_body_file, "es103.ron" => "missing.ron", "5:11",
+    &format!("body: {ROOT}/data/hagfish/missing.ron: cannot read the file"));
 
 #[test]
 fn too_many_steps_are_refused_before_the_run_starts() {
@@ -112,26 +79,6 @@ fn too_many_steps_are_refused_before_the_run_starts() {
         stderr.trim(),
         "error: the scenario needs 1e11 steps (duration_s / time_step_s), more than the cap of \
          100000000: shorten it, raise the time step, or allow more with --max-steps"
-    );
-}
-
-#[test]
-fn unknown_phase() {
-    assert_user_error(
-        "error_unknown_phase",
-        |t| t.replace("Hold(0.5)", "Wait(0.5)"),
-        "18:9",
-        "Unexpected variant named `Wait` in enum `Phase`, expected one of `Form`, `Hold`, `Thigmotaxis`, `Tie`, or `Load` instead",
-    );
-}
-
-#[test]
-fn missing_body_file() {
-    assert_user_error(
-        "error_missing_body",
-        |t| t.replace("es103.ron", "missing.ron"),
-        "5:11",
-        &format!("body: {ROOT}/data/hagfish/missing.ron: cannot read the file"),
     );
 }
 

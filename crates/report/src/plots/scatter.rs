@@ -4,8 +4,7 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::figure::{DrawResult, Figure};
-use crate::font::FAMILY;
+use super::figure::{Axes, DrawResult, Figure, chart};
 
 /// Points of one quantity (y) against another (x).
 #[derive(Clone, Debug, PartialEq)]
@@ -42,20 +41,14 @@ impl Figure for Scatter {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<DB> {
         let (x0, x1) = range(self.points.iter().map(|p| p.0));
         let (y0, y1) = range(self.points.iter().map(|p| p.1));
-        let mut chart = ChartBuilder::on(root)
-            .caption(&self.title, (FAMILY, 16))
-            .margin(10)
-            .x_label_area_size(40)
-            .y_label_area_size(60)
-            .build_cartesian_2d(x0..x1, y0..y1)?;
-        chart
-            .configure_mesh()
-            .light_line_style(RGBColor(235, 235, 235))
-            .x_desc(self.x_label.as_str())
-            .y_desc(self.y_label.as_str())
-            .label_style((FAMILY, 12))
-            .axis_desc_style((FAMILY, 14))
-            .draw()?;
+        let axes = Axes {
+            title: &self.title,
+            title_size: 16,
+            x_label: &self.x_label,
+            y_label: &self.y_label,
+            y_label_area: 60,
+        };
+        let mut chart = chart(root, &axes, x0..x1, y0..y1)?;
         let colour = RGBColor(31, 119, 180);
         chart.draw_series(self.points.iter().map(|&p| Circle::new(p, 4, colour.filled())))?;
         Ok(())

@@ -3,7 +3,7 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::figure::{DrawResult, Figure};
+use super::figure::{Axes, DrawResult, Figure, chart};
 use super::rgb;
 use crate::colour::Rgb;
 use crate::font::FAMILY;
@@ -69,20 +69,14 @@ impl Figure for TimeSeries {
         let t0 = self.times.first().copied().unwrap_or(0.0);
         let t1 = self.times.last().copied().filter(|t| *t > t0).unwrap_or(t0 + 1.0);
         let (y0, y1) = self.y_range();
-        let mut chart = ChartBuilder::on(root)
-            .caption(&self.title, (FAMILY, 18))
-            .margin(10)
-            .x_label_area_size(40)
-            .y_label_area_size(56)
-            .build_cartesian_2d(t0..t1, y0..y1)?;
-        chart
-            .configure_mesh()
-            .light_line_style(RGBColor(235, 235, 235))
-            .x_desc("time (s)")
-            .y_desc(self.y_label.as_str())
-            .label_style((FAMILY, 12))
-            .axis_desc_style((FAMILY, 14))
-            .draw()?;
+        let axes = Axes {
+            title: &self.title,
+            title_size: 18,
+            x_label: "time (s)",
+            y_label: &self.y_label,
+            y_label_area: 56,
+        };
+        let mut chart = chart(root, &axes, t0..t1, y0..y1)?;
         for line in &self.lines {
             let colour = rgb(line.colour);
             let style = colour.stroke_width(2);

@@ -5,11 +5,11 @@
 //! solved velocity would cross a limit, for the pipeline to solve again. (REDMAX's MATLAB upper row has the opposite sign, which allows
 //! further violation; the test `upper_limit_row_stops_the_joint` pins ours.)
 
-use hagfish_solver::{RowKind, Rows};
+use hagfish_solver::Rows;
 use hagfish_tree::{Model, State};
 
 use super::RowGroup;
-use super::stabilisation::unilateral_rhs;
+use super::stabilisation::push_unilateral_row;
 
 /// Appends the active lower and upper limit rows.
 pub fn add_limit_rows(
@@ -23,8 +23,7 @@ pub fn add_limit_rows(
     for (k, dof) in model.dofs().iter().enumerate() {
         for (gap, sign) in [(state.q[k] - dof.lower, 1.0), (dof.upper - state.q[k], -1.0)] {
             if has_row(gap, state.qdot[k], time_step, dof_margin(dof, margin)) {
-                let rhs = unilateral_rhs(gap, time_step, push_out);
-                rows.push_zeroed(RowKind::Inequality, RowGroup::Limit.source(k), rhs)[k] = sign;
+                push_unilateral_row(rows, RowGroup::Limit, k, gap, time_step, push_out)[k] = sign;
             }
         }
     }
@@ -57,8 +56,7 @@ pub fn add_overshooting_limit_rows(
 ) -> usize {
     let mut added = 0;
     for (k, gap, sign) in overshooting_limits(model, state, qdot_next, time_step, margin) {
-        let rhs = unilateral_rhs(gap, time_step, push_out);
-        rows.push_zeroed(RowKind::Inequality, RowGroup::Limit.source(k), rhs)[k] = sign;
+        push_unilateral_row(rows, RowGroup::Limit, k, gap, time_step, push_out)[k] = sign;
         added += 1;
     }
     added

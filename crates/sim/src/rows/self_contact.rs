@@ -6,12 +6,12 @@
 
 use glam::DVec3;
 use hagfish_geometry::{SelfContact, SplineWeights};
-use hagfish_solver::{RowKind, Rows};
+use hagfish_solver::Rows;
 use hagfish_tree::jacobian::add_point_rows;
 use hagfish_tree::{Data, Model};
 
 use super::RowGroup;
-use super::stabilisation::unilateral_rhs;
+use super::stabilisation::push_unilateral_row;
 
 /// Appends one row per self contact, id its index in `contacts` (both spline points blended in one walk to the root).
 pub fn add_self_contact_rows(
@@ -23,8 +23,7 @@ pub fn add_self_contact_rows(
     rows: &mut Rows,
 ) {
     for (i, contact) in contacts.iter().enumerate() {
-        let rhs = unilateral_rhs(contact.gap, time_step, push_out);
-        let row = rows.push_zeroed(RowKind::Inequality, RowGroup::Contact.source(i), rhs);
+        let row = push_unilateral_row(rows, RowGroup::Contact, i, contact.gap, time_step, push_out);
         let mut points = [(0, DVec3::ZERO, 0.0); 2 * SplineWeights::CAPACITY];
         let mut count = 0;
         for (weights, sign) in [(&contact.weights_b, 1.0), (&contact.weights_a, -1.0)] {

@@ -4,12 +4,12 @@
 //! `n_w·(ω × (−r_k n_w)) = 0`.
 
 use hagfish_geometry::WallContact;
-use hagfish_solver::{RowKind, Rows};
+use hagfish_solver::Rows;
 use hagfish_tree::jacobian::add_point_row;
 use hagfish_tree::{Data, Model};
 
 use super::RowGroup;
-use super::stabilisation::unilateral_rhs;
+use super::stabilisation::push_unilateral_row;
 
 /// Appends one row per wall contact, id its index in `contacts`.
 pub fn add_wall_rows(
@@ -21,8 +21,7 @@ pub fn add_wall_rows(
     rows: &mut Rows,
 ) {
     for (i, contact) in contacts.iter().enumerate() {
-        let rhs = unilateral_rhs(contact.gap, time_step, push_out);
-        let row = rows.push_zeroed(RowKind::Inequality, RowGroup::Wall.source(i), rhs);
+        let row = push_unilateral_row(rows, RowGroup::Wall, i, contact.gap, time_step, push_out);
         let centre = data.body_centre(contact.body);
         add_point_row(model, data, contact.body, centre, contact.normal, 1.0, row);
     }
