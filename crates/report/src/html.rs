@@ -103,15 +103,18 @@ fn run_data(run: &RunDir) -> String {
 /// user-named field (a phase name) can close or confuse the element, and U+2028/U+2029 too,
 /// which older JavaScript does not allow in strings. The text still parses to the same value.
 fn script_safe(json: &str) -> String {
+    const ESCAPES: [(char, &str); 5] = [
+        ('<', "\\u003c"),
+        ('>', "\\u003e"),
+        ('&', "\\u0026"),
+        ('\u{2028}', "\\u2028"),
+        ('\u{2029}', "\\u2029"),
+    ];
     let mut safe = String::with_capacity(json.len());
     for c in json.chars() {
-        match c {
-            '<' => safe.push_str("\\u003c"),
-            '>' => safe.push_str("\\u003e"),
-            '&' => safe.push_str("\\u0026"),
-            '\u{2028}' => safe.push_str("\\u2028"),
-            '\u{2029}' => safe.push_str("\\u2029"),
-            _ => safe.push(c),
+        match ESCAPES.iter().find(|(special, _)| *special == c) {
+            Some((_, escaped)) => safe.push_str(escaped),
+            None => safe.push(c),
         }
     }
     safe
