@@ -63,18 +63,6 @@ pub enum CliError {
         /// What is wrong.
         reason: String,
     },
-    /// A malformed CSV file, at `file:line:column`.
-    #[error("{}:{line}:{column}: {message}", path.display())]
-    Csv {
-        /// The file.
-        path: PathBuf,
-        /// Line, from 1.
-        line: usize,
-        /// Column in characters, from 1.
-        column: usize,
-        /// What is wrong and what was expected.
-        message: String,
-    },
     /// A malformed sweep grid file, at `file:line:column`.
     #[error("{}:{line}:{column}: {message}", path.display())]
     Grid {

@@ -51,7 +51,7 @@ fn knot_reads_a_centreline_and_reports_positioned_errors() {
     let (code, stderr) = code_and_stderr(&output);
     assert_eq!(code, Some(2));
     let expected = format!(
-        "error: {}:5:12: `x_cm` = \"abc1.484000\": expected a finite number",
+        "error: {}:5: field 4 `x_cm` (\"abc1.484000\") is not a finite number",
         bad.display()
     );
     assert!(stderr.starts_with(&expected), "expected {expected}, got {stderr}");

@@ -1,12 +1,14 @@
 //! `hagfish knot FILE`: reads a `centreline.csv` (`frame,time_s,body,x_cm,y_cm,z_cm`, as
 //! `hagfish run` writes it) a line at a time and prints the knot type of every frame as it
-//! completes. A malformed line is an error at its `file:line:column`.
+//! completes, through the report's CSV reader. A malformed line is an error at its
+//! `file:line`, naming the column.
 
-use std::io::{BufRead, BufReader, Write};
-use std::path::{Path, PathBuf};
+use std::io::Write;
+use std::path::PathBuf;
 
 use glam::DVec3;
 use hagfish_knots::{KnotAnalyser, KnotOptions};
+use hagfish_report::{CsvFile, Rows};
 
 use super::CliError;
 
@@ -29,14 +31,11 @@ struct FramePoints {
 
 /// Reads the file and prints `frame time_s knot agreement knotted_bodies position_cm` per
 /// frame (`-` where the analysis found no knotted stretch, the reason where it failed). The
-/// file is read a line at a time and each frame printed once it is complete, so a run of any
+/// file is read a row at a time and each frame printed once it is complete, so a run of any
 /// length needs one frame in memory; a malformed line stops it there with its error.
 pub fn run(args: &KnotArgs, out: &mut impl Write) -> Result<(), CliError> {
-    let file = std::fs::File::open(&args.file).map_err(|e| CliError::RunDirectory {
-        path: args.file.clone(),
-        reason: format!("cannot read the file: {e}"),
-    })?;
-    let mut frames = Frames::new(BufReader::new(file), &args.file)?;
+    let file = CsvFile::open(&args.file)?;
+    let mut frames = Frames::new(&file)?;
     let (options, mut analyser) = (KnotOptions::default(), KnotAnalyser::default());
     writeln!(
         out,
@@ -61,124 +60,52 @@ pub fn run(args: &KnotArgs, out: &mut impl Write) -> Result<(), CliError> {
     Ok(())
 }
 
-/// The frames of a centreline CSV, in file order, read a line at a time; rows of one frame
-/// must be consecutive.
-struct Frames<'a, R> {
-    lines: std::iter::Enumerate<std::io::Lines<R>>,
-    path: &'a Path,
-    /// The header's column names and the places of [`COLUMNS`] among them.
-    names: Vec<String>,
+/// The frames of a centreline CSV, in file order, read a row at a time by the report's CSV
+/// reader; rows of one frame must be consecutive.
+struct Frames<'a> {
+    rows: Rows<'a>,
+    /// The places of [`COLUMNS`] in the header.
     index: [usize; 5],
     /// The frame being read (complete once a row of the next one, or the end, is read).
     current: Option<FramePoints>,
 }
 
-impl<'a, R: BufRead> Frames<'a, R> {
-    /// Reads the header of `reader` (the file `path`).
-    fn new(reader: R, path: &'a Path) -> Result<Self, CliError> {
-        let mut lines = reader.lines().enumerate();
-        let header = match lines.next() {
-            Some((_, line)) => line.map_err(|e| read_error(path, &e))?,
-            None => {
-                return Err(csv_error(
-                    path,
-                    1,
-                    1,
-                    format!("empty file: expected a header with {}", COLUMNS.join(",")),
-                ));
-            }
-        };
-        let names: Vec<String> = header.split(',').map(|n| n.trim().to_string()).collect();
+impl<'a> Frames<'a> {
+    /// The frames of `file`, whose header must have every one of [`COLUMNS`].
+    fn new(file: &'a CsvFile) -> Result<Self, CliError> {
         let mut index = [0usize; 5];
         for (slot, wanted) in index.iter_mut().zip(COLUMNS) {
-            *slot = names.iter().position(|n| n == wanted).ok_or_else(|| {
-                let expected = COLUMNS.join(",");
-                csv_error(
-                    path,
-                    1,
-                    1,
-                    format!("header has no column `{wanted}`: expected {expected}"),
-                )
-            })?;
+            *slot = file.column(wanted)?;
         }
-        Ok(Self { lines, path, names, index, current: None })
+        Ok(Self { rows: file.rows()?, index, current: None })
     }
 
     /// The next complete frame, or `None` at the end of the file.
     fn next_frame(&mut self) -> Result<Option<FramePoints>, CliError> {
-        while let Some((i, line)) = self.lines.next() {
-            let line = line.map_err(|e| read_error(self.path, &e))?;
-            if line.trim().is_empty() {
-                continue;
-            }
-            if let Some(done) = self.add_row(i + 1, &line)? {
-                return Ok(Some(done));
+        let index = self.index;
+        while let Some(row) = self.rows.next_record()? {
+            let frame = row.index(index[0])? as u64;
+            let point =
+                DVec3::new(row.number(index[2])?, row.number(index[3])?, row.number(index[4])?);
+            match &mut self.current {
+                Some(last) if last.frame == frame => last.points.push(point),
+                Some(last) if frame < last.frame => {
+                    let what = format!(
+                        "comes after frame {}: expected the rows of a frame together, frames increasing",
+                        last.frame
+                    );
+                    return Err(row.error(index[0], &what).into());
+                }
+                _ => {
+                    let next =
+                        FramePoints { frame, time: row.number(index[1])?, points: vec![point] };
+                    if let Some(done) = self.current.replace(next) {
+                        return Ok(Some(done));
+                    }
+                }
             }
         }
         Ok(self.current.take())
-    }
-
-    /// Adds the row at line `number`; returns the frame it completes, if it starts another.
-    fn add_row(&mut self, number: usize, line: &str) -> Result<Option<FramePoints>, CliError> {
-        let (path, index) = (self.path, self.index);
-        let fields: Vec<&str> = line.split(',').collect();
-        let width = self.names.len();
-        if fields.len() != width {
-            return Err(csv_error(
-                path,
-                number,
-                line.chars().count() + 1,
-                format!("{} fields, expected {width} as in the header", fields.len()),
-            ));
-        }
-        let column =
-            |k: usize| 1 + fields[..k].iter().map(|f| f.chars().count() + 1).sum::<usize>();
-        let number_at = |k: usize| -> Result<f64, CliError> {
-            let field = fields[k].trim();
-            field.parse::<f64>().ok().filter(|v| v.is_finite()).ok_or_else(|| {
-                let message =
-                    format!("`{}` = \"{field}\": expected a finite number", self.names[k]);
-                csv_error(path, number, column(k), message)
-            })
-        };
-        let frame = fields[index[0]].trim().parse::<u64>().map_err(|_| {
-            let message =
-                format!("frame = \"{}\": expected a whole number", fields[index[0]].trim());
-            csv_error(path, number, column(index[0]), message)
-        })?;
-        let point = DVec3::new(number_at(index[2])?, number_at(index[3])?, number_at(index[4])?);
-        match &mut self.current {
-            Some(last) if last.frame == frame => {
-                last.points.push(point);
-                Ok(None)
-            }
-            Some(last) if frame < last.frame => Err(csv_error(
-                path,
-                number,
-                column(index[0]),
-                format!(
-                    "frame {frame} after frame {}: expected the rows of a frame together, frames increasing",
-                    last.frame
-                ),
-            )),
-            _ => {
-                let next = FramePoints { frame, time: number_at(index[1])?, points: vec![point] };
-                Ok(self.current.replace(next))
-            }
-        }
-    }
-}
-
-/// A malformed line of `path`, at `line:column`.
-fn csv_error(path: &Path, line: usize, column: usize, message: String) -> CliError {
-    CliError::Csv { path: path.to_path_buf(), line, column, message }
-}
-
-/// A read failure of `path`.
-fn read_error(path: &Path, e: &std::io::Error) -> CliError {
-    CliError::RunDirectory {
-        path: path.to_path_buf(),
-        reason: format!("cannot read the file: {e}"),
     }
 }
 
@@ -186,9 +113,14 @@ fn read_error(path: &Path, e: &std::io::Error) -> CliError {
 mod tests {
     use super::*;
 
-    /// Every frame of `text`, read as `hagfish knot` reads a file.
-    fn parse(text: &str, path: &Path) -> Result<Vec<FramePoints>, CliError> {
-        let mut frames = Frames::new(text.as_bytes(), path)?;
+    /// Every frame of `text`, read as `hagfish knot` reads a file (written to `name`).
+    fn parse(text: &str, name: &str) -> Result<Vec<FramePoints>, CliError> {
+        let dir = std::env::temp_dir().join(format!("hagfish-knot-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("temporary folder");
+        let path = dir.join(name);
+        std::fs::write(&path, text).expect("write");
+        let file = CsvFile::open(&path)?;
+        let mut frames = Frames::new(&file)?;
         let mut all = Vec::new();
         while let Some(frame) = frames.next_frame()? {
             all.push(frame);
@@ -196,10 +128,14 @@ mod tests {
         Ok(all)
     }
 
+    /// The error of reading `text`, from the file name on.
     fn message(text: &str) -> String {
-        match parse(text, Path::new("c.csv")) {
+        match parse(text, "c.csv") {
             Ok(_) => String::from("parsed"),
-            Err(e) => e.to_string(),
+            Err(e) => {
+                let e = e.to_string();
+                e.find("c.csv").map_or(e.clone(), |at| e[at..].to_owned())
+            }
         }
     }
 
@@ -207,25 +143,25 @@ mod tests {
     fn frames_are_grouped_and_errors_are_positioned() {
         let good =
             "frame,time_s,body,x_cm,y_cm,z_cm\n0,0.0,0,1,2,3\n0,0.0,1,2,2,3\n1,0.1,0,1,2,4\n";
-        let frames = parse(good, Path::new("c.csv")).expect("parses");
+        let frames = parse(good, "good.csv").expect("parses");
         assert_eq!(frames.len(), 2);
         assert_eq!(frames[0].points.len(), 2);
         assert_eq!(frames[1].points[0], DVec3::new(1.0, 2.0, 4.0));
         let header = "frame,time_s,body,x_cm,y_cm,z_cm\n";
         assert_eq!(
             message(&format!("{header}0,0.0,0,1,x,3\n")),
-            "c.csv:2:11: `y_cm` = \"x\": expected a finite number"
+            "c.csv:2: field 5 `y_cm` (\"x\") is not a finite number"
         );
         assert_eq!(
             message(&format!("{header}0,0.0,0,1,2\n")),
-            "c.csv:2:12: 5 fields, expected 6 as in the header"
+            "c.csv:2: 5 fields where the header has 6"
         );
         assert!(
             message(&format!("{header}1,0.0,0,1,2,3\n0,0.0,0,1,2,3\n"))
-                .starts_with("c.csv:3:1: frame 0 after frame 1")
+                .starts_with("c.csv:3: field 1 `frame` (\"0\") comes after frame 1")
         );
-        assert!(message("frame,x_cm\n").starts_with("c.csv:1:1: header has no column `time_s`"));
-        assert!(message("").starts_with("c.csv:1:1: empty file"));
+        assert!(message("frame,x_cm\n").starts_with("c.csv:1: no column \"time_s\""));
+        assert!(message("").starts_with("c.csv:1: no header line"));
     }
 
     #[test]

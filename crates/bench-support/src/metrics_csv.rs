@@ -1,32 +1,32 @@
 //! A run directory's `metrics.csv` (`docs/outputs.md`) as a table: columns by name, numbers
-//! parsed on demand (an empty or unparsable field is NaN).
+//! parsed on demand (an empty or unparsable field is NaN), read by the report's CSV reader.
 
-use std::collections::HashMap;
 use std::path::Path;
 
-/// The rows of a `metrics.csv` under its header.
+use hagfish_report::CsvFile;
+
+/// The rows of a `metrics.csv` under its header, as text.
 pub(crate) struct MetricsCsv {
-    header: HashMap<String, usize>,
+    file: CsvFile,
     pub(crate) rows: Vec<Vec<String>>,
 }
 
 impl MetricsCsv {
-    /// Reads `dir/metrics.csv`.
+    /// Reads `dir/metrics.csv` with the report's reader (`hagfish_report::CsvFile`).
     pub(crate) fn read(dir: &Path) -> Result<Self, String> {
-        let path = dir.join("metrics.csv");
-        let text =
-            std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
-        let mut lines = text.lines();
-        let header = lines.next().ok_or("an empty metrics.csv")?;
-        Ok(Self {
-            header: header.split(',').map(str::to_owned).zip(0..).collect(),
-            rows: lines.map(|l| l.split(',').map(str::to_owned).collect()).collect(),
+        let file = CsvFile::open(&dir.join("metrics.csv")).map_err(|e| e.to_string())?;
+        let mut rows = Vec::new();
+        file.for_each_record(|record| {
+            rows.push((0..file.header().len()).map(|k| record.text(k).to_owned()).collect());
+            Ok(())
         })
+        .map_err(|e| e.to_string())?;
+        Ok(Self { file, rows })
     }
 
     /// The index of the column `name`.
     pub(crate) fn column(&self, name: &str) -> Result<usize, String> {
-        self.header.get(name).copied().ok_or(format!("metrics.csv has no column {name}"))
+        self.file.column(name).map_err(|e| e.to_string())
     }
 }
 

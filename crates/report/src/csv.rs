@@ -1,54 +1,77 @@
-//! A minimal reader of the run directory's CSV files: a header line of column names, then
-//! comma-separated fields without quoting (what `hagfish run` writes). Every error names the
-//! file and the 1-based line.
+//! The one reader of a run directory's CSV files (`metrics.csv`, `centreline.csv`,
+//! `contacts.csv`, `forces.csv`), built on the `csv` crate: a header line of column names,
+//! then rows; quoted fields (a phase name with a comma) are read as the crate reads them.
+//! Every error names the file and the 1-based line. The report, `hagfish knot` and the
+//! benchmarks' run readers all read through it.
 //!
-//! The data lines are streamed, one at a time through one reused buffer: a 10 000-body run
-//! of 20 s writes a `forces.csv` of ≈ 300 MB, which read whole would be the largest
-//! allocation of the process (measured: peak RSS 572 MB when the report read its files
-//! whole, against ≈ 80 MB while the run stepped).
+//! The rows are streamed, one at a time through one reused record: a 10 000-body run of
+//! 20 s writes a `forces.csv` of ≈ 300 MB, which read whole would be the largest allocation
+//! of the process (measured: peak RSS 572 MB when the report read its files whole, against
+//! ≈ 80 MB while the run stepped).
 
+use std::collections::VecDeque;
 use std::fs::File;
-use std::io::{BufRead, BufReader};
-use std::ops::{ControlFlow, Range};
+use std::io::{Read, Seek, SeekFrom};
+use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
+
+use csv::StringRecord;
 
 use crate::error::ReportError;
 
 /// Bytes read from the file at a time.
 const READ_BUFFER_BYTES: usize = 1 << 20;
 
-/// A CSV file whose header has been read and split into column names; its data lines are
-/// read by [`CsvFile::for_each_record`].
+/// A CSV file whose header has been read into column names; its rows are read by
+/// [`CsvFile::rows`] (or [`CsvFile::for_each_record`]).
 #[derive(Debug)]
 pub struct CsvFile {
     path: PathBuf,
     header: Vec<String>,
 }
 
-/// One data line of a [`CsvFile`].
+/// The rows of a [`CsvFile`], read one at a time by [`Rows::next_record`].
+pub struct Rows<'a> {
+    file: &'a CsvFile,
+    reader: csv::Reader<Newlines<File>>,
+    /// The newlines before the rows read so far (the `csv` crate's own line count skips
+    /// blank lines and `\r\n`).
+    newlines: usize,
+    /// Where the file ends if it ends in a cut row (see [`Rows::next_record`]).
+    cut_at: Option<u64>,
+    record: StringRecord,
+}
+
+/// One row of a [`CsvFile`].
 #[derive(Debug)]
 pub struct Record<'a> {
-    path: &'a Path,
+    file: &'a CsvFile,
     line: usize,
-    text: &'a str,
-    fields: &'a [Range<usize>],
+    fields: &'a StringRecord,
 }
 
 impl CsvFile {
-    /// Opens `path` and reads its header; an empty file or a blank first line is an error.
+    /// Opens `path` and reads its header (a leading UTF-8 byte order mark is dropped); an
+    /// empty file or a blank first line is an error.
     pub fn open(path: &Path) -> Result<Self, ReportError> {
-        let mut reader = Self::reader(path)?;
-        let mut first = String::new();
-        reader.read_line(&mut first).map_err(|source| Self::read_error(path, source))?;
-        if first.trim().is_empty() {
-            return Err(ReportError::Parse {
-                path: path.to_path_buf(),
-                line: 1,
-                what: "no header line".into(),
-            });
+        let (mut reader, _) = reader(path)?;
+        let mut first = StringRecord::new();
+        let read = reader.read_record(&mut first).map_err(|e| csv_error(path, &e))?;
+        let names = first.iter().enumerate();
+        let header: Vec<String> = names
+            .map(|(k, name)| if k == 0 { name.trim_start_matches('\u{feff}') } else { name })
+            .map(|name| name.trim().to_owned())
+            .collect();
+        if !read || first.position().is_some_and(|p| p.line() != 1) || header.concat().is_empty() {
+            let what = "no header line".into();
+            return Err(ReportError::Parse { path: path.to_path_buf(), line: 1, what });
         }
-        let header = first.split(',').map(|name| name.trim().to_string()).collect();
         Ok(Self { path: path.to_path_buf(), header })
+    }
+
+    /// The file's path.
+    pub fn path(&self) -> &Path {
+        &self.path
     }
 
     /// The column names.
@@ -65,12 +88,17 @@ impl CsvFile {
         })
     }
 
-    /// Calls `each` on the data lines in order (blank lines skipped), stopping at the first
-    /// error it returns; a line with a different number of fields from the header is an
-    /// error. A last line without its newline is left out: `hagfish run` ends every row with
-    /// one, so it is a row that a killed run was writing (Linux stops a write between pages
-    /// when SIGKILL arrives, so even one `write` per frame can leave part of a row). The file
-    /// is read again from its start, a line at a time.
+    /// The rows, read again from the file's start, after the header.
+    pub fn rows(&self) -> Result<Rows<'_>, ReportError> {
+        let (reader, cut_at) = reader(&self.path)?;
+        let mut rows =
+            Rows { file: self, reader, newlines: 0, cut_at, record: StringRecord::new() };
+        rows.next_record()?;
+        Ok(rows)
+    }
+
+    /// Calls `each` on the rows in order, stopping at the first error it returns (see
+    /// [`Rows::next_record`] for what is a row).
     pub fn for_each_record(
         &self,
         mut each: impl FnMut(&Record<'_>) -> Result<(), ReportError>,
@@ -83,46 +111,16 @@ impl CsvFile {
         &self,
         mut each: impl FnMut(&Record<'_>) -> Result<ControlFlow<()>, ReportError>,
     ) -> Result<(), ReportError> {
-        let mut reader = Self::reader(&self.path)?;
-        let width = self.header.len();
-        let (mut text, mut fields) = (String::new(), Vec::with_capacity(width));
-        for line in 1.. {
-            text.clear();
-            let read = reader
-                .read_line(&mut text)
-                .map_err(|source| Self::read_error(&self.path, source))?;
-            if read == 0 || !text.ends_with('\n') {
-                return Ok(());
-            }
-            if line == 1 || text.trim().is_empty() {
-                continue;
-            }
-            fields.clear();
-            let mut start = 0;
-            // A byte scan: `,` is ASCII, so every cut falls between characters.
-            for (i, byte) in text.bytes().enumerate() {
-                if byte == b',' {
-                    fields.push(start..i);
-                    start = i + 1;
-                }
-            }
-            fields.push(start..text.len());
-            if fields.len() != width {
-                return Err(ReportError::Parse {
-                    path: self.path.clone(),
-                    line,
-                    what: format!("{} fields where the header has {width}", fields.len()),
-                });
-            }
-            if each(&Record { path: &self.path, line, text: &text, fields: &fields })?.is_break() {
-                return Ok(());
+        let mut rows = self.rows()?;
+        while let Some(record) = rows.next_record()? {
+            if each(&record)?.is_break() {
+                break;
             }
         }
         Ok(())
     }
 
-    /// The number of data lines (blank lines skipped), each checked as
-    /// [`CsvFile::for_each_record`] does.
+    /// The number of rows, each checked as [`Rows::next_record`] does.
     pub fn count_records(&self) -> Result<usize, ReportError> {
         let mut count = 0;
         self.for_each_record(|_| {
@@ -131,21 +129,50 @@ impl CsvFile {
         })?;
         Ok(count)
     }
+}
 
-    fn reader(path: &Path) -> Result<BufReader<File>, ReportError> {
-        let file = File::open(path).map_err(|source| Self::read_error(path, source))?;
-        Ok(BufReader::with_capacity(READ_BUFFER_BYTES, file))
-    }
-
-    fn read_error(path: &Path, source: std::io::Error) -> ReportError {
-        ReportError::Read { path: path.to_path_buf(), source }
+impl Rows<'_> {
+    /// The next row, or `None` at the end. Empty lines are skipped; a row with a different
+    /// number of fields from the header is an error. A last row without its newline is left
+    /// out: `hagfish run` ends every row with one, so it is a row that a killed run was
+    /// writing (Linux stops a write between pages when SIGKILL arrives, so even one `write`
+    /// per frame can leave part of a row).
+    pub fn next_record(&mut self) -> Result<Option<Record<'_>>, ReportError> {
+        let path = &self.file.path;
+        if !self.reader.read_record(&mut self.record).map_err(|e| csv_error(path, &e))? {
+            return Ok(None);
+        }
+        if self.cut_at.is_some_and(|end| self.reader.position().byte() >= end) {
+            return Ok(None);
+        }
+        let start = self.record.position().map_or(0, csv::Position::byte);
+        let end = self.reader.position().byte();
+        let source = self.reader.get_mut();
+        self.newlines += source.take_below(start);
+        // The newlines from the row's start (with the blank lines before it) to its end:
+        // those of blank lines, those inside quoted fields and its own.
+        let spanned = source.take_below(end);
+        let quoted: usize = self.record.iter().map(|f| f.matches('\n').count()).sum();
+        let line = self.newlines + spanned.saturating_sub(quoted + 1) + 1;
+        self.newlines += spanned;
+        let width = self.file.header.len();
+        if self.record.len() != width {
+            let what = format!("{} fields where the header has {width}", self.record.len());
+            return Err(ReportError::Parse { path: path.clone(), line, what });
+        }
+        Ok(Some(Record { file: self.file, line, fields: &self.record }))
     }
 }
 
 impl Record<'_> {
+    /// The row's line in the file (1-based; the header is line 1).
+    pub fn line(&self) -> usize {
+        self.line
+    }
+
     /// The field in column `index` as text (surrounding white space removed).
     pub fn text(&self, index: usize) -> &str {
-        self.text[self.fields[index].clone()].trim()
+        self.fields.get(index).unwrap_or_default().trim()
     }
 
     /// The field in column `index` as a finite number.
@@ -170,14 +197,69 @@ impl Record<'_> {
         self.text(index).parse().map_err(|_| self.error(index, "is not a non-negative integer"))
     }
 
-    /// An error about column `index` of this line.
+    /// An error about column `index` of this row: its name, its text and `what`.
     pub fn error(&self, index: usize, what: &str) -> ReportError {
+        let name = self.file.header.get(index).map_or("", String::as_str);
         ReportError::Parse {
-            path: self.path.to_path_buf(),
+            path: self.file.path.clone(),
             line: self.line,
-            what: format!("field {} ({:?}) {what}", index + 1, self.text(index)),
+            what: format!("field {} `{name}` ({:?}) {what}", index + 1, self.text(index)),
         }
     }
+}
+
+/// A reader of `path` with flexible row widths (checked by [`Rows::next_record`], to say
+/// so in this crate's words) and no header handling (read by [`CsvFile::open`]), and where
+/// the file ends if its last byte is not a newline (the end of a cut row), else `None`.
+fn reader(path: &Path) -> Result<(csv::Reader<Newlines<File>>, Option<u64>), ReportError> {
+    let read_error = |source| ReportError::Read { path: path.to_path_buf(), source };
+    let mut file = File::open(path).map_err(read_error)?;
+    let length = file.metadata().map_err(read_error)?.len();
+    let mut last = [b'\n'];
+    if length > 0 {
+        file.seek(SeekFrom::End(-1)).map_err(read_error)?;
+        file.read_exact(&mut last).map_err(read_error)?;
+        file.seek(SeekFrom::Start(0)).map_err(read_error)?;
+    }
+    let reader = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(true)
+        .buffer_capacity(READ_BUFFER_BYTES)
+        .from_reader(Newlines { inner: file, read: 0, at: VecDeque::new() });
+    Ok((reader, (last[0] != b'\n').then_some(length)))
+}
+
+/// A reader that notes where its newlines are, until [`Newlines::take_below`] counts them
+/// (at most the `csv` reader's buffer ahead of the rows read).
+struct Newlines<R> {
+    inner: R,
+    read: u64,
+    at: VecDeque<u64>,
+}
+
+impl<R> Newlines<R> {
+    /// The number of noted newlines before byte `end`, forgotten.
+    fn take_below(&mut self, end: u64) -> usize {
+        let count = self.at.partition_point(|&at| at < end);
+        self.at.drain(..count);
+        count
+    }
+}
+
+impl<R: Read> Read for Newlines<R> {
+    fn read(&mut self, buffer: &mut [u8]) -> std::io::Result<usize> {
+        let count = self.inner.read(buffer)?;
+        let found = buffer[..count].iter().enumerate().filter(|(_, b)| **b == b'\n');
+        self.at.extend(found.map(|(i, _)| self.read + i as u64));
+        self.read += count as u64;
+        Ok(count)
+    }
+}
+
+/// `path`'s error from the `csv` crate, at its line where it has one.
+fn csv_error(path: &Path, error: &csv::Error) -> ReportError {
+    let line = error.position().map_or(0, |p| p.line() as usize);
+    ReportError::Parse { path: path.to_path_buf(), line, what: error.to_string() }
 }
 
 #[cfg(test)]
@@ -205,6 +287,23 @@ mod tests {
         assert!(error.to_string().contains("a.csv:4:"), "{error}");
         assert!(file.column("c").is_err());
         assert_eq!(file.count_records().expect("count"), 2, "the blank line is skipped");
+    }
+
+    #[test]
+    fn quoted_fields_a_byte_order_mark_and_crlf_endings() {
+        let path = write("q.csv", "\u{feff}frame,phase\r\n1,\"a,b\"\r\n2,\"say \"\"hi\"\"\"\r\n");
+        let file = CsvFile::open(&path).expect("open");
+        assert_eq!(file.header(), ["frame", "phase"]);
+        let mut phases = Vec::new();
+        file.for_each_record(|record| Ok(phases.push(record.text(1).to_owned()))).expect("rows");
+        assert_eq!(phases, ["a,b", "say \"hi\""]);
+    }
+
+    #[test]
+    fn lines_count_blank_lines_and_quoted_newlines() {
+        let path = write("l.csv", "a,b\n\n1,\"x\ny\"\r\n\r\n2,3,4\n");
+        let error = CsvFile::open(&path).expect("open").count_records().expect_err("3 fields");
+        assert!(error.to_string().contains("l.csv:6: 3 fields where the header has 2"), "{error}");
     }
 
     #[test]

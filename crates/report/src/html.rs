@@ -82,8 +82,7 @@ fn run_data(run: &RunDir) -> String {
         "points": "",
         "states": states,
     });
-    // Inside <script>, "</" must not appear; JSON allows "<\/".
-    let rest = rest.to_string().replace("</", "<\\/");
+    let rest = script_safe(&rest.to_string());
     let (before, after) = rest.split_once(POINTS_PLACE).expect("the JSON has its points member");
     let mut bytes = Vec::with_capacity(12 * c.points.len());
     bytes.extend(c.points.iter().flatten().flat_map(|v| (*v as f32).to_le_bytes()));
@@ -97,6 +96,28 @@ fn run_data(run: &RunDir) -> String {
     data.push_str(close);
     data.push_str(after);
     data
+}
+
+/// `json` made safe to embed in a `<script>` element: `<`, `>` and `&` (which JSON holds only
+/// inside strings) written as `\u` escapes, so that no `</script`, `<!--` or `<script` from a
+/// user-named field (a phase name) can close or confuse the element, and U+2028/U+2029 too,
+/// which older JavaScript does not allow in strings. The text still parses to the same value.
+fn script_safe(json: &str) -> String {
+    const ESCAPES: [(char, &str); 5] = [
+        ('<', "\\u003c"),
+        ('>', "\\u003e"),
+        ('&', "\\u0026"),
+        ('\u{2028}', "\\u2028"),
+        ('\u{2029}', "\\u2029"),
+    ];
+    let mut safe = String::with_capacity(json.len());
+    for c in json.chars() {
+        match ESCAPES.iter().find(|(special, _)| *special == c) {
+            Some((_, escaped)) => safe.push_str(escaped),
+            None => safe.push(c),
+        }
+    }
+    safe
 }
 
 /// The `points` member of [`run_data`]'s JSON before the centres are encoded into it.
@@ -172,6 +193,16 @@ mod tests {
             escape(r#"<a href="x">&'</a>"#),
             "&lt;a href=&quot;x&quot;&gt;&amp;&#39;&lt;/a&gt;"
         );
+    }
+
+    #[test]
+    fn embedded_json_cannot_close_or_open_a_script_element() {
+        let name = "<!--<script></script>&\u{2028}";
+        let json = serde_json::json!({ "states": [format!("phase {name}")] }).to_string();
+        let safe = script_safe(&json);
+        assert!(!safe.contains(['<', '>', '&', '\u{2028}']), "{safe}");
+        let back: serde_json::Value = serde_json::from_str(&safe).expect("still JSON");
+        assert_eq!(back["states"][0], format!("phase {name}"));
     }
 
     #[test]

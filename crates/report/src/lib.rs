@@ -66,6 +66,7 @@ mod vtk;
 mod wcon;
 
 pub use centreline::Centreline;
+pub use csv::{CsvFile, Record, Rows};
 pub use error::ReportError;
 pub use forces::{AXES, ThigmoForces};
 pub use frame_selection::{BODY_FRAME_BUDGET, FrameSelection};

@@ -9,7 +9,7 @@
 //!   tail_pull_dyn`, `Thigmotaxis.until.seconds`, `Form.gains.kp_dyn_per_cm`;
 //! - a field of one phase, by its index from 0: `phases[2].Thigmotaxis.parameters.head.v_a`.
 //!
-//! A VALUE is written as in the scenario files (`override_value.rs` has the grammar): a number,
+//! A VALUE is written as in the scenario files (`override_value.rs` reads it by `ron`): a number,
 //! `true`/`false`, `None`, `Some(VALUE)`, a quoted string, an enum variant (`SparseMaximal`,
 //! `Trefoil(Left)`), a tuple `(0.0, 2.0)`, a struct `(linear_dyn_s_per_cm3: 0.0,
 //! quadratic_g_per_cm3: 1.0)` or a list `[…]`.
@@ -243,8 +243,13 @@ mod tests {
         assert!(message("time_step_s").contains("expected PATH=VALUE"));
         assert!(message("Form.gains.kp=1").contains("no field `kp`"));
         assert!(message("phases[9].Form=1").contains("no [9]"));
-        assert!(message("duration_s=1..2").contains("the value: expected a finite number"));
-        assert!(message("time_step_s=NaN").contains("wrong value for time_step_s"));
+        assert!(message("duration_s=-inf").contains("the value: expected a finite number"));
+        assert!(message("duration_s=1..2").contains("wrong value for duration_s"));
+        let nested = message("time_step_s=Some(Some(0.01))");
+        assert!(nested.contains("the value: expected one `Some`"), "{nested}");
+        let deep = message(&format!("time_step_s={}", "[".repeat(15_000)));
+        assert!(deep.contains("the value: expected at most 64 levels of nesting"), "{deep}");
+        assert!(message("time_step_s=NaN").contains("the value: expected a finite number"));
         let bare = message("phases[0]=Hold");
         assert!(bare.contains("`Hold` holds a value: write it as `Hold(…)`"), "{bare}");
         let unknown = message("backend=Fast");
