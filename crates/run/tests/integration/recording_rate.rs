@@ -53,7 +53,8 @@ fn the_recording_rate_leaves_the_run_unchanged_and_the_observation_rate_does_not
 
 #[test]
 fn a_failed_tie_is_recorded_where_it_failed_between_frames() {
-    // The crossover 0.85 L from the head leaves too little tail to tie (tests/tie_family.rs).
+    // The crossover 0.85 L from the head leaves too little tail to tie
+    // (tests/integration/tie_family.rs).
     let (end, _, times) = run(
         "tie.ron",
         &[("phases[0].Tie.at", "0.85"), ("phases[0].Tie.attempts", "1"), ("record_every_s", "1.0")],
