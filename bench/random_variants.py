@@ -2,9 +2,9 @@
 """Random hagfish within the family's ranges, every parameter changed at once, run through
 the trefoil scenario and judged by the slide's acceptance checks (issue #14).
 
-`tests/tie_family.rs` changes one parameter at a time. Users will change several: this script
-draws COUNT bodies with, independently and uniformly (log-uniformly for stiffness, damping and
-drag), length 35–50 cm (mass ∝ length), circumferences ×0.85–1.15, stiffness ×0.1–10, damping
+`tests/integration/tie_family.rs` changes one parameter at a time. Users will change several: this
+script draws COUNT bodies with, independently and uniformly (log-uniformly for stiffness, damping
+and drag), length 35–50 cm (mass ∝ length), circumferences ×0.85–1.15, stiffness ×0.1–10, damping
 ×1–10, 50–300 bodies, h = 0.005–0.02 s and water drag ×0.5–2, and runs `thesis.ron` on each.
 A variant passes when the run completes, the knot (the trefoil, or `--knot`) holds on ≥ 99 % of
 the frames after tying, its core's head-ward end is ≥ 0.35 L from the head when tied, the core's midpoint

@@ -8,7 +8,7 @@
 //! - *travel* is how far the core's midpoint moves head-ward from the start of the phase named
 //!   `slide` (from the tie if there is none) to its nearest approach to the head while the knot
 //!   is of that type (fraction of the body length L; as the acceptance tests of
-//!   `tests/tie_family.rs` measure it);
+//!   `tests/integration/tie_family.rs` measure it);
 //! - the *speed* is the least-squares slope of the core's midpoint (cm) against time over the
 //!   middle 80 % (by time) of the frames of the phase named `slide`, head-ward positive;
 //! - the *length change* compares the core's mean length over the first and the last 0.5 s

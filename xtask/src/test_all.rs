@@ -1,10 +1,11 @@
 //! `cargo xtask test`: the project's one test command (README, `.ci/run`). It finds or
 //! installs what the tests need, then runs the scenario regression and every test:
 //!
-//! 1. Chromium for the browser test of `report.html` (`tests/render_command.rs`): the path in
-//!    `HAGFISH_CHROMIUM`, else `chromium` (or `chromium-browser`) on `PATH` or in `/usr/bin`,
-//!    else Debian's package `chromium` installed with `apt-get` when this process may (root,
-//!    or password-less `sudo`). The path found is handed to the tests in `HAGFISH_CHROMIUM`.
+//! 1. Chromium for the browser test of `report.html` (`tests/integration/render_command.rs`):
+//!    the path in `HAGFISH_CHROMIUM`, else `chromium` (or `chromium-browser`) on `PATH` or in
+//!    `/usr/bin`, else Debian's package `chromium` installed with `apt-get` when this process
+//!    may (root, or password-less `sudo`). The path found is handed to the tests in
+//!    `HAGFISH_CHROMIUM`.
 //! 2. `cargo xtask regress --check` (in this process).
 //! 3. `cargo test --workspace --release`.
 //! 4. The Python package: a virtual environment in the target directory, the package built

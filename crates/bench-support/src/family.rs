@@ -2,8 +2,8 @@
 //! retuning: ES103 in both handednesses, length 35 and 50 cm (mass ∝ length), circumferences
 //! ±15 %, stiffness ×0.1 and ×10, damping ×10, 50 and 300 bodies, the tail taper, h = 0.005
 //! and 0.02 s, drag ×0.5 and ×2. Each member is ES103's biometrics file with text edits and
-//! `hagfish run --set` overrides; `tests/tie_family.rs` asserts on it and `cargo xtask family`
-//! tabulates it.
+//! `hagfish run --set` overrides; `tests/integration/tie_family.rs` asserts on it and `cargo xtask
+//! family` tabulates it.
 
 /// One member of the family.
 #[derive(Clone, Debug, PartialEq)]

@@ -1,6 +1,6 @@
 //! What one run of a tie → tighten → slide scenario did, read from the `metrics.csv` of its
 //! run directory: the measures of the knot tables of `docs/physics.md`, asserted on by
-//! `tests/tie_family.rs` and tabulated by `cargo xtask family`.
+//! `tests/integration/tie_family.rs` and tabulated by `cargo xtask family`.
 
 use std::path::Path;
 

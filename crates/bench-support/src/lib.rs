@@ -1,8 +1,8 @@
 //! Scaffolding of the hagfish workspace's benchmarks and tests, kept out of the simulator's
 //! public API: the knotted benchmark state (a scenario file found relative to the workspace
 //! root), the same animal knotted at 1000 bodies, and the family of bodies the knot scenarios are judged on with the measures of
-//! a knot run: its slide, and its loosen and tighten (`tests/tie_family.rs`,
-//! `tests/knot_size.rs`, `cargo xtask family`).
+//! a knot run: its slide, and its loosen and tighten (`tests/integration/tie_family.rs`,
+//! `tests/integration/knot_size.rs`, `cargo xtask family`).
 
 mod family;
 mod knot_run;

@@ -1,6 +1,6 @@
 //! What one run of a tie → loosen → tighten scenario (`data/scenarios/loosen_tighten.ron`)
-//! did to the knot's size, read from its `metrics.csv`: the measures of `tests/knot_size.rs`
-//! and of `cargo xtask family --measure loosen-tighten`.
+//! did to the knot's size, read from its `metrics.csv`: the measures of
+//! `tests/integration/knot_size.rs` and of `cargo xtask family --measure loosen-tighten`.
 
 use std::path::Path;
 

@@ -3,7 +3,7 @@
 
 #![allow(missing_docs)]
 
-#[path = "../tests/support/curves.rs"]
+#[path = "../tests/integration/curves.rs"]
 mod curves;
 
 use std::hint::black_box;

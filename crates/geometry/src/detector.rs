@@ -133,8 +133,8 @@ pub const PAIRS_PER_BODY: usize = 64;
 /// exist to find the deepest of several minima of one pair, and a pair that is a contact is
 /// nearly always one of a block of neighbouring pairs that see one crossing, of which only the
 /// deepest record is kept: so no contact is missed, and the kept records are as deep as with
-/// every start on every pair (`crates/sim/tests/self_contact.rs`: within 1e-13 cm along the
-/// tangled trajectory of `form.ron`), for ≈ 1/7 of the searches (`docs/performance.md`).
+/// every start on every pair (`crates/run/tests/integration/self_contact.rs`: within 1e-13 cm along
+/// the tangled trajectory of `form.ron`), for ≈ 1/7 of the searches (`docs/performance.md`).
 #[derive(Debug, Clone)]
 pub struct ContactDetector {
     options: DetectorOptions,

@@ -5,7 +5,7 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use hagfish_knots::{KnotOptions, analyse_knot};
 use std::hint::black_box;
 
-#[path = "../tests/acceptance/hagfish_curve.rs"]
+#[path = "../tests/integration/hagfish_curve.rs"]
 mod hagfish_curve;
 
 fn knot_type(c: &mut Criterion) {

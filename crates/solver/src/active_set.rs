@@ -257,8 +257,8 @@ impl ActiveSet {
         // first, so that the one left out is the one that carried least. By row order alone a
         // row carrying 40× its partner's impulse was left out, and the re-solve of an
         // unchanged problem took more iterations than the cold solve (a case of
-        // tests/random_problems.rs, kept as a regression). Every other start is the row-order
-        // one, bit for bit (so are the shipped scenarios' runs); the order depends on λ
+        // tests/integration/random_problems.rs, kept as a regression). Every other start is the
+        // row-order one, bit for bit (so are the shipped scenarios' runs); the order depends on λ
         // alone, so a run resumed from saved multipliers joins alike.
         let impulse = |lambda: &[f64], i: usize| lambda[i] * w[(i, i)].sqrt();
         let mut largest_joined = 0.0_f64;

@@ -1,0 +1,17 @@
+//! Integration tests of `hagfish-run`: one test binary, a module per subject; `common` is
+//! the test controllers of `hagfish-sim`'s integration tests, included from there.
+//!
+//! The binary's global allocator is `allocation-counter`'s, which counts per thread:
+//! `no_allocation` asserts on its own thread's allocations while the other tests run.
+
+#[path = "../../../sim/tests/integration/common.rs"]
+mod common;
+
+mod checkpoint_corruption;
+mod forming;
+mod no_allocation;
+mod recorded_loads;
+mod recording_rate;
+mod self_contact;
+mod sparse_backend;
+mod thigmotaxis;

@@ -1,0 +1,3 @@
+//! Integration tests of `hagfish-scenario`: one test binary.
+
+mod scenario_mutations;

@@ -1,0 +1,10 @@
+//! Integration tests of `hagfish-sim`: one test binary, a module per subject; `common` has the
+//! test controllers they share (and the sparse-backend tests of `hagfish-run` include).
+//!
+//! The binary's global allocator is `allocation-counter`'s, which counts per thread:
+//! `linear_memory` asserts on its own thread's allocations while the other tests run.
+
+mod common;
+
+mod constraints;
+mod linear_memory;

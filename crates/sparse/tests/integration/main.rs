@@ -1,0 +1,3 @@
+//! Integration tests of `hagfish-sparse`: one test binary.
+
+mod equivalence;

@@ -1,0 +1,3 @@
+//! Integration tests of `hagfish-validation`: one test binary.
+
+mod rod_theory;

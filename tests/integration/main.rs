@@ -1,0 +1,21 @@
+//! Integration tests of `hagfish`, the command end to end: one test binary, a module per
+//! subject; `common` has the helpers they share (running the built `hagfish`, fresh
+//! directories, reading run directories).
+
+mod common;
+
+mod body_command;
+mod body_counts;
+mod commands;
+mod errors;
+mod export_command;
+mod knot_core;
+mod knot_size;
+mod overrides;
+mod render_command;
+mod resume;
+mod run_command;
+mod run_directory;
+mod step_acceptance;
+mod sweep_command;
+mod tie_family;
