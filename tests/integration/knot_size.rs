@@ -11,7 +11,8 @@
 //! that phase (2 of the 4 on the 35 cm body) counts as not tightened.
 
 use crate::common::{ROOT, code_and_stderr, es103_with, fresh_dir, run_hagfish};
-use hagfish_bench_support::{LoosenTighten, length_edits};
+use hagfish_bench_support::length_edits;
+use hagfish_report::LoosenTighten;
 
 /// Runs `loosen_tighten.ron` into a fresh directory `name` with `--set` values `sets`.
 fn sizes(name: &str, sets: &[String]) -> LoosenTighten {

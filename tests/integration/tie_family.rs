@@ -14,7 +14,8 @@ use std::path::Path;
 use std::sync::Mutex;
 
 use crate::common::{self, ROOT, code_and_stderr, es103_with, fresh_dir, manifest, run_hagfish};
-use hagfish_bench_support::{KnotRun, Variant, family, length_edits};
+use hagfish_bench_support::{Variant, family, length_edits};
+use hagfish_report::KnotRun;
 
 /// Runs `variant` of thesis.ron into `dir` and checks it; returns a failure message, if any.
 fn check(dir: &Path, variant: &Variant) -> Option<String> {
@@ -112,7 +113,7 @@ fn scenario_run(scenario: &str, out: &Path, extra: &[String]) -> Result<KnotRun,
     if !output.status.success() {
         return Err(code_and_stderr(&output).1);
     }
-    KnotRun::read(out)
+    KnotRun::read(out).map_err(|e| e.to_string())
 }
 
 /// `scenario` with `extra` arguments run into a fresh directory named `name`, measured.

@@ -14,10 +14,9 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::Mutex;
 
-use hagfish_bench_support::{
-    KnotRun, LoosenTighten, TABLE_HEADER, Variant, family, signed_percent,
-};
+use hagfish_bench_support::{Variant, family};
 use hagfish_control::Phase;
+use hagfish_report::{KnotRun, LoosenTighten, TABLE_HEADER, signed_percent};
 use hagfish_scenario::LoadedScenario;
 
 use crate::python::target_directory;
@@ -191,7 +190,7 @@ impl Runner<'_> {
         let measured = self
             .body(variant)
             .and_then(|body| self.run(variant, &body, "", &[]))
-            .and_then(|out| KnotRun::read(&out));
+            .and_then(|out| KnotRun::read(&out).map_err(|e| e.to_string()));
         match measured {
             Ok(run) => run.table_row(variant.name, knot, sign),
             Err(why) => format!("| {} | — ({why}) | | | | | | | | |", variant.name),
@@ -211,7 +210,7 @@ impl Runner<'_> {
         };
         let measure = |suffix: &str, extra: &[String]| {
             let out = self.run(variant, &body, suffix, extra)?;
-            LoosenTighten::read(&out, self.request.knot)
+            LoosenTighten::read(&out, self.request.knot).map_err(|e| e.to_string())
         };
         let runs = (
             measure("", &[]),

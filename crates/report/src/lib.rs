@@ -52,7 +52,10 @@ mod frame_selection;
 mod glb;
 mod html;
 mod joint_series;
+mod knot_run;
+mod loosen_tighten;
 mod metrics;
+mod metrics_table;
 mod outputs;
 mod plots;
 mod radii;
@@ -70,6 +73,8 @@ pub use csv::{CsvFile, Record, Rows};
 pub use error::ReportError;
 pub use forces::{AXES, ThigmoForces};
 pub use frame_selection::{BODY_FRAME_BUDGET, FrameSelection};
+pub use knot_run::{KnotRun, TABLE_HEADER, signed_percent};
+pub use loosen_tighten::LoosenTighten;
 pub use metrics::Metrics;
 pub use outputs::{
     ANIMATION, GLB, PLOTS, REPORT, VTK, Written, own_files, render, report, write_all,

@@ -4,8 +4,9 @@
 
 use std::path::Path;
 
+use crate::error::ReportError;
 use crate::knot_run::HALF_SECOND_FRAMES;
-use crate::metrics_csv::{MetricsCsv, first_after_tie, number};
+use crate::metrics_table::{MetricsCsv, first_after_tie, number};
 
 /// The knotted core's length change over the loosen and the tighten phase, whether the knot
 /// held, and the deepest penetration.
@@ -30,7 +31,7 @@ const MIN_PHASE_FRAMES: usize = 2 * HALF_SECOND_FRAMES;
 
 impl LoosenTighten {
     /// Reads the run in `dir`, whose tie ties `knot` (its Rolfsen name).
-    pub fn read(dir: &Path, knot: &str) -> Result<Self, String> {
+    pub fn read(dir: &Path, knot: &str) -> Result<Self, ReportError> {
         let csv = MetricsCsv::read(dir)?;
         let (phase, shown) = (csv.column("phase")?, csv.column("knot")?);
         let (length, penetration) =
@@ -47,7 +48,7 @@ impl LoosenTighten {
             });
             change.filter(|c| c.is_finite())
         };
-        let tied = first_after_tie(rows, phase).ok_or("not tied")?;
+        let tied = first_after_tie(rows, phase).ok_or_else(|| csv.unusable("not tied"))?;
         Ok(Self {
             loosen: change("loosen"),
             tighten: change("tighten"),

@@ -4,7 +4,8 @@
 
 use std::path::Path;
 
-use crate::metrics_csv::{MetricsCsv, first_after_tie, number};
+use crate::error::ReportError;
+use crate::metrics_table::{MetricsCsv, first_after_tie, number};
 
 /// The measures of one run (fractions of the body length L unless stated).
 #[derive(Clone, Debug, PartialEq)]
@@ -50,7 +51,7 @@ pub const TABLE_HEADER: &str = "| variant | tied at (s) | held | core start when
 impl KnotRun {
     /// Reads the run in `dir`, or says why it has no such measures (no file, not tied, too
     /// short a slide).
-    pub fn read(dir: &Path) -> Result<Self, String> {
+    pub fn read(dir: &Path) -> Result<Self, ReportError> {
         let csv = MetricsCsv::read(dir)?;
         let (phase, knot, writhe) =
             (csv.column("phase")?, csv.column("knot")?, csv.column("knot_writhe")?);
@@ -64,11 +65,11 @@ impl KnotRun {
         let (penetration, excess) =
             (csv.column("max_self_penetration_rel")?, csv.column("max_limit_excess_deg")?);
         let rows = &csv.rows;
-        let tied = first_after_tie(rows, phase).ok_or("not tied")?;
+        let tied = first_after_tie(rows, phase).ok_or_else(|| csv.unusable("not tied"))?;
         let after = &rows[tied..];
         let slide: Vec<&Vec<String>> = rows.iter().filter(|r| r[phase] == "slide").collect();
         if slide.len() < MIN_SLIDE_FRAMES {
-            return Err(format!("{} slide frames", slide.len()));
+            return Err(csv.unusable(format!("{} slide frames", slide.len())));
         }
         // The body length, from the core's length in cm and in L.
         let body_cm = number(&rows[tied], length_cm) / number(&rows[tied], length_l);

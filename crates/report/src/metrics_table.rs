@@ -1,9 +1,10 @@
 //! A run directory's `metrics.csv` (`docs/outputs.md`) as a table: columns by name, numbers
-//! parsed on demand (an empty or unparsable field is NaN), read by the report's CSV reader.
+//! parsed on demand (an empty or unparsable field is NaN): what the knot measures read.
 
 use std::path::Path;
 
-use hagfish_report::CsvFile;
+use crate::csv::CsvFile;
+use crate::error::ReportError;
 
 /// The rows of a `metrics.csv` under its header, as text.
 pub(crate) struct MetricsCsv {
@@ -12,21 +13,25 @@ pub(crate) struct MetricsCsv {
 }
 
 impl MetricsCsv {
-    /// Reads `dir/metrics.csv` with the report's reader (`hagfish_report::CsvFile`).
-    pub(crate) fn read(dir: &Path) -> Result<Self, String> {
-        let file = CsvFile::open(&dir.join("metrics.csv")).map_err(|e| e.to_string())?;
+    /// Reads `dir/metrics.csv`.
+    pub(crate) fn read(dir: &Path) -> Result<Self, ReportError> {
+        let file = CsvFile::open(&dir.join("metrics.csv"))?;
         let mut rows = Vec::new();
         file.for_each_record(|record| {
             rows.push((0..file.header().len()).map(|k| record.text(k).to_owned()).collect());
             Ok(())
-        })
-        .map_err(|e| e.to_string())?;
+        })?;
         Ok(Self { file, rows })
     }
 
     /// The index of the column `name`.
-    pub(crate) fn column(&self, name: &str) -> Result<usize, String> {
-        self.file.column(name).map_err(|e| e.to_string())
+    pub(crate) fn column(&self, name: &str) -> Result<usize, ReportError> {
+        self.file.column(name)
+    }
+
+    /// A [`ReportError::Invalid`] of this file: the run has no such measures.
+    pub(crate) fn unusable(&self, what: impl Into<String>) -> ReportError {
+        ReportError::Invalid { path: self.file.path().to_path_buf(), what: what.into() }
     }
 }
 
