@@ -113,3 +113,30 @@ fn knot_size_end_conditions_are_checked() {
                     Below or Above, in Cm or L";
     assert!(stderr.contains(expected), "expected {expected:?} in {stderr}");
 }
+
+#[test]
+fn a_phase_name_with_a_comma_stays_one_field_and_the_report_reads_it() {
+    let dir = fresh_dir("comma_in_phase_name");
+    let run = dir.join("run");
+    let targets = "(v_a: 0.0, v_b: 0.0)";
+    let phase = format!(
+        "phases[1]=Thigmotaxis((name: \"a,b\", parameters: (head: {targets}, tail: {targets}, \
+         tail_pull_dyn: 0.0, max_force_dyn: 100.0), until: (seconds: 0.5)))"
+    );
+    let output = run_form(&run, &["--set", &phase]);
+    let (code, stderr) = code_and_stderr(&output);
+    assert_eq!(code, Some(0), "{stderr}");
+    let metrics = hagfish_report::CsvFile::open(&run.join("metrics.csv")).expect("metrics.csv");
+    let column = metrics.column("phase").expect("a phase column");
+    let mut phases = Vec::new();
+    metrics
+        .for_each_record(|record| {
+            phases.push(record.text(column).to_owned());
+            Ok(())
+        })
+        .expect("every row as wide as the header");
+    assert!(phases.iter().any(|p| p == "a,b"), "{phases:?}");
+    let report = run_hagfish(["report", run.to_str().expect("a UTF-8 path")]);
+    let (code, stderr) = code_and_stderr(&report);
+    assert_eq!(code, Some(0), "hagfish report: {stderr}");
+}

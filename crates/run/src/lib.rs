@@ -32,6 +32,7 @@
 //! ```
 
 mod checkpoint;
+mod csv_text;
 mod error;
 mod force_columns;
 mod force_field;

@@ -21,6 +21,7 @@ use hagfish_tree::State;
 use serde::{Deserialize, Serialize};
 
 use crate::checkpoint::{CHECKPOINT_FILE, Checkpoint};
+use crate::csv_text::CsvText;
 use crate::error::RunError;
 use crate::force_columns::ForceColumns;
 use crate::knot_core::KnotCore;
@@ -296,7 +297,7 @@ impl Recorder {
         });
         self.metrics.line(format_args!(
             "{prefix},{},{},{},{knot},{agreement},{first},{last},{position},{core},{writhe},{:.6},{:.6},{:.6},{:.4},{span},{:?},{:?},{},{},{:.3e}",
-            frame.phase,
+            CsvText(frame.phase),
             s.self_contacts,
             s.wall_contacts,
             m.self_penetration,
