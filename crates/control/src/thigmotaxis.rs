@@ -17,6 +17,7 @@ use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
 use crate::controller::{Actuation, ControlContext, PointForce};
+use crate::force_space::ForceSpace;
 
 /// Target sliding speeds (cm/s) at one contact: anterior strand a, posterior strand b.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -39,6 +40,9 @@ pub struct ThigmoParameters {
     pub tail_pull_dyn: f64,
     /// Largest force a thigmotaxis row may exert (dyn): its slack penalty.
     pub max_force_dyn: f64,
+    /// The generalized forces the rows may exert (default: every DOF).
+    #[serde(default)]
+    pub force_space: ForceSpace,
 }
 
 /// Which end of a contact a thigmotaxis row drives.
@@ -61,6 +65,8 @@ pub struct ThigmoRequest {
     pub speed: f64,
     /// Largest force of the row (dyn).
     pub max_force: f64,
+    /// The generalized forces the row may exert: the pipeline confines the row to it.
+    pub force_space: ForceSpace,
 }
 
 impl ThigmoParameters {
@@ -85,6 +91,7 @@ impl ThigmoParameters {
                     strand,
                     speed,
                     max_force: self.max_force_dyn,
+                    force_space: self.force_space,
                 });
             }
         };

@@ -102,6 +102,7 @@ pub const PARAMETERS: &[Parameter] = &[
        relative to the other at least this fast (negative: head-ward)"),
     p("Thigmotaxis.parameters.tail_pull_dyn", "dyn", "required", "force on the last body along its tangent, tail-ward"),
     p("Thigmotaxis.parameters.max_force_dyn", "dyn", "required", "largest force of one thigmotaxis row (its slack penalty)"),
+    p("Thigmotaxis.parameters.force_space", "-", "Full", "the torques the rows may exert: Full (every DOF) or BendingOnly (no twist torque)"),
     p("Thigmotaxis.until", "-", "required", "end conditions; the phase ends at the first that holds"),
     p("Thigmotaxis.until.seconds", "s", "required", "longest duration of the phase"),
     p("Thigmotaxis.until.hold_s", "s", "0", "a condition of when must hold this long without interruption to end the phase"),
@@ -126,9 +127,9 @@ mod tests {
     use std::collections::BTreeSet;
 
     use hagfish_control::{
-        Condition, Direction, FormingScript, Handedness, LoadDirection, LoadPhase, Phase, Quantity,
-        ScriptStep, SlidingTargets, TailGains, ThigmoParameters, ThigmoPhase, Threshold, TieKnot,
-        TiePhase, Until, WaterDrag, Waypoint,
+        Condition, Direction, ForceSpace, FormingScript, Handedness, LoadDirection, LoadPhase,
+        Phase, Quantity, ScriptStep, SlidingTargets, TailGains, ThigmoParameters, ThigmoPhase,
+        Threshold, TieKnot, TiePhase, Until, WaterDrag, Waypoint,
     };
 
     use super::*;
@@ -184,6 +185,7 @@ mod tests {
                         tail: targets,
                         tail_pull_dyn: 20.0,
                         max_force_dyn: 2000.0,
+                        force_space: ForceSpace::BendingOnly,
                     },
                     until: Until {
                         seconds: 1.0,

@@ -120,6 +120,7 @@ pub fn build_rows(model: &Model, options: &StepOptions, state: &State, data: &mu
         &data.tree,
         &data.self_contacts,
         &data.actuation.thigmo,
+        &data.twist_dofs,
         h,
         &mut data.rows,
     );

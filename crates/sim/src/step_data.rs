@@ -19,7 +19,7 @@ use crate::internal_forces::InternalForces;
 use crate::memory::check_memory;
 use crate::options::StepOptions;
 use crate::report::StepReport;
-use crate::rows::RowGroup;
+use crate::rows::{RowGroup, twist_dofs};
 
 /// Rows (and solver buffers) reserved per DOF on the dense backend: 2n rows cover the head,
 /// every limit and more than twice the self contacts of the tightest knots measured (≈ 45), so
@@ -71,6 +71,8 @@ pub struct StepData {
     pub(crate) centres: Vec<DVec3>,
     pub(crate) radii: Vec<f64>,
     pub(crate) lengths: Vec<f64>,
+    /// The indices of the twist DOFs, which a `BendingOnly` thigmotaxis row leaves out.
+    pub(crate) twist_dofs: Vec<usize>,
     pub(crate) velocity_guess: Vec<f64>,
     /// The dense `M̃` while stage 6 solves with it (`solve_and_resolve` swaps it out of `tree`
     /// and back); an empty matrix otherwise.
@@ -153,6 +155,7 @@ impl StepData {
             centres,
             radii,
             lengths,
+            twist_dofs: twist_dofs(model),
             velocity_guess: vec![0.0; model.dof_count()],
             effective_mass: Mat::zeros(0, 0),
             bounds: Vec::with_capacity(reserve),

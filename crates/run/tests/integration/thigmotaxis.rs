@@ -14,12 +14,12 @@
 
 use glam::DVec3;
 use hagfish_control::{
-    Actuation, ControlContext, Controller, KnotSpan, SlidingTargets, ThigmoParameters,
+    Actuation, ControlContext, Controller, ForceSpace, KnotSpan, SlidingTargets, ThigmoParameters,
 };
 use hagfish_knots::KnotType;
 use hagfish_run::{Frame, FrameSink, RunError, RunOptions, RunSummary};
 use hagfish_scenario::LoadedScenario;
-use hagfish_sim::rows::RowGroup;
+use hagfish_sim::rows::{RowGroup, twist_dofs};
 
 use hagfish_tree::{Data, Model, position_kinematics};
 
@@ -301,6 +301,7 @@ fn thigmo_rows_reach_their_speeds_with_nonnegative_multipliers() {
             tail: targets,
             tail_pull_dyn: 0.0,
             max_force_dyn: 1e6,
+            force_space: ForceSpace::Full,
         };
         let report = *world.step(&mut Thigmo(parameters)).expect("thigmo step");
         let data = world.data();
@@ -331,4 +332,54 @@ fn thigmo_rows_reach_their_speeds_with_nonnegative_multipliers() {
         assert_eq!(thigmo_rows, 4, "two rows on each of the first and last contact");
         assert_eq!(report.solve.slack.count, 0, "a 10⁶ dyn cap needs no slack");
     }
+}
+
+/// Bending-only thigmotaxis (`ForceSpace::BendingOnly`), from the same freshly tied knot as
+/// above: each row is the full row with its twist entries zeroed (so the full rows do have
+/// twist entries), and the step's thigmotaxic generalized force `C_thᵀλ` has no twist torque
+/// at all while its bending torques are not zero.
+#[test]
+fn bending_only_rows_exert_no_twist_torque() {
+    let path = format!("{}/../../data/scenarios/form.ron", env!("CARGO_MANIFEST_DIR"));
+    let loaded = LoadedScenario::load(&path).expect("form.ron loads");
+    let (mut world, mut forming) = loaded.build().expect("world builds");
+    while world.state().t < 17.0 {
+        world.step(&mut forming).expect("forming step");
+    }
+    let knotted = world.state().clone();
+    let twist = twist_dofs(world.model());
+    let targets = SlidingTargets { v_a: 1.0, v_b: 1.0 };
+    let mut rows_and_forces = Vec::new();
+    for force_space in [ForceSpace::Full, ForceSpace::BendingOnly] {
+        world.set_state(knotted.clone()).expect("state restores");
+        let parameters = ThigmoParameters {
+            head: targets,
+            tail: targets,
+            tail_pull_dyn: 0.0,
+            max_force_dyn: 1e6,
+            force_space,
+        };
+        world.step(&mut Thigmo(parameters)).expect("thigmo step");
+        let data = world.data();
+        let rows: Vec<Vec<f64>> = (0..data.rows.len())
+            .filter(|&i| data.rows.sources()[i].tag == RowGroup::Thigmo.tag())
+            .map(|i| data.rows.coefficients(i).expect("row exists").to_vec())
+            .collect();
+        let mut force = vec![0.0; world.model().dof_count()];
+        data.group_force(RowGroup::Thigmo, world.options().time_step, &mut force);
+        rows_and_forces.push((rows, force));
+    }
+    let [(full_rows, full_force), (bending_rows, bending_force)] =
+        <[_; 2]>::try_from(rows_and_forces).expect("two runs");
+    assert_eq!(full_rows.len(), bending_rows.len());
+    assert!(full_rows.iter().any(|row| twist.iter().any(|&k| row[k] != 0.0)), "no twist entry");
+    for (full, bending) in full_rows.iter().zip(&bending_rows) {
+        for (k, (f, b)) in full.iter().zip(bending).enumerate() {
+            let expected = if twist.contains(&k) { 0.0 } else { *f };
+            assert_eq!(*b, expected, "DOF {k}");
+        }
+    }
+    assert!(twist.iter().any(|&k| full_force[k] != 0.0), "the full force twists");
+    assert!(twist.iter().all(|&k| bending_force[k] == 0.0), "{bending_force:?}");
+    assert!(bending_force.iter().any(|f| f.abs() > 1.0), "bending torques of a dyn·cm or more");
 }

@@ -15,6 +15,6 @@ pub use head::add_head_rows;
 pub use limits::{add_limit_rows, add_overshooting_limit_rows, overshoots_limit};
 pub use self_contact::{add_self_contact_rows, add_spline_point_row};
 pub use stabilisation::unilateral_rhs;
-pub use thigmo::add_thigmo_rows;
 pub(crate) use thigmo::thigmo_strands;
+pub use thigmo::{add_thigmo_rows, confine, twist_dofs};
 pub use wall::add_wall_rows;

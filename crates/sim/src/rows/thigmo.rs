@@ -3,12 +3,16 @@
 //! `t_aᵀ(P(u_a) − P(u_b)) q̇ ≥ v_a` or `t_bᵀ(P(u_b) − P(u_a)) q̇ ≥ v_b`. No stabilisation term.
 //! Soft: the slack penalty is the row's largest impulse, `max_force · h`.
 //!
+//! A row is confined to its request's [`ForceSpace`] ([`confine`]): with `BendingOnly` its
+//! twist entries are zero, so its force `cλ` has no twist torque and the row asks the sliding
+//! speed of the bending velocities alone.
+//!
 //! A negative target asks for sliding the other way (the knot moves tail-ward): the row becomes
 //! `−tᵀ(P(u_this) − P(u_other)) q̇ ≥ |v|`. Merely lowering the bound of the head-ward row below
 //! zero would only *allow* tail-ward sliding, never drive it.
 
 use glam::DVec3;
-use hagfish_control::{Strand, ThigmoRequest};
+use hagfish_control::{ForceSpace, Strand, ThigmoRequest};
 use hagfish_geometry::{SelfContact, SplineWeights};
 use hagfish_solver::{RowKind, Rows};
 use hagfish_tree::{Data, Model};
@@ -17,12 +21,14 @@ use super::RowGroup;
 use super::self_contact::add_spline_point_row;
 
 /// Appends one soft row per request, id its index in `requests` (requests naming a missing
-/// contact are skipped).
+/// contact are skipped), each confined to its request's force space; `twist_dofs` are the
+/// indices of the twist DOFs ([`twist_dofs`]).
 pub fn add_thigmo_rows(
     model: &Model,
     data: &Data,
     contacts: &[SelfContact],
     requests: &[ThigmoRequest],
+    twist_dofs: &[usize],
     time_step: f64,
     rows: &mut Rows,
 ) {
@@ -37,7 +43,24 @@ pub fn add_thigmo_rows(
         let (this, other, tangent) = thigmo_strands(request, contact);
         add_spline_point_row(model, data, this, tangent, 1.0, row);
         add_spline_point_row(model, data, other, tangent, -1.0, row);
+        confine(request.force_space, twist_dofs, row);
     }
+}
+
+/// Projects `row` onto `space`: `c̃ = P c` (`P = I` for `Full`; for `BendingOnly` the
+/// projector that zeroes the twist DOFs `twist_dofs`).
+pub fn confine(space: ForceSpace, twist_dofs: &[usize], row: &mut [f64]) {
+    match space {
+        ForceSpace::Full => {}
+        ForceSpace::BendingOnly => twist_dofs.iter().for_each(|&k| row[k] = 0.0),
+    }
+}
+
+/// The indices of the twist DOFs of `model`: those about the body's long axis (X), as
+/// [`crate::dof_labels`] labels them.
+pub fn twist_dofs(model: &Model) -> Vec<usize> {
+    let labels = crate::dof_labels(model);
+    labels.iter().enumerate().filter(|(_, l)| l.axis == 'X').map(|(k, _)| k).collect()
 }
 
 /// The strand a request drives, the other strand and the direction of the row
