@@ -165,9 +165,7 @@ fn write_figures<F: figure::Figure + Titled>(
 ) -> Result<Vec<std::path::PathBuf>, ReportError> {
     let drawn = figures
         .into_iter()
-        .map(|(stem, f)| {
-            figure::render(f, stem, f.title(), &directory.join(format!("{stem}.png")))
-        })
+        .map(|(stem, f)| figure::render(f, stem, f.title(), &directory.join(format!("{stem}.png"))))
         .collect::<Result<Vec<_>, _>>()?;
     write(&drawn, directory)
 }
