@@ -42,7 +42,9 @@ impl Field {
                 knot_cm.len()
             )));
         }
-        if !values.iter().chain(&times).chain(&arcs_cm).all(|v| v.is_finite()) || !(length_cm > 0.0)
+        if !values.iter().chain(&times).chain(&arcs_cm).all(|v| v.is_finite())
+            || length_cm.is_nan()
+            || length_cm <= 0.0
         {
             return Err(ModesError::Invalid(format!("{label}: a non-finite value or L ≤ 0")));
         }

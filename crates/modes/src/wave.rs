@@ -27,7 +27,7 @@ pub struct WaveFit {
     pub phase_speed_cm_s: f64,
     /// The knot position against time: slope = the knot's speed (cm/s), if ≥ 2 frames had one.
     pub knot: Option<LineFit>,
-    /// c divided by the knot's speed.
+    /// c divided by the knot's speed (`None` without a knot speed or when it is 0).
     pub speed_ratio: Option<f64>,
 }
 
@@ -60,7 +60,7 @@ impl WaveFit {
         let (times, knot): (Vec<f64>, Vec<f64>) =
             field.times.iter().zip(&field.knot_cm).filter_map(|(t, k)| Some((*t, (*k)?))).unzip();
         let knot = fit_line(&times, &knot);
-        let speed_ratio = knot.map(|k| phase_speed_cm_s / k.slope);
+        let speed_ratio = knot.filter(|k| k.slope != 0.0).map(|k| phase_speed_cm_s / k.slope);
         Ok(Self { spatial, temporal, phase_speed_cm_s, knot, speed_ratio })
     }
 }
