@@ -84,6 +84,9 @@ pub enum CliError {
     /// The run directory could not be read or its pictures, report or exports written.
     #[error(transparent)]
     Report(#[from] hagfish_report::ReportError),
+    /// The force field of a run directory could not be decomposed or its modes written.
+    #[error(transparent)]
+    Modes(#[from] hagfish_modes::ModesError),
     /// Writing the report to stdout failed (e.g. a closed pipe).
     #[error("cannot write the output: {0}")]
     Output(#[from] std::io::Error),

@@ -1,9 +1,10 @@
 //! The command line: one `Command` variant and one file per subcommand (`body`, `run`,
-//! `params`, `knot`, `render`, `report`, `export`, `sweep`), all sharing [`CliError`].
+//! `params`, `knot`, `render`, `report`, `export`, `sweep`, `modes`), all sharing [`CliError`].
 
 mod body;
 mod export;
 mod knot;
+mod modes;
 mod params;
 mod progress;
 mod render;
@@ -45,6 +46,8 @@ enum Command {
     Sweep(sweep::SweepArgs),
     /// Re-make a run directory's report.html (one offline page with a 3-D view).
     Report(report::ReportArgs),
+    /// The modes (POD) of a run's thigmotaxis force field, their energies and a wave fit.
+    Modes(modes::ModesArgs),
 }
 
 /// Runs the chosen subcommand, writing its report to stdout (buffered, flushed at the end).
@@ -59,6 +62,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Report(args) => report::run(&args, &mut out)?,
         Command::Export(args) => export::run(&args, &mut out)?,
         Command::Sweep(args) => sweep::run(&args, &mut out)?,
+        Command::Modes(args) => modes::run(&args, &mut out)?,
     }
     out.flush()?;
     Ok(())

@@ -79,7 +79,7 @@ pub use metrics::Metrics;
 pub use outputs::{
     ANIMATION, GLB, PLOTS, REPORT, VTK, Written, own_files, render, report, write_all,
 };
-pub use plots::{Scatter, write_scatters};
+pub use plots::{Line, Scatter, TimeSeries, write_line_plots, write_scatters};
 pub use radii::{DEFAULT_RADIUS_CM, Radii};
 pub use run_dir::RunDir;
 pub use tension::Tension;

@@ -53,5 +53,6 @@ pub use recorder::{
     RecordedFile, Recorder,
 };
 pub use run::{
-    DEFAULT_MAX_STEPS, KnotSample, Progress, RunEnd, RunOptions, RunOutcome, RunSummary, run,
+    DEFAULT_MAX_STEPS, KnotSample, Progress, RunEnd, RunOptions, RunOutcome, RunSummary,
+    dof_arc_lengths, run,
 };

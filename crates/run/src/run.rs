@@ -156,8 +156,11 @@ pub fn run(
     progress: &mut dyn FnMut(&Progress<'_>),
 ) -> Result<RunOutcome, RunError> {
     let (mut world, mut controller) = loaded.build()?;
+    let mut centres = Vec::new();
+    world.body_centres(&mut centres);
+    let arcs = dof_arc_lengths(&centres, world.model().dof_joint());
     let mut summary = RunSummary {
-        force_field: ForceFieldLog::new(dof_labels(world.model()), dof_arc_lengths(&mut world)),
+        force_field: ForceFieldLog::new(dof_labels(world.model()), arcs),
         ..RunSummary::default()
     };
     if let Some(checkpoint) = options.resume {
@@ -407,15 +410,15 @@ impl Recording {
     }
 }
 
-/// Arc length of each DOF's joint from the head body's centre (cm), read off the body centres
-/// of `world` at rest (straight): tree joint i sits halfway between centres i − 1 and i (joint
-/// 0 at the wall). This is the arc-length convention of [`KnotSpan`].
-fn dof_arc_lengths(world: &mut World) -> Vec<f64> {
-    let mut centres = Vec::new();
-    world.body_centres(&mut centres);
+/// Arc length of each DOF's joint from the head body's centre (cm), read off the body
+/// `centres` at rest (straight): tree joint i sits halfway between centres i − 1 and i
+/// (joint 0 at the wall), s = |½(cᵢ₋₁ + cᵢ) − c₀|, and `dof_joint` names each DOF's tree
+/// joint. This is the arc-length convention of [`KnotSpan`]; `hagfish modes` places the
+/// force field's DOFs along the body with it.
+pub fn dof_arc_lengths(centres: &[DVec3], dof_joint: &[usize]) -> Vec<f64> {
     let joint_arc = |i: usize| match i {
         0 => -centres[0].length(),
         _ => (0.5 * (centres[i - 1] + centres[i]) - centres[0]).length(),
     };
-    world.model().dof_joint().iter().map(|&joint| joint_arc(joint)).collect()
+    dof_joint.iter().map(|&joint| joint_arc(joint)).collect()
 }

@@ -14,12 +14,15 @@ use plotters::style::RGBColor;
 pub use figure::Plot;
 use kymograph::Kymograph;
 pub use scatter::Scatter;
-use time_series::{Line, TimeSeries};
+pub use time_series::{Line, TimeSeries};
 
 use crate::colour::Rgb;
 use crate::error::ReportError;
 use crate::forces::AXES;
 use crate::run_dir::RunDir;
+
+/// The x label of the plots against time.
+const TIME_LABEL: &str = "time (s)";
 
 /// The plotters colour of `c`.
 fn rgb(c: Rgb) -> RGBColor {
@@ -60,6 +63,7 @@ pub fn draw(run: &RunDir, plots: &Path) -> Result<Vec<Plot>, ReportError> {
         drawn.push(figure::render(&figure, stem, title, &plots.join(format!("{stem}.png")))?);
         let head = TimeSeries {
             title: "Tension at the head (the pull the body transmits to the wall)".into(),
+            x_label: TIME_LABEL.into(),
             y_label: "tension at joint 0 (dyn)".into(),
             times: tension.head_times.clone(),
             lines: vec![Line {
@@ -80,6 +84,7 @@ pub fn draw(run: &RunDir, plots: &Path) -> Result<Vec<Plot>, ReportError> {
     };
     let knot = TimeSeries {
         title: "Knotted core and contact span".into(),
+        x_label: TIME_LABEL.into(),
         y_label: "arc length from the head (cm)".into(),
         times: m.time.clone(),
         lines: vec![
@@ -95,6 +100,7 @@ pub fn draw(run: &RunDir, plots: &Path) -> Result<Vec<Plot>, ReportError> {
     let some = |v: &[f64]| v.iter().map(|x| Some(*x)).collect::<Vec<_>>();
     let contacts = TimeSeries {
         title: "Contacts".into(),
+        x_label: TIME_LABEL.into(),
         y_label: "count".into(),
         times: m.time.clone(),
         lines: vec![
@@ -138,9 +144,46 @@ pub fn write_scatters(
     scatters: &[Scatter],
     directory: &Path,
 ) -> Result<Vec<std::path::PathBuf>, ReportError> {
-    let drawn = scatters
-        .iter()
-        .map(|s| figure::render(s, &s.stem, &s.title, &directory.join(format!("{}.png", s.stem))))
+    let named = scatters.iter().map(|s| (s.stem.as_str(), s));
+    write_figures(named.collect(), directory)
+}
+
+/// Draws each line plot (`(stem, plot)`, captioned by its title) and writes it as
+/// `<stem>.png` and `<stem>.svg` into `directory` (created if missing); returns the files
+/// written.
+pub fn write_line_plots(
+    plots: &[(String, TimeSeries)],
+    directory: &Path,
+) -> Result<Vec<std::path::PathBuf>, ReportError> {
+    write_figures(plots.iter().map(|(stem, plot)| (stem.as_str(), plot)).collect(), directory)
+}
+
+/// Renders each `(stem, figure)` and writes it into `directory` ([`write`]).
+fn write_figures<F: figure::Figure + Titled>(
+    figures: Vec<(&str, &F)>,
+    directory: &Path,
+) -> Result<Vec<std::path::PathBuf>, ReportError> {
+    let drawn = figures
+        .into_iter()
+        .map(|(stem, f)| figure::render(f, stem, f.title(), &directory.join(format!("{stem}.png"))))
         .collect::<Result<Vec<_>, _>>()?;
     write(&drawn, directory)
+}
+
+/// A figure with a caption.
+trait Titled {
+    /// The caption.
+    fn title(&self) -> &str;
+}
+
+impl Titled for Scatter {
+    fn title(&self) -> &str {
+        &self.title
+    }
+}
+
+impl Titled for TimeSeries {
+    fn title(&self) -> &str {
+        &self.title
+    }
 }

@@ -1,4 +1,5 @@
-//! A line plot of several quantities against time, with gaps where a value is missing.
+//! A line plot of several quantities against time (or another shared x, e.g. arc length),
+//! with gaps where a value is missing.
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -19,14 +20,16 @@ pub struct Line {
     pub values: Vec<Option<f64>>,
 }
 
-/// Lines against a shared time axis.
+/// Lines against a shared x axis: time, or e.g. arc length for mode shapes.
 #[derive(Clone, Debug)]
 pub struct TimeSeries {
     /// Caption.
     pub title: String,
+    /// Label of the x axis (with its unit), e.g. `time (s)`.
+    pub x_label: String,
     /// Label of the y axis.
     pub y_label: String,
-    /// The times (s).
+    /// The x values, increasing: the times (s) of a time series.
     pub times: Vec<f64>,
     /// The lines.
     pub lines: Vec<Line>,
@@ -72,7 +75,7 @@ impl Figure for TimeSeries {
         let axes = Axes {
             title: &self.title,
             title_size: 18,
-            x_label: "time (s)",
+            x_label: &self.x_label,
             y_label: &self.y_label,
             y_label_area: 56,
         };
@@ -118,6 +121,7 @@ mod tests {
         let line = |values| Line { label: String::new(), colour: [0, 0, 0], values };
         let mut series = TimeSeries {
             title: String::new(),
+            x_label: String::new(),
             y_label: String::new(),
             times: vec![0.0, 1.0],
             lines: vec![line(vec![Some(-10.0), None]), line(vec![None, Some(30.0)])],

@@ -1,0 +1,56 @@
+//! `hagfish modes` on a real run: the thesis scenario (tie, tighten, slide on ES103), then
+//! the decomposition of its slide and the errors of a missing run, an unknown phase and a
+//! phase without force.
+
+mod common;
+
+use common::{ROOT, code_and_stderr, fresh_dir, run_hagfish};
+
+#[test]
+fn modes_of_the_thesis_slide_and_clear_errors() {
+    let dir = fresh_dir("modes-thesis");
+    let run = dir.join("run");
+    let scenario = format!("{ROOT}/data/scenarios/thesis.ron");
+    let made = run_hagfish(["run", scenario.as_str(), "--out", run.to_str().expect("utf-8")]);
+    assert!(made.status.success(), "{}", code_and_stderr(&made).1);
+
+    let output =
+        run_hagfish(["modes".as_ref(), run.as_os_str(), "--phase".as_ref(), "slide".as_ref()]);
+    assert!(output.status.success(), "{}", code_and_stderr(&output).1);
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(stdout.contains("modes for 90 %"), "{stdout}");
+    let modes = run.join("modes");
+    for name in
+        ["modes.csv", "time_courses.csv", "modes.json", "energy_all.png", "shapes_bend-y.svg"]
+    {
+        assert!(modes.join(name).is_file(), "{name} is written");
+    }
+    let text = std::fs::read_to_string(modes.join("modes.json")).expect("modes.json");
+    let json: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+    let selections = json["selections"].as_array().expect("selections");
+    assert_eq!(selections.len(), 5, "all, bend, bend-y, bend-z, twist");
+    for s in selections {
+        let energy: Vec<f64> =
+            serde_json::from_value(s["energy_fractions"].clone()).expect("energies");
+        assert!((energy.iter().sum::<f64>() - 1.0).abs() < 1e-12, "{energy:?}");
+        let counts = ["0.90", "0.95", "0.99"].map(|l| s["modes_for"][l].as_u64().expect("a count"));
+        assert!(counts[0] >= 1 && counts[0] <= counts[1] && counts[1] <= counts[2], "{counts:?}");
+        assert!(s["wave"]["phase_speed_cm_s"].is_number(), "{s}");
+    }
+    let header = std::fs::read_to_string(modes.join("modes.csv")).expect("modes.csv");
+    assert!(header.starts_with("kind,mode,s_cm,s_L,shape\n"));
+
+    let missing = run_hagfish(["modes".as_ref(), dir.join("nothing").as_os_str()]);
+    let (code, stderr) = code_and_stderr(&missing);
+    assert_eq!(code, Some(2));
+    assert!(stderr.contains("does not exist"), "{stderr}");
+    let unknown =
+        run_hagfish(["modes".as_ref(), run.as_os_str(), "--phase".as_ref(), "swim".as_ref()]);
+    let (code, stderr) = code_and_stderr(&unknown);
+    assert_eq!(code, Some(2));
+    assert!(stderr.contains("swim") && stderr.contains("slide"), "names the phases: {stderr}");
+    let tie = run_hagfish(["modes".as_ref(), run.as_os_str(), "--phase".as_ref(), "tie".as_ref()]);
+    let (code, stderr) = code_and_stderr(&tie);
+    assert_eq!(code, Some(2));
+    assert!(stderr.contains("zero"), "no thigmotaxis force while tying: {stderr}");
+}
