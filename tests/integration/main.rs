@@ -11,6 +11,7 @@ mod errors;
 mod export_command;
 mod knot_core;
 mod knot_size;
+mod modes_command;
 mod overrides;
 mod render_command;
 mod resume;

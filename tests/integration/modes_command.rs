@@ -2,9 +2,7 @@
 //! the decomposition of its slide and the errors of a missing run, an unknown phase and a
 //! phase without force.
 
-mod common;
-
-use common::{ROOT, code_and_stderr, fresh_dir, run_hagfish};
+use crate::common::{ROOT, code_and_stderr, fresh_dir, run_hagfish};
 
 #[test]
 fn modes_of_the_thesis_slide_and_clear_errors() {
