@@ -44,10 +44,15 @@ impl PhasedController {
         if state.phases.phase > self.phases.len() {
             return Err(mismatch);
         }
-        let script = self.phases[..(state.phases.phase + 1).min(self.phases.len())]
-            .iter()
-            .rev()
-            .find_map(Phase::script);
+        // A tie in progress forms its current attempt's plan (attempts after the first may
+        // move at `retry_speed_cm_s`); otherwise the latest script up to the current phase.
+        let script = match self.phases.get(state.phases.phase) {
+            Some(Phase::Tie(tie)) => Some(tie.script_for(state.tie.attempt.max(1))),
+            _ => self.phases[..(state.phases.phase + 1).min(self.phases.len())]
+                .iter()
+                .rev()
+                .find_map(Phase::script),
+        };
         self.forming = match (script, state.forming) {
             (Some(script), Some(progress)) if progress.step <= script.steps.len() => {
                 Some(FormingController { script, progress })
@@ -57,6 +62,7 @@ impl PhasedController {
         };
         self.progress = state.phases;
         self.tie = state.tie;
+        self.refresh_tie_checks();
         Ok(())
     }
 }
@@ -119,5 +125,25 @@ mod tests {
             ..saved
         };
         assert!(!mismatch(&finished), "after the last phase the forming script is kept");
+    }
+
+    /// A tie in its second attempt comes back with that attempt's plan — moving at
+    /// `retry_speed_cm_s` — and its crossing checks, not the first attempt's.
+    #[test]
+    fn a_tie_in_a_later_attempt_comes_back_with_that_attempts_plan() {
+        use crate::tie::{TieKnot, TiePhase};
+        let mut tie = TiePhase::new(TieKnot::FigureEight, 0.31);
+        tie.speed_cm_s = 3.0;
+        tie.retry_speed_cm_s = Some(5.0);
+        let phases = vec![Phase::Tie(tie.clone())];
+        let mut saved = controller(phases.clone()).state();
+        saved.tie = TieProgress { attempt: 2, ..TieProgress::default() };
+        let mut restored = controller(phases);
+        assert_eq!(restored.restore(&saved), Ok(()));
+        let script = &restored.forming.as_ref().expect("a tie forms").script;
+        assert_eq!(*script, tie.script_for(2));
+        assert_ne!(*script, tie.script_for(1), "the attempts move at different speeds");
+        let checks: Vec<_> = tie.plan_for(2).checks().collect();
+        assert_eq!(restored.tie_checks, checks);
     }
 }

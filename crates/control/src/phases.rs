@@ -131,6 +131,10 @@ pub struct PhasedController {
     pub(crate) progress: PhaseProgress,
     pub(crate) forming: Option<FormingController>,
     pub(crate) tie: TieProgress,
+    /// The crossing checks of the current tie attempt's plan, each with the index of the step
+    /// after which it runs ([`crate::TiePlan::checks`]); empty outside a tie. Derived from the
+    /// phase and `tie.attempt` whenever either changes, so that a step does not build the plan.
+    pub(crate) tie_checks: Vec<(usize, CrossingCheck)>,
 }
 
 /// A tie phase that failed: which knot, after how many attempts, and the latest crossing
@@ -168,7 +172,17 @@ impl PhasedController {
         };
         let load_since = matches!(phases.first(), Some(Phase::Load(_))).then_some(0.0);
         let progress = PhaseProgress { load_since, ..PhaseProgress::default() };
-        Self { drag, phases, progress, forming, tie }
+        let mut controller = Self { drag, phases, progress, forming, tie, tie_checks: Vec::new() };
+        controller.refresh_tie_checks();
+        controller
+    }
+
+    /// Derives [`PhasedController::tie_checks`] from the current phase and tie attempt.
+    pub(crate) fn refresh_tie_checks(&mut self) {
+        self.tie_checks.clear();
+        if let Some(Phase::Tie(phase)) = self.phases.get(self.progress.phase) {
+            self.tie_checks.extend(phase.plan_for(self.tie.attempt.max(1)).checks());
+        }
     }
 
     /// Takes the knot analysis of an observation at time `t` (`None` if it failed). Its
@@ -197,6 +211,7 @@ impl PhasedController {
                 ..TieProgress::default()
             };
             self.forming = Some(FormingController::new(phase.script_for(self.tie.attempt)));
+            self.refresh_tie_checks();
         }
     }
 
@@ -221,8 +236,7 @@ impl PhasedController {
             return None;
         };
         let step = self.forming.as_ref()?.progress().step;
-        let plan = phase.plan_for(self.tie.attempt);
-        let (after_step, check) = plan.checks().nth(self.tie.checks_done as usize)?;
+        let &(after_step, check) = self.tie_checks.get(self.tie.checks_done as usize)?;
         (step > after_step && !self.tie.failed).then_some((phase, check))
     }
 
@@ -231,7 +245,7 @@ impl PhasedController {
     /// ends as before, on the knot analysis: a check is a diagnosis, the analysis the judge.
     pub(crate) fn observe_crossings(&mut self, found: &[Layer]) {
         while let Some((phase, check)) = self.crossing_check_due() {
-            let checks = phase.plan_for(self.tie.attempt).checks().count() as u32;
+            let checks = self.tie_checks.len() as u32;
             if phase.passes(&check, found) || self.tie.shown_since.is_some() {
                 self.tie.checks_done += 1;
                 continue;
@@ -336,6 +350,7 @@ impl PhasedController {
             Some(Phase::Tie(_)) => TieProgress { attempt: 1, ..TieProgress::default() },
             _ => TieProgress::default(),
         };
+        self.refresh_tie_checks();
     }
 }
 
