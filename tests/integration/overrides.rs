@@ -120,8 +120,8 @@ fn a_phase_name_with_a_comma_stays_one_field_and_the_report_reads_it() {
     let run = dir.join("run");
     let targets = "(v_a: 0.0, v_b: 0.0)";
     let phase = format!(
-        "phases[1]=Thigmotaxis((name: \"a,b\", parameters: (head: {targets}, tail: {targets}, \
-         tail_pull_dyn: 0.0, max_force_dyn: 100.0), until: (seconds: 0.5)))"
+        "phases=[Thigmotaxis((name: \"a,b\", parameters: (head: {targets}, tail: {targets}, \
+         tail_pull_dyn: 0.0, max_force_dyn: 100.0), until: (seconds: 0.5)))]"
     );
     let output = run_form(&run, &["--set", &phase]);
     let (code, stderr) = code_and_stderr(&output);
