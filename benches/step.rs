@@ -149,7 +149,7 @@ fn thigmo_space(c: &mut Criterion) {
     let sines: Vec<Vec<f64>> = (1..=4)
         .map(|j| {
             let shift = |axis: char| f64::from(u32::from(axis) - u32::from('X'));
-            let wave = |s: f64, a: char| (j as f64 * std::f64::consts::PI * s / length + shift(a));
+            let wave = |s: f64, a: char| j as f64 * std::f64::consts::PI * s / length + shift(a);
             arcs.iter().zip(&labels).map(|(s, l)| wave(*s, l.axis).sin()).collect()
         })
         .collect();
