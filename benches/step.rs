@@ -16,16 +16,23 @@
 //!   bodies on the sparse backend, `data/scenarios/tie.ron` at t = 19 s (a trefoil tied by
 //!   control, `hagfish_bench_support::long_knotted_world`), with the scenario's controller.
 //!   Per-stage benchmarks of the same state: `cargo bench -p hagfish-sim --bench stages`.
+//! - `step/thigmo_space/<space>`: one whole step in the knotted benchmark state under the
+//!   slide's thigmotaxis (2 cm/s at both contacts, four rows), with the rows confined to
+//!   `Full` (no projection) and to a modal space of k = 4 (`c̃ = B(Bᵀc)`, B four orthonormal
+//!   sines along the body): the cost of the projection, side by side.
 
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
 use hagfish_bench_support::{knotted_world, long_knotted_world};
-use hagfish_control::WaterDrag;
+use hagfish_control::{
+    ForceSpace, KindSelection, ModalBasis, ModalSpace, Phase, PhasedController, SlidingTargets,
+    ThigmoParameters, ThigmoPhase, Until, WaterDrag,
+};
 use hagfish_scenario::LoadedScenario;
 use hagfish_sim::rows::RowGroup;
-use hagfish_sim::{DynamicsBackend, StepOptions, World};
+use hagfish_sim::{DynamicsBackend, StepOptions, World, dof_labels, rest_dof_arc_lengths};
 use hagfish_solver::{QpBackend, SolverOptions};
 use hagfish_tree::{Data, State, step_unconstrained};
 
@@ -132,5 +139,63 @@ fn long_knotted(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, unconstrained, knotted, long_knotted);
+/// The knotted state's step under the slide's thigmotaxis, `Full` against `Modes` k = 4.
+fn thigmo_space(c: &mut Criterion) {
+    let (mut world, _) = knotted_world(env!("CARGO_MANIFEST_DIR").as_ref()).expect("knotted");
+    let knotted = world.state().clone();
+    let model = world.model().clone();
+    let length = form_scenario().body.length_cm();
+    let (arcs, labels) = (rest_dof_arc_lengths(&model), dof_labels(&model));
+    let sines: Vec<Vec<f64>> = (1..=4)
+        .map(|j| {
+            let shift = |axis: char| f64::from(u32::from(axis) - u32::from('X'));
+            let wave = |s: f64, a: char| j as f64 * std::f64::consts::PI * s / length + shift(a);
+            arcs.iter().zip(&labels).map(|(s, l)| wave(*s, l.axis).sin()).collect()
+        })
+        .collect();
+    let basis = ModalBasis::orthonormal(model.dof_count(), &sines).expect("four sines");
+    let modal = ModalSpace {
+        file: "sines".into(),
+        kind: KindSelection::All,
+        modes: 4,
+        basis: Some(std::sync::Arc::new(basis)),
+    };
+    let mut group = c.benchmark_group("step/thigmo_space");
+    for (name, force_space) in [("Full", ForceSpace::Full), ("Modes4", ForceSpace::Modes(modal))] {
+        let targets = SlidingTargets { v_a: 2.0, v_b: 2.0 };
+        let parameters = ThigmoParameters {
+            head: targets,
+            tail: targets,
+            tail_pull_dyn: 20.0,
+            max_force_dyn: 2000.0,
+            force_space,
+        };
+        let phase = ThigmoPhase {
+            name: "slide".into(),
+            parameters,
+            until: Until { seconds: 1e3, ..Until::default() },
+        };
+        let mut controller =
+            PhasedController::new(Some(WaterDrag::default()), vec![Phase::Thigmotaxis(phase)]);
+        world.set_state(knotted.clone()).expect("state");
+        world.step(&mut controller).expect("warm-up step");
+        let saved = controller.state();
+        group.bench_function(name, |b| {
+            b.iter_custom(|iterations| {
+                let mut elapsed = Duration::ZERO;
+                for _ in 0..iterations {
+                    world.set_state(knotted.clone()).expect("state");
+                    controller.restore(&saved).expect("controller state");
+                    let start = Instant::now();
+                    black_box(world.step(&mut controller).expect("step").solve.iterations);
+                    elapsed += start.elapsed();
+                }
+                elapsed
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, unconstrained, knotted, long_knotted, thigmo_space);
 criterion_main!(benches);

@@ -36,7 +36,7 @@ fn modes_of_the_thesis_slide_and_clear_errors() {
         assert!(s["wave"]["phase_speed_cm_s"].is_number(), "{s}");
     }
     let header = std::fs::read_to_string(modes.join("modes.csv")).expect("modes.csv");
-    assert!(header.starts_with("kind,mode,s_cm,s_L,shape\n"));
+    assert!(header.starts_with("kind,mode,axis,s_cm,s_L,shape\n"));
 
     let missing = run_hagfish(["modes".as_ref(), dir.join("nothing").as_os_str()]);
     let (code, stderr) = code_and_stderr(&missing);

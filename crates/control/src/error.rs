@@ -33,4 +33,13 @@ pub enum ControlError {
         /// Whether the state has forming progress.
         forming: bool,
     },
+    /// Mode shapes that do not span a space of their number of dimensions on the body
+    /// ([`crate::ModalBasis::orthonormal`]).
+    #[error("mode {mode}: {reason}: not a basis")]
+    NotABasis {
+        /// The first mode (from 1) that is dependent on the earlier ones, 0 for bad input.
+        mode: usize,
+        /// What is wrong.
+        reason: &'static str,
+    },
 }

@@ -52,6 +52,7 @@
 mod controller;
 mod controller_state;
 mod crossings;
+mod dof_kind;
 mod drag;
 mod error;
 mod force_space;
@@ -59,6 +60,7 @@ mod forming;
 mod knot_span;
 mod load;
 mod loops;
+mod modal_basis;
 mod phases;
 mod tail_pd;
 mod thigmotaxis;
@@ -70,13 +72,15 @@ mod until;
 pub use controller::{Actuation, ControlContext, Controller, Passive, PointDamper, PointForce};
 pub use controller_state::ControllerState;
 pub use crossings::{Layer, tail_crossings};
+pub use dof_kind::{DofKind, KindSelection};
 pub use drag::WaterDrag;
 pub use error::ControlError;
-pub use force_space::ForceSpace;
+pub use force_space::{ForceSpace, ModalSpace};
 pub use forming::{FormingController, FormingScript, ScriptProgress, ScriptStep, Waypoint};
 pub use knot_span::KnotSpan;
 pub use load::{LoadDirection, LoadPhase};
 pub use loops::{ProjectedLoop, largest_projected_loop};
+pub use modal_basis::{ModalBasis, RANK_TOLERANCE};
 pub use phases::{
     KnotObservation, Phase, PhaseProgress, PhasedController, ThigmoPhase, TieFailure,
     kinetic_energy,

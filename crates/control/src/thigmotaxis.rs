@@ -29,7 +29,7 @@ pub struct SlidingTargets {
 }
 
 /// Parameters of a thigmotaxis phase (thesis Tables 5.1, 6.1).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ThigmoParameters {
     /// Targets at the first (head-most) contact.
@@ -55,7 +55,7 @@ pub enum Strand {
 }
 
 /// A thigmotaxis row asked of the step pipeline.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct ThigmoRequest {
     /// Index of the contact in the context's self contacts.
     pub contact: usize,
@@ -91,7 +91,7 @@ impl ThigmoParameters {
                     strand,
                     speed,
                     max_force: self.max_force_dyn,
-                    force_space: self.force_space,
+                    force_space: self.force_space.clone(),
                 });
             }
         };

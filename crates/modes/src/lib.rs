@@ -11,7 +11,6 @@
 mod angles;
 mod error;
 mod field;
-mod kind;
 mod line_fit;
 mod output;
 mod pod;
@@ -21,7 +20,7 @@ mod wave;
 pub use angles::{captured_energy, principal_angles, resample, uniform_grid};
 pub use error::ModesError;
 pub use field::Field;
-pub use kind::{DofKind, KindSelection};
+pub use hagfish_control::{DofKind, KindSelection};
 pub use line_fit::{LineFit, fit_line, unwrap};
 pub use output::{Decomposition, MODES_DIR, write_outputs};
 pub use pod::{ENERGY_LEVELS, Pod};

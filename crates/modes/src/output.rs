@@ -8,10 +8,10 @@ use hagfish_report::{Line, Scatter, TimeSeries, write_line_plots, write_scatters
 
 use crate::error::ModesError;
 use crate::field::Field;
-use crate::kind::KindSelection;
 use crate::pod::{ENERGY_LEVELS, Pod};
 use crate::run_field::RunField;
 use crate::wave::WaveFit;
+use hagfish_control::{DofKind, KindSelection};
 
 /// The folder of the run directory the outputs go to.
 pub const MODES_DIR: &str = "modes";
@@ -25,6 +25,8 @@ const PLOTTED_MODES: usize = 4;
 pub struct Decomposition {
     /// The DOFs selected.
     pub kind: KindSelection,
+    /// The kind of each selected DOF, in the field's column order (`modes.csv`'s `axis`).
+    pub dof_kinds: Vec<DofKind>,
     /// The field.
     pub field: Field,
     /// Its POD.
@@ -42,9 +44,10 @@ impl Decomposition {
         kind: KindSelection,
     ) -> Result<Self, ModesError> {
         let field = run.select(phase, kind)?;
+        let dof_kinds = run.kinds.iter().copied().filter(|&k| kind.includes(k)).collect();
         let pod = Pod::of(&field)?;
         let wave = if pod.modes() >= 2 { Some(WaveFit::of(&pod, &field)?) } else { None };
-        Ok(Self { kind, field, pod, wave })
+        Ok(Self { kind, dof_kinds, field, pod, wave })
     }
 
     /// The number of modes for each of [`ENERGY_LEVELS`].
@@ -85,14 +88,14 @@ pub fn write_outputs(
     let out = directory.join(MODES_DIR);
     std::fs::create_dir_all(&out)
         .map_err(|source| ModesError::Write { path: out.clone(), source })?;
-    let mut shapes = String::from("kind,mode,s_cm,s_L,shape\n");
+    let mut shapes = String::from("kind,mode,axis,s_cm,s_L,shape\n");
     let mut courses = String::from("kind,mode,time_s,amplitude_dyn_cm\n");
     for d in decompositions {
         let kept = modes.min(d.pod.modes());
         for (i, shape) in d.pod.shapes.iter().take(kept).enumerate() {
-            for (s, v) in d.field.arcs_cm.iter().zip(shape) {
-                let _ =
-                    writeln!(shapes, "{},{},{s},{},{v:e}", d.kind, i + 1, s / d.field.length_cm);
+            for ((s, v), axis) in d.field.arcs_cm.iter().zip(shape).zip(&d.dof_kinds) {
+                let (kind, mode, axis, s_l) = (d.kind, i + 1, axis.axis(), s / d.field.length_cm);
+                let _ = writeln!(shapes, "{kind},{mode},{axis},{s},{s_l},{v:e}");
             }
         }
         for (i, course) in d.pod.time_courses.iter().take(kept).enumerate() {

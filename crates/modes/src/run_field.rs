@@ -5,15 +5,15 @@
 use std::path::{Path, PathBuf};
 
 use hagfish_report::Metrics;
-use hagfish_run::{dof_arc_lengths, npy::read_npy};
+use hagfish_run::npy::read_npy;
 use hagfish_scenario::LoadedScenario;
 
 use crate::error::ModesError;
 use crate::field::Field;
-use crate::kind::{DofKind, KindSelection};
+use hagfish_control::{DofKind, KindSelection};
 
 /// The whole recorded force field of a run and its frames' times, phases and knot positions.
-/// The DOFs' arc lengths are those the run itself uses (`hagfish_run::dof_arc_lengths`: joint
+/// The DOFs' arc lengths are those the run itself uses (`hagfish_sim::dof_arc_lengths`: joint
 /// i halfway between body centres i − 1 and i, from the head body's centre), computed exactly
 /// from the body file at q = 0, the straight rest shape, rather than from `centreline.csv`
 /// (rounded to 10⁻⁶ cm, and not straight for a run that starts knotted).
@@ -55,10 +55,7 @@ impl RunField {
         };
         let loaded = LoadedScenario::load(&scenario_path).map_err(|e| scenario_error(e.into()))?;
         let model = loaded.body.to_model().map_err(|e| scenario_error(e.into()))?;
-        let mut data = hagfish_tree::Data::new(&model);
-        hagfish_tree::position_kinematics(&model, &vec![0.0; model.dof_count()], &mut data);
-        let centres: Vec<_> = (0..model.body_count()).map(|b| data.body_centre(b)).collect();
-        let arcs_cm = dof_arc_lengths(&centres, model.dof_joint());
+        let arcs_cm = hagfish_sim::rest_dof_arc_lengths(&model);
         let labels = hagfish_sim::dof_labels(&model);
         let kinds = labels.iter().map(|l| DofKind::from_axis(l.axis)).collect::<Option<Vec<_>>>();
         let kinds =

@@ -46,6 +46,7 @@ mod scientific;
 pub use checkpoint::{CHECKPOINT_FILE, CHECKPOINT_FORMAT, Checkpoint, ExactF64s};
 pub use error::RunError;
 pub use force_field::{ForceFieldLog, ForceFieldStats};
+pub use hagfish_sim::dof_arc_lengths;
 pub use knot_core::KnotCore;
 pub use output_file::replace_file;
 pub use recorder::{
@@ -53,6 +54,5 @@ pub use recorder::{
     RecordedFile, Recorder,
 };
 pub use run::{
-    DEFAULT_MAX_STEPS, KnotSample, Progress, RunEnd, RunOptions, RunOutcome, RunSummary,
-    dof_arc_lengths, run,
+    DEFAULT_MAX_STEPS, KnotSample, Progress, RunEnd, RunOptions, RunOutcome, RunSummary, run,
 };

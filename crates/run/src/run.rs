@@ -11,7 +11,8 @@ use hagfish_knots::{KnotAnalyser, KnotOptions, KnotReport};
 use hagfish_scenario::{LoadedScenario, Scenario};
 use hagfish_sim::rows::RowGroup;
 use hagfish_sim::{
-    DofLabel, IntervalMaxima, SimError, StageTimings, StepOutcome, StepTally, World, dof_labels,
+    DofLabel, IntervalMaxima, SimError, StageTimings, StepOutcome, StepTally, World,
+    dof_arc_lengths, dof_labels,
 };
 use hagfish_tree::State;
 
@@ -408,17 +409,4 @@ impl Recording {
             files: Vec::new(),
         }
     }
-}
-
-/// Arc length of each DOF's joint from the head body's centre (cm), read off the body
-/// `centres` at rest (straight): tree joint i sits halfway between centres i − 1 and i
-/// (joint 0 at the wall), s = |½(cᵢ₋₁ + cᵢ) − c₀|, and `dof_joint` names each DOF's tree
-/// joint. This is the arc-length convention of [`KnotSpan`]; `hagfish modes` places the
-/// force field's DOFs along the body with it.
-pub fn dof_arc_lengths(centres: &[DVec3], dof_joint: &[usize]) -> Vec<f64> {
-    let joint_arc = |i: usize| match i {
-        0 => -centres[0].length(),
-        _ => (0.5 * (centres[i - 1] + centres[i]) - centres[0]).length(),
-    };
-    dof_joint.iter().map(|&joint| joint_arc(joint)).collect()
 }

@@ -17,6 +17,16 @@ pub enum ScenarioError {
         /// The underlying error.
         source: Box<hagfish_anatomy::AnatomyError>,
     },
+    /// A modal force space's file cannot give its basis: unreadable or malformed, no modes of
+    /// the kind, fewer modes than asked, or shapes that are rank-deficient on this body (the
+    /// position is the space's `file` or `modes`).
+    #[error("{at}: {reason}")]
+    ModeFile {
+        /// Where the scenario names the file or the number of modes.
+        at: hagfish_anatomy::Origin,
+        /// What is wrong.
+        reason: String,
+    },
     /// The body's model could not be built.
     #[error("building the model: {0}")]
     Model(#[from] hagfish_tree::TreeError),

@@ -102,7 +102,13 @@ pub const PARAMETERS: &[Parameter] = &[
        relative to the other at least this fast (negative: head-ward)"),
     p("Thigmotaxis.parameters.tail_pull_dyn", "dyn", "required", "force on the last body along its tangent, tail-ward"),
     p("Thigmotaxis.parameters.max_force_dyn", "dyn", "required", "largest force of one thigmotaxis row (its slack penalty)"),
-    p("Thigmotaxis.parameters.force_space", "-", "Full", "the torques the rows may exert: Full (every DOF) or BendingOnly (no twist torque)"),
+    p("Thigmotaxis.parameters.force_space", "-", "Full", "the torques the rows may exert: Full (every DOF), BendingOnly (no twist torque) \
+       or Modes((file, kind, modes)) (the span of the first k mode shapes of a force field)"),
+    p("Thigmotaxis.parameters.force_space.Modes", "-", "-", "P = BBᵀ, B the first k shapes of modes.csv resampled at this body's DOFs, orthonormalised"),
+    p("Thigmotaxis.parameters.force_space.Modes.file", "-", "required", "a modes.csv of hagfish modes, relative to the scenario file"),
+    p("Thigmotaxis.parameters.force_space.Modes.kind", "-", "required", "the selection whose shapes are read: all, bend, bend-y, bend-z or twist \
+       (the DOFs of other kinds are zero in every mode)"),
+    p("Thigmotaxis.parameters.force_space.Modes.modes", "-", "required", "k ≥ 1, at most the file's modes of that kind"),
     p("Thigmotaxis.until", "-", "required", "end conditions; the phase ends at the first that holds"),
     p("Thigmotaxis.until.seconds", "s", "required", "longest duration of the phase"),
     p("Thigmotaxis.until.hold_s", "s", "0", "a condition of when must hold this long without interruption to end the phase"),
@@ -127,9 +133,9 @@ mod tests {
     use std::collections::BTreeSet;
 
     use hagfish_control::{
-        Condition, Direction, ForceSpace, FormingScript, Handedness, LoadDirection, LoadPhase,
-        Phase, Quantity, ScriptStep, SlidingTargets, TailGains, ThigmoParameters, ThigmoPhase,
-        Threshold, TieKnot, TiePhase, Until, WaterDrag, Waypoint,
+        Condition, Direction, ForceSpace, FormingScript, Handedness, KindSelection, LoadDirection,
+        LoadPhase, ModalSpace, Phase, Quantity, ScriptStep, SlidingTargets, TailGains,
+        ThigmoParameters, ThigmoPhase, Threshold, TieKnot, TiePhase, Until, WaterDrag, Waypoint,
     };
 
     use super::*;
@@ -201,6 +207,22 @@ mod tests {
                         .map(|c| Condition::try_from(c).expect("admitted"))
                         .collect(),
                     },
+                }),
+                Phase::Thigmotaxis(ThigmoPhase {
+                    name: "modal".into(),
+                    parameters: ThigmoParameters {
+                        head: targets,
+                        tail: targets,
+                        tail_pull_dyn: 20.0,
+                        max_force_dyn: 2000.0,
+                        force_space: ForceSpace::Modes(ModalSpace {
+                            file: "modes.csv".into(),
+                            kind: KindSelection::Bend,
+                            modes: 4,
+                            basis: None,
+                        }),
+                    },
+                    until: Until { seconds: 1.0, ..Until::default() },
                 }),
                 Phase::Load(LoadPhase {
                     force_dyn: 1.0,

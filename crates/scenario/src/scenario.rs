@@ -24,6 +24,7 @@ use hagfish_sim::{DynamicsBackend, StepAcceptance, StepOptions, World, fnv1a64};
 
 use crate::error::ScenarioError;
 use crate::initial_shape::InitialShape;
+use crate::modal_space::resolve_modal_spaces;
 use crate::overrides::{Override, apply_overrides};
 use crate::scenario_check::check_scenario;
 
@@ -94,7 +95,8 @@ fn pretty_ron(scenario: &Scenario) -> String {
 /// A scenario with its body (hagfish biometrics or rod) loaded and checked.
 #[derive(Clone, Debug)]
 pub struct LoadedScenario {
-    /// The scenario as read, with the body path made absolute.
+    /// The scenario as read, with the body path and the modal spaces' files made absolute and
+    /// each modal space's basis resolved on the body (`modal_space.rs`; not serialised).
     pub scenario: Scenario,
     /// The body file's content.
     pub body: Body,
@@ -153,15 +155,17 @@ impl LoadedScenario {
             },
             other => ScenarioError::DataFile(other),
         })?;
-        let diameters = diameters_tail_ward(loaded.to_model()?.bodies(), 0.0);
+        let model = loaded.to_model()?;
+        let diameters = diameters_tail_ward(model.bodies(), 0.0);
         check_scenario(&file, loaded.body_count(), loaded.length_cm(), diameters)?;
+        let phases = resolve_modal_spaces(&file, directory, &model, loaded.length_cm())?;
         let bytes = std::fs::read(&body).map_err(|source| ScenarioError::BodyFile {
             at: file.locate(&Field::whole("body")),
             source: Box::new(AnatomyError::Io { path: body.clone(), source }),
         })?;
         let body_hash = format!("{:016x}", fnv1a64(&bytes));
         let body = std::fs::canonicalize(&body).unwrap_or(body);
-        let resolved = Scenario { body, ..file.value };
+        let resolved = Scenario { body, phases, ..file.value };
         Ok(Self { scenario: resolved, body: loaded, path: file.path, body_hash })
     }
 

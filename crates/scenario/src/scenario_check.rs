@@ -11,8 +11,8 @@ use std::collections::HashMap;
 
 use hagfish_anatomy::{AnatomyError, DataFile, Field};
 use hagfish_control::{
-    FormingScript, LoadDirection, LoadPhase, Phase, Quantity, ScriptStep, TailGains, ThigmoPhase,
-    Threshold, TiePhase, Until, Waypoint,
+    ForceSpace, FormingScript, LoadDirection, LoadPhase, Phase, Quantity, ScriptStep, TailGains,
+    ThigmoPhase, Threshold, TiePhase, Until, Waypoint,
 };
 
 use crate::initial_shape::{InitialShape, OpenTorusKnot};
@@ -181,6 +181,10 @@ impl Checker<'_> {
         }
         self.check("tail_pull_dyn", p.tail_pull_dyn, Range::Finite)?;
         self.check("max_force_dyn", p.max_force_dyn, Range::Positive)?;
+        if let ForceSpace::Modes(space) = &p.force_space {
+            let k = space.modes;
+            self.require("modes", k as f64, k >= 1, || "at least 1 mode".into())?;
+        }
         self.until(&phase.until)
     }
 

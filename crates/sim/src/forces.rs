@@ -32,6 +32,28 @@ pub fn dof_labels(model: &Model) -> Vec<DofLabel> {
     labels
 }
 
+/// Arc length of each DOF's joint from the head body's centre (cm), read off the body
+/// `centres` at rest (straight): tree joint i sits halfway between centres i − 1 and i
+/// (joint 0 at the wall), s = |½(cᵢ₋₁ + cᵢ) − c₀|, and `dof_joint` names each DOF's tree
+/// joint. This is the arc-length convention of `hagfish_control::KnotSpan`; `hagfish modes` places the
+/// force field's DOFs along the body with it.
+pub fn dof_arc_lengths(centres: &[DVec3], dof_joint: &[usize]) -> Vec<f64> {
+    let joint_arc = |i: usize| match i {
+        0 => -centres[0].length(),
+        _ => (0.5 * (centres[i - 1] + centres[i]) - centres[0]).length(),
+    };
+    dof_joint.iter().map(|&joint| joint_arc(joint)).collect()
+}
+
+/// [`dof_arc_lengths`] of `model` straight at rest (q = 0): the arc lengths `hagfish modes`
+/// places a force field's DOFs at, and those a modal force space is resampled at.
+pub fn rest_dof_arc_lengths(model: &Model) -> Vec<f64> {
+    let mut data = hagfish_tree::Data::new(model);
+    hagfish_tree::position_kinematics(model, &vec![0.0; model.dof_count()], &mut data);
+    let centres: Vec<_> = (0..model.body_count()).map(|b| data.body_centre(b)).collect();
+    dof_arc_lengths(&centres, model.dof_joint())
+}
+
 fn axis_name(axis: DVec3) -> char {
     let a = axis.abs();
     if a.x >= a.y && a.x >= a.z {

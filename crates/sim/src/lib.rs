@@ -58,7 +58,9 @@ mod world;
 pub use acceptance::{EndOfStep, Rejection, StepAcceptance};
 pub use backend::DynamicsBackend;
 pub use error::SimError;
-pub use forces::{DofLabel, GroupForces, RECORDED_GROUPS, dof_labels};
+pub use forces::{
+    DofLabel, GroupForces, RECORDED_GROUPS, dof_arc_lengths, dof_labels, rest_dof_arc_lengths,
+};
 pub use hash::{fnv1a64, state_hash};
 pub use internal_forces::{InternalForces, JointLoad};
 pub use maxima::IntervalMaxima;

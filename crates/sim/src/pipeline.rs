@@ -121,6 +121,7 @@ pub fn build_rows(model: &Model, options: &StepOptions, state: &State, data: &mu
         &data.self_contacts,
         &data.actuation.thigmo,
         &data.twist_dofs,
+        &mut data.modal_scratch,
         h,
         &mut data.rows,
     );

@@ -73,6 +73,8 @@ pub struct StepData {
     pub(crate) lengths: Vec<f64>,
     /// The indices of the twist DOFs, which a `BendingOnly` thigmotaxis row leaves out.
     pub(crate) twist_dofs: Vec<usize>,
+    /// One value per DOF, allocated here once: a modal force space's `Bᵀc` (k ≤ n values).
+    pub(crate) modal_scratch: Vec<f64>,
     pub(crate) velocity_guess: Vec<f64>,
     /// The dense `M̃` while stage 6 solves with it (`solve_and_resolve` swaps it out of `tree`
     /// and back); an empty matrix otherwise.
@@ -156,6 +158,7 @@ impl StepData {
             radii,
             lengths,
             twist_dofs: twist_dofs(model),
+            modal_scratch: vec![0.0; model.dof_count()],
             velocity_guess: vec![0.0; model.dof_count()],
             effective_mass: Mat::zeros(0, 0),
             bounds: Vec::with_capacity(reserve),

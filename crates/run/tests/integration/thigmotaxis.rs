@@ -270,7 +270,7 @@ fn negative_targets_slide_the_knot_tail_ward() {
 }
 
 /// Thigmotaxis alone, as a controller.
-struct Thigmo(ThigmoParameters);
+pub(crate) struct Thigmo(pub(crate) ThigmoParameters);
 
 impl Controller for Thigmo {
     fn control(&mut self, context: &ControlContext<'_>, out: &mut Actuation) {

@@ -16,5 +16,5 @@ pub use limits::{add_limit_rows, add_overshooting_limit_rows, overshoots_limit};
 pub use self_contact::{add_self_contact_rows, add_spline_point_row};
 pub use stabilisation::unilateral_rhs;
 pub(crate) use thigmo::thigmo_strands;
-pub use thigmo::{add_thigmo_rows, confine, twist_dofs};
+pub use thigmo::{add_thigmo_rows, twist_dofs};
 pub use wall::add_wall_rows;

@@ -3,16 +3,19 @@
 //! `t_aᵀ(P(u_a) − P(u_b)) q̇ ≥ v_a` or `t_bᵀ(P(u_b) − P(u_a)) q̇ ≥ v_b`. No stabilisation term.
 //! Soft: the slack penalty is the row's largest impulse, `max_force · h`.
 //!
-//! A row is confined to its request's [`ForceSpace`] ([`confine`]): with `BendingOnly` its
-//! twist entries are zero, so its force `cλ` has no twist torque and the row asks the sliding
-//! speed of the bending velocities alone.
+//! A row is confined to its request's [`ForceSpace`] ([`ForceSpace::confine`]): with
+//! `BendingOnly` its twist entries are zero, so its force `cλ` has no twist torque and the row
+//! asks the sliding speed of the bending velocities alone; with `Modes` it is `B(Bᵀc)`, in the
+//! span of the basis B.
 //!
 //! A negative target asks for sliding the other way (the knot moves tail-ward): the row becomes
 //! `−tᵀ(P(u_this) − P(u_other)) q̇ ≥ |v|`. Merely lowering the bound of the head-ward row below
 //! zero would only *allow* tail-ward sliding, never drive it.
 
 use glam::DVec3;
-use hagfish_control::{ForceSpace, Strand, ThigmoRequest};
+#[cfg(doc)]
+use hagfish_control::ForceSpace;
+use hagfish_control::{Strand, ThigmoRequest};
 use hagfish_geometry::{SelfContact, SplineWeights};
 use hagfish_solver::{RowKind, Rows};
 use hagfish_tree::{Data, Model};
@@ -22,13 +25,15 @@ use super::self_contact::add_spline_point_row;
 
 /// Appends one soft row per request, id its index in `requests` (requests naming a missing
 /// contact are skipped), each confined to its request's force space; `twist_dofs` are the
-/// indices of the twist DOFs ([`twist_dofs`]).
+/// indices of the twist DOFs ([`twist_dofs`]), `scratch` (one value per DOF) holds a modal
+/// space's `Bᵀc`.
 pub fn add_thigmo_rows(
     model: &Model,
     data: &Data,
     contacts: &[SelfContact],
     requests: &[ThigmoRequest],
     twist_dofs: &[usize],
+    scratch: &mut [f64],
     time_step: f64,
     rows: &mut Rows,
 ) {
@@ -43,16 +48,7 @@ pub fn add_thigmo_rows(
         let (this, other, tangent) = thigmo_strands(request, contact);
         add_spline_point_row(model, data, this, tangent, 1.0, row);
         add_spline_point_row(model, data, other, tangent, -1.0, row);
-        confine(request.force_space, twist_dofs, row);
-    }
-}
-
-/// Projects `row` onto `space`: `c̃ = P c` (`P = I` for `Full`; for `BendingOnly` the
-/// projector that zeroes the twist DOFs `twist_dofs`).
-pub fn confine(space: ForceSpace, twist_dofs: &[usize], row: &mut [f64]) {
-    match space {
-        ForceSpace::Full => {}
-        ForceSpace::BendingOnly => twist_dofs.iter().for_each(|&k| row[k] = 0.0),
+        request.force_space.confine(twist_dofs, scratch, row);
     }
 }
 

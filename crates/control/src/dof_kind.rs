@@ -1,7 +1,11 @@
-//! The kinds of DOF of the body's joints and the selections of them a decomposition takes.
+//! The kinds of DOF of the body's joints and the selections of them: the DOFs a modal
+//! decomposition of the force field takes (`hagfish modes --kind`), and those whose mode shapes
+//! span a modal force space ([`crate::ForceSpace::Modes`]).
 
 use std::fmt;
 use std::str::FromStr;
+
+use serde::{Deserialize, Serialize};
 
 /// The kind of one DOF, from its axis in the joint frame (`forces.csv`'s `axis`): X is the
 /// twist about the body axis, Y and Z the two bends.
@@ -25,11 +29,22 @@ impl DofKind {
             _ => None,
         }
     }
+
+    /// The DOF's axis in the joint frame, the inverse of [`DofKind::from_axis`].
+    pub fn axis(self) -> char {
+        match self {
+            Self::Twist => 'X',
+            Self::BendY => 'Y',
+            Self::BendZ => 'Z',
+        }
+    }
 }
 
 /// Which DOFs a decomposition takes: all together, both bends, or one kind. The field of
-/// several kinds is decomposed as one matrix (the kinds share the unit dyn·cm).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+/// several kinds is decomposed as one matrix (the kinds share the unit dyn·cm). Written in a
+/// scenario by its [`name`](KindSelection::name), e.g. `kind: "bend"`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(try_from = "String", into = "String")]
 pub enum KindSelection {
     /// Every DOF.
     All,
@@ -88,6 +103,22 @@ impl FromStr for KindSelection {
     }
 }
 
+impl TryFrom<String> for KindSelection {
+    type Error = String;
+
+    /// Parses a [`KindSelection::name`] (the scenario format's spelling).
+    fn try_from(text: String) -> Result<Self, Self::Error> {
+        text.parse()
+    }
+}
+
+impl From<KindSelection> for String {
+    /// The selection's [`KindSelection::name`].
+    fn from(kind: KindSelection) -> Self {
+        kind.name().to_owned()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -101,5 +132,6 @@ mod tests {
         assert!(!KindSelection::Bend.includes(DofKind::Twist));
         assert!(KindSelection::Bend.includes(DofKind::BendZ));
         assert_eq!(DofKind::from_axis('W'), None);
+        assert_eq!(DofKind::from_axis(DofKind::BendZ.axis()), Some(DofKind::BendZ));
     }
 }
