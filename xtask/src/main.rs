@@ -149,6 +149,10 @@ fn main() -> ExitCode {
             // A relative path that is not there from here is taken from the workspace root.
             let scenario =
                 if scenario.exists() { scenario } else { workspace_root().join(scenario) };
+            if measure != "modes" && (rounding != 1 || !kind.is_empty() || phase != "slide") {
+                eprintln!("error: --phase, --kind and --rounding are options of --measure modes");
+                return ExitCode::from(2);
+            }
             let measure = match measure.as_str() {
                 "loosen-tighten" => family::Measure::LoosenTighten,
                 "modes" => {
