@@ -1,12 +1,17 @@
-//! `hagfish modes RUN_DIR [--phase NAME] [--kind KIND] [--modes K]`: the proper orthogonal
-//! decomposition of a run's thigmotaxis force field (`hagfish_modes`): prints, per DOF
-//! selection, the energy of the first K modes, the modes needed for 90, 95 and 99 % of the
-//! energy and the travelling-wave fit of modes 1 and 2; writes `RUN_DIR/modes/`.
+//! `hagfish modes RUN_DIR [--phase NAME] [--kind KIND] [--modes K] [--against OTHER]`: the
+//! proper orthogonal decomposition of a run's thigmotaxis force field (`hagfish_modes`):
+//! prints, per DOF selection, the energy of the first K modes, the modes needed for 90, 95 and
+//! 99 % of the energy and the travelling-wave fit of modes 1 and 2; writes `RUN_DIR/modes/`.
+//! With `--against OTHER`, instead, per one-kind selection: the principal angles between the
+//! two runs' first K modes and the energy of RUN_DIR's field that OTHER's first 1…K modes
+//! capture; writes `RUN_DIR/modes/against.json`.
 
 use std::io::Write;
 use std::path::PathBuf;
 
-use hagfish_modes::{Decomposition, ENERGY_LEVELS, KindSelection, ModesError, RunField};
+use hagfish_modes::{
+    Comparison, Decomposition, ENERGY_LEVELS, KindSelection, ModesError, RunField, write_against,
+};
 
 use super::CliError;
 
@@ -20,29 +25,36 @@ pub struct ModesArgs {
     #[arg(long)]
     phase: Option<String>,
     /// The DOFs: all, bend (Y and Z), bend-y, bend-z or twist; default: each of them (a
-    /// selection whose field is zero is then left out with a note).
+    /// selection whose field is zero is then left out with a note); with `--against`, one kind
+    /// (bend-y, bend-z or twist), by default each of the three.
     #[arg(long, value_parser = str::parse::<KindSelection>)]
     kind: Option<KindSelection>,
-    /// The modes printed and written (shapes and time courses).
+    /// The modes printed and written (shapes and time courses); with `--against`, the modes
+    /// compared.
     #[arg(long, default_value_t = 8)]
     modes: usize,
+    /// Another run directory: compare this run's modes with its modes on the same phase and
+    /// kind (principal angles, the energy its modes capture of this run's field).
+    #[arg(long, value_name = "OTHER_RUN_DIR")]
+    against: Option<PathBuf>,
 }
+
+/// The one-kind selections `--against` compares by default.
+const ONE_KIND: [KindSelection; 3] =
+    [KindSelection::BendY, KindSelection::BendZ, KindSelection::Twist];
 
 /// Decomposes the run's field and writes `RUN_DIR/modes/`.
 pub fn run(args: &ModesArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let field = RunField::read(&args.dir)?;
     let phase = args.phase.as_deref();
+    if let Some(other) = &args.against {
+        return against(args, &field, &RunField::read(other)?, out);
+    }
     let kinds = args.kind.map_or(KindSelection::EVERY.to_vec(), |k| vec![k]);
     let mut decompositions = Vec::new();
     for kind in kinds {
-        match Decomposition::of(&field, phase, kind) {
-            Ok(d) => decompositions.push(d),
-            Err(ModesError::ZeroField { what })
-                if args.kind.is_none() && kind != KindSelection::All =>
-            {
-                writeln!(out, "{what}: the field is zero, left out")?;
-            }
-            Err(e) => return Err(e.into()),
+        if let Some(d) = decompose(&field, phase, kind, args.kind.is_none(), out)? {
+            decompositions.push(d);
         }
     }
     for d in &decompositions {
@@ -52,6 +64,76 @@ pub fn run(args: &ModesArgs, out: &mut dyn Write) -> Result<(), CliError> {
     for file in files {
         writeln!(out, "wrote {}", file.display())?;
     }
+    Ok(())
+}
+
+/// The decomposition of `kind`; `None`, with a note, for a zero field of a kind other than
+/// `all` when the kind was not asked for by name (`defaulted`).
+fn decompose(
+    field: &RunField,
+    phase: Option<&str>,
+    kind: KindSelection,
+    defaulted: bool,
+    out: &mut dyn Write,
+) -> Result<Option<Decomposition>, CliError> {
+    match Decomposition::of(field, phase, kind) {
+        Ok(d) => Ok(Some(d)),
+        Err(ModesError::ZeroField { what }) if defaulted && kind != KindSelection::All => {
+            writeln!(out, "{what}: the field is zero, left out")?;
+            Ok(None)
+        }
+        Err(e) => Err(e.into()),
+    }
+}
+
+/// `--against`: each one-kind selection of `run` against the same of `other`, printed and
+/// written into `RUN_DIR/modes/against.json`.
+fn against(
+    args: &ModesArgs,
+    run: &RunField,
+    other: &RunField,
+    out: &mut dyn Write,
+) -> Result<(), CliError> {
+    let phase = args.phase.as_deref();
+    let kinds = args.kind.map_or(ONE_KIND.to_vec(), |k| vec![k]);
+    let mut comparisons = Vec::new();
+    for kind in kinds {
+        let Some(mine) = decompose(run, phase, kind, args.kind.is_none(), out)? else {
+            continue;
+        };
+        let theirs = Decomposition::of(other, phase, kind)
+            .map_err(|e| ModesError::Incompatible(format!("{}: {e}", other.directory.display())))?;
+        let c = Comparison::of(&mine, &theirs, args.modes)?;
+        writeln!(
+            out,
+            "{} against {}: {} × {} against {} × {} (frames × DOFs)",
+            mine.field.label,
+            other.directory.display(),
+            c.size[0],
+            c.size[1],
+            c.other_size[0],
+            c.other_size[1]
+        )?;
+        writeln!(
+            out,
+            "angle_k: the k-th principal angle between the {n}-mode spans; own_cum, \
+             captured_by_other: the energy of this field in its own, the other's first k modes",
+            n = c.principal_angles_deg.len()
+        )?;
+        writeln!(
+            out,
+            "{:>3}  {:>15}  {:>12}  {:>20}",
+            "k", "angle_k_deg", "own_cum_%", "captured_by_other_%"
+        )?;
+        for (i, angle) in c.principal_angles_deg.iter().enumerate() {
+            let (own, captured) = (100.0 * c.own_cumulative[i], 100.0 * c.captured_by_other[i]);
+            writeln!(out, "{:>3}  {angle:>15.6}  {own:>12.3}  {captured:>20.3}", i + 1)?;
+        }
+        writeln!(out)?;
+        comparisons.push(c);
+    }
+    let file = write_against(&args.dir, &other.directory, phase, &comparisons)?;
+    writeln!(out, "wrote {}", file.display())?;
     Ok(())
 }
 

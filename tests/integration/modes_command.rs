@@ -1,6 +1,6 @@
 //! `hagfish modes` on a real run: the thesis scenario (tie, tighten, slide on ES103), then
-//! the decomposition of its slide and the errors of a missing run, an unknown phase and a
-//! phase without force.
+//! the decomposition of its slide, the slide against itself (`--against`), and the errors of
+//! a missing run, an unknown phase, a phase without force and a selection that mixes kinds.
 
 use crate::common::{ROOT, code_and_stderr, fresh_dir, run_hagfish};
 
@@ -37,6 +37,53 @@ fn modes_of_the_thesis_slide_and_clear_errors() {
     }
     let header = std::fs::read_to_string(modes.join("modes.csv")).expect("modes.csv");
     assert!(header.starts_with("kind,mode,axis,s_cm,s_L,shape\n"));
+
+    let against = run_hagfish([
+        "modes".as_ref(),
+        run.as_os_str(),
+        "--phase".as_ref(),
+        "slide".as_ref(),
+        "--against".as_ref(),
+        run.as_os_str(),
+    ]);
+    assert!(against.status.success(), "{}", code_and_stderr(&against).1);
+    let text = std::fs::read_to_string(modes.join("against.json")).expect("against.json");
+    let json: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+    let compared = json["selections"].as_array().expect("selections");
+    assert_eq!(compared.len(), 3, "bend-y, bend-z, twist");
+    for c in compared {
+        let angles: Vec<f64> =
+            serde_json::from_value(c["principal_angles_deg"].clone()).expect("angles");
+        assert_eq!(angles.len(), 8);
+        assert!(angles.iter().all(|a| a.abs() < 1e-9), "a run against itself: {angles:?}");
+        let own: Vec<f64> = serde_json::from_value(c["own_cumulative"].clone()).expect("own");
+        let captured: Vec<f64> =
+            serde_json::from_value(c["captured_by_other"].clone()).expect("captured");
+        assert_eq!(captured.len(), 8);
+        for (o, k) in own.iter().zip(&captured) {
+            assert!((o - k).abs() < 1e-12, "its own modes capture its cumulative energy");
+        }
+    }
+    let mixed = run_hagfish([
+        "modes".as_ref(),
+        run.as_os_str(),
+        "--against".as_ref(),
+        run.as_os_str(),
+        "--kind".as_ref(),
+        "all".as_ref(),
+    ]);
+    let (code, stderr) = code_and_stderr(&mixed);
+    assert_eq!(code, Some(2));
+    assert!(stderr.contains("one DOF kind"), "{stderr}");
+    let no_other = run_hagfish([
+        "modes".as_ref(),
+        run.as_os_str(),
+        "--against".as_ref(),
+        dir.join("nothing").as_os_str(),
+    ]);
+    let (code, stderr) = code_and_stderr(&no_other);
+    assert_eq!(code, Some(2));
+    assert!(stderr.contains("nothing") && stderr.contains("does not exist"), "{stderr}");
 
     let missing = run_hagfish(["modes".as_ref(), dir.join("nothing").as_os_str()]);
     let (code, stderr) = code_and_stderr(&missing);

@@ -5,7 +5,9 @@
 //! - `--measure loosen-tighten` (tie → loosen → tighten): the core's length change over the
 //!   loosen and the tighten phase, each beside its control run (the same scenario with that
 //!   phase's head and tail targets at zero), and whether both effects are the targets' doing
-//!   (≥ 25 % and ≥ 20 points past the control, the knot held, penetration below 2 %).
+//!   (≥ 25 % and ≥ 20 points past the control, the knot held, penetration below 2 %);
+//! - `--measure modes` (tie → tighten → slide): the modes of the slide's force field and each
+//!   member's basis against ES103's (`family_modes.rs`).
 //!
 //! The runs use the release `hagfish` binary (built first) and their directories stay under
 //! `<target>/family/` for a closer look; several run at once.
@@ -39,13 +41,16 @@ pub struct Request<'a> {
 }
 
 /// What a table measures of each member.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Measure {
     /// The slide of a tie → tighten → slide scenario ([`KnotRun`]).
     Slide,
     /// The loosen and tighten of a tie → loosen → tighten scenario ([`LoosenTighten`]),
     /// each against its control run.
     LoosenTighten,
+    /// The modes of a phase's force field and the basis against ES103's
+    /// ([`crate::family_modes`]).
+    Modes(crate::family_modes::ModesMeasure),
 }
 
 /// The header of the loosen/tighten table.
@@ -83,47 +88,74 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
     // Read once here, so that a scenario that cannot run is said once, not by every member.
     let loaded = LoadedScenario::load(request.scenario).map_err(|e| e.to_string())?;
     let controls = match request.measure {
-        Measure::Slide => None,
+        Measure::Slide | Measure::Modes(_) => None,
         Measure::LoosenTighten => Some(control_phases(&loaded, request.scenario)?),
     };
     let runner = Runner { hagfish: &hagfish, work: &work, es103: &es103, request };
-    let queue = Mutex::new(members.iter().enumerate());
-    let rows = Mutex::new(vec![String::new(); members.len()]);
+    let (measure, header) = match &request.measure {
+        Measure::Slide => ("slide", TABLE_HEADER),
+        Measure::LoosenTighten => ("loosen-tighten", LOOSEN_TIGHTEN_HEADER),
+        Measure::Modes(modes) => {
+            print_command(request, members.len(), "modes");
+            return crate::family_modes::run(&runner, &members, modes, loaded.scenario.time_step_s);
+        }
+    };
+    let rows = in_parallel(&members, request.jobs, |variant| {
+        let row = match controls {
+            None => runner.slide_row(variant),
+            Some(controls) => runner.loosen_tighten_row(variant, controls),
+        };
+        eprintln!("{row}");
+        row
+    })?;
+    print_command(request, rows.len(), measure);
+    println!("{header}");
+    for row in rows {
+        println!("{row}");
+    }
+    Ok(())
+}
+
+/// Prints the command that makes the table and the number of members.
+fn print_command(request: &Request<'_>, members: usize, measure: &str) {
+    let extra = match &request.measure {
+        Measure::Modes(modes) => modes.arguments(),
+        _ => String::new(),
+    };
+    println!(
+        "`cargo xtask family --scenario {} --knot {} --measure {measure}{extra}{}{}` ({members} \
+         members):\n",
+        request.scenario.display(),
+        request.knot,
+        request.sets.iter().map(|s| format!(" --set {s}")).collect::<String>(),
+        request.only.iter().map(|s| format!(" --only {s}")).collect::<String>(),
+    );
+}
+
+/// `work` applied to each of `items` by `jobs` threads at a time; the results in the items'
+/// order.
+pub fn in_parallel<T: Sync, R: Send>(
+    items: &[T],
+    jobs: usize,
+    work: impl Fn(&T) -> R + Sync,
+) -> Result<Vec<R>, String> {
+    let queue = Mutex::new(items.iter().enumerate());
+    let results = Mutex::new((0..items.len()).map(|_| None).collect::<Vec<Option<R>>>());
     std::thread::scope(|scope| {
-        for _ in 0..request.jobs.max(1) {
+        for _ in 0..jobs.max(1) {
             scope.spawn(|| {
                 let next = || queue.lock().map(|mut q| q.next()).ok().flatten();
-                while let Some((index, variant)) = next() {
-                    let row = match controls {
-                        None => runner.slide_row(variant),
-                        Some(controls) => runner.loosen_tighten_row(variant, controls),
-                    };
-                    eprintln!("{row}");
-                    if let Ok(mut rows) = rows.lock() {
-                        rows[index] = row;
+                while let Some((index, item)) = next() {
+                    let result = work(item);
+                    if let Ok(mut results) = results.lock() {
+                        results[index] = Some(result);
                     }
                 }
             });
         }
     });
-    let rows = rows.into_inner().map_err(|_| "a run panicked")?;
-    let (measure, header) = match request.measure {
-        Measure::Slide => ("slide", TABLE_HEADER),
-        Measure::LoosenTighten => ("loosen-tighten", LOOSEN_TIGHTEN_HEADER),
-    };
-    println!(
-        "`cargo xtask family --scenario {} --knot {} --measure {measure}{}{}` ({} members):\n\n\
-         {header}",
-        request.scenario.display(),
-        request.knot,
-        request.sets.iter().map(|s| format!(" --set {s}")).collect::<String>(),
-        request.only.iter().map(|s| format!(" --only {s}")).collect::<String>(),
-        rows.len()
-    );
-    for row in rows {
-        println!("{row}");
-    }
-    Ok(())
+    let results = results.into_inner().map_err(|_| "a run panicked")?;
+    results.into_iter().map(|r| r.ok_or_else(|| "a run panicked".into())).collect()
 }
 
 /// The indices of the phases named `loosen` and `tighten` in `loaded`, read from `scenario`.
@@ -140,16 +172,17 @@ fn control_phases(loaded: &LoadedScenario, scenario: &Path) -> Result<[usize; 2]
 }
 
 /// Runs members of the family.
-struct Runner<'a> {
+pub struct Runner<'a> {
     hagfish: &'a Path,
     work: &'a Path,
     es103: &'a str,
-    request: &'a Request<'a>,
+    /// What was asked.
+    pub request: &'a Request<'a>,
 }
 
 impl Runner<'_> {
     /// Writes `variant`'s body file into `<work>/<name>.ron` and returns its path.
-    fn body(&self, variant: &Variant) -> Result<PathBuf, String> {
+    pub fn body(&self, variant: &Variant) -> Result<PathBuf, String> {
         let path = self.work.join(format!("{}.ron", variant.name));
         std::fs::write(&path, variant.body(self.es103)?)
             .map_err(|e| format!("{}: {e}", path.display()))?;
@@ -159,7 +192,7 @@ impl Runner<'_> {
     /// Runs `variant` on its body file `body` with the `extra` overrides into
     /// `<work>/<name><suffix>`; the directory, or what stopped the run (its exit code and
     /// error line).
-    fn run(
+    pub fn run(
         &self,
         variant: &Variant,
         body: &Path,

@@ -7,10 +7,13 @@
 //!   regression and `cargo test --workspace --release` (`test_all.rs`).
 //! - `knotted [--export PATH] [--steps N] [--repeat R] [--time-step H] [--backend B]`: exports and times
 //!   the knotted benchmark state (`knotted.rs`).
+//! - `family [--measure slide|loosen-tighten|modes] …`: runs a knot scenario on the family
+//!   of bodies and prints its table (`family.rs`, `family_modes.rs`).
 //! - `validate`: runs the checks against elastic-rod theory (`hagfish-validation`) and prints
 //!   the table of `docs/validation.md`; fails if a check is outside its tolerance.
 
 mod family;
+mod family_modes;
 mod golden;
 mod knotted;
 mod metrics;
@@ -25,6 +28,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
+use hagfish_modes::KindSelection;
 use hagfish_sim::DynamicsBackend;
 
 /// Command line of `cargo xtask`.
@@ -93,10 +97,22 @@ enum Task {
         /// Only these members (their names in the table; repeatable); all when none is given.
         #[arg(long, value_name = "NAME")]
         only: Vec<String>,
-        /// What to measure: `slide` (tie → tighten → slide) or `loosen-tighten` (tie →
-        /// loosen → tighten, each phase against a control run with its targets at zero).
-        #[arg(long, value_parser = ["slide", "loosen-tighten"], default_value = "slide")]
+        /// What to measure: `slide` (tie → tighten → slide), `loosen-tighten` (tie →
+        /// loosen → tighten, each phase against a control run with its targets at zero) or
+        /// `modes` (the modes of a phase's force field and each basis against ES103's).
+        #[arg(long, value_parser = ["slide", "loosen-tighten", "modes"], default_value = "slide")]
         measure: String,
+        /// `--measure modes`: the phase decomposed.
+        #[arg(long, default_value = "slide")]
+        phase: String,
+        /// `--measure modes`: a DOF kind to tabulate (bend-y, bend-z, twist; repeatable);
+        /// all three when none is given.
+        #[arg(long, value_name = "KIND", value_parser = str::parse::<KindSelection>)]
+        kind: Vec<KindSelection>,
+        /// `--measure modes`: runs per member, the unperturbed one and N − 1 rounding
+        /// perturbations of its time step, h(1 + j·1e-12), with the spread over them.
+        #[arg(long, value_name = "N", default_value_t = 1)]
+        rounding: usize,
     },
 }
 
@@ -129,12 +145,24 @@ fn main() -> ExitCode {
             knotted::run(&workspace_root(), &request).map(|()| true)
         }
         Task::Validate => validate::run(&workspace_root()),
-        Task::Family { scenario, knot, sets, jobs, only, measure } => {
+        Task::Family { scenario, knot, sets, jobs, only, measure, phase, kind, rounding } => {
             // A relative path that is not there from here is taken from the workspace root.
             let scenario =
                 if scenario.exists() { scenario } else { workspace_root().join(scenario) };
+            if measure != "modes" && (rounding != 1 || !kind.is_empty() || phase != "slide") {
+                eprintln!("error: --phase, --kind and --rounding are options of --measure modes");
+                return ExitCode::from(2);
+            }
             let measure = match measure.as_str() {
                 "loosen-tighten" => family::Measure::LoosenTighten,
+                "modes" => {
+                    let kinds = if kind.is_empty() {
+                        vec![KindSelection::BendY, KindSelection::BendZ, KindSelection::Twist]
+                    } else {
+                        kind
+                    };
+                    family::Measure::Modes(family_modes::ModesMeasure { phase, kinds, rounding })
+                }
                 _ => family::Measure::Slide,
             };
             let request = family::Request {

@@ -59,9 +59,11 @@ fn orthonormal(vectors: &[Vec<f64>], what: &str) -> Result<Mat<f64>, ModesError>
 }
 
 /// The principal angles (rad, increasing) between span(`a`) and span(`b`), bases given as
-/// vectors sampled on one grid: with Q₁, Q₂ orthonormal bases of the two spans, cos θᵢ are the
-/// singular values of Q₁ᵀQ₂ (Björck and Golub), clamped to [0, 1]. min(rank a, rank b) angles;
-/// 0 for a direction the spans share, π/2 for one orthogonal to the other span.
+/// vectors sampled on one grid: with Q₁, Q₂ orthonormal bases of the two spans (Q₂ the one of
+/// lower rank), cos θᵢ are the singular values of Q₁ᵀQ₂ and sin θᵢ those of Q₂ − Q₁Q₁ᵀQ₂
+/// (Björck and Golub); an angle below π/4 is taken from its sine, which keeps small angles
+/// accurate (the cosine of 10⁻⁸ rad is 1 in f64). min(rank a, rank b) angles; 0 for a
+/// direction the spans share, π/2 for one orthogonal to the other span.
 pub fn principal_angles(a: &[Vec<f64>], b: &[Vec<f64>]) -> Result<Vec<f64>, ModesError> {
     let (qa, qb) = (orthonormal(a, "the first basis")?, orthonormal(b, "the second basis")?);
     if qa.nrows() != qb.nrows() {
@@ -71,10 +73,22 @@ pub fn principal_angles(a: &[Vec<f64>], b: &[Vec<f64>]) -> Result<Vec<f64>, Mode
             qb.nrows()
         )));
     }
-    let product = qa.transpose() * &qb;
+    let (q1, q2) = if qa.ncols() >= qb.ncols() { (qa, qb) } else { (qb, qa) };
+    let product = q1.transpose() * &q2;
     let svd = thin_svd(product.as_ref(), "Q₁ᵀQ₂")?;
     let cosines = svd.S().column_vector();
-    Ok((0..cosines.nrows()).map(|i| cosines[i].clamp(0.0, 1.0).acos()).collect())
+    let rest = &q2 - &q1 * &product;
+    let sines = thin_svd(rest.as_ref(), "Q₂ − Q₁Q₁ᵀQ₂")?;
+    let sines = sines.S().column_vector();
+    let count = cosines.nrows();
+    Ok((0..count)
+        .map(|i| {
+            let cosine = cosines[i].clamp(0.0, 1.0);
+            // The sines come largest first: the i-th smallest angle has the i-th smallest sine.
+            let sine = sines[count - 1 - i].clamp(0.0, 1.0);
+            if cosine > std::f64::consts::FRAC_1_SQRT_2 { sine.asin() } else { cosine.acos() }
+        })
+        .collect())
 }
 
 /// The fraction of `field`'s energy in the span of `basis` (mode shapes of another run,

@@ -53,6 +53,9 @@ pub enum ModesError {
     /// A field or basis given to a function is malformed (sizes, non-finite values, order).
     #[error("{0}")]
     Invalid(String),
+    /// Two selections cannot be compared (different kinds, DOFs that share arc lengths).
+    #[error("cannot compare: {0}")]
+    Incompatible(String),
     /// faer's singular value decomposition did not converge.
     #[error("the SVD of {what} did not converge: {reason}")]
     Svd {

@@ -4,10 +4,13 @@
 //! proper orthogonal decomposition F = U Σ Vᵀ (faer's thin SVD) of the frames of one phase and
 //! the DOFs of one kind, with each mode's energy σᵢ²/Σσ², the mode shapes along the body (cm
 //! and s/L), their time courses σᵢuᵢ(t), a travelling-wave test of the dominant pair against
-//! the knot's speed, and principal angles between bases of different runs (thesis §7.2: a
-//! reduced basis for the muscle controls that slide the knot; `docs/physics.md`, "Modes of the
-//! force field"). `hagfish modes RUN_DIR` writes them into `RUN_DIR/modes/`.
+//! the knot's speed, principal angles between bases of different runs and the energy of one
+//! run's field that another run's modes capture (thesis §7.2: a reduced basis for the muscle
+//! controls that slide the knot; `docs/physics.md`, "Modes of the
+//! force field"). `hagfish modes RUN_DIR` writes them into `RUN_DIR/modes/`,
+//! `hagfish modes RUN_DIR --against OTHER` the comparison into `RUN_DIR/modes/against.json`.
 
+mod against;
 mod angles;
 mod error;
 mod field;
@@ -17,6 +20,7 @@ mod pod;
 mod run_field;
 mod wave;
 
+pub use against::{AGAINST_FILE, Comparison, GRID_POINTS, write_against};
 pub use angles::{captured_energy, principal_angles, resample, uniform_grid};
 pub use error::ModesError;
 pub use field::Field;

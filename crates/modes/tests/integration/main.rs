@@ -1,5 +1,7 @@
 //! The claims of the decomposition on fields whose modes are known exactly.
 
+mod against;
+
 use std::f64::consts::{FRAC_PI_2, PI};
 
 use hagfish_modes::{Field, Pod, WaveFit, captured_energy, principal_angles, uniform_grid};
