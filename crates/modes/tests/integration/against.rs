@@ -4,7 +4,7 @@
 
 use std::f64::consts::PI;
 
-use hagfish_modes::{Comparison, Decomposition, Field, KindSelection, ModesError, Pod};
+use hagfish_modes::{Comparison, Decomposition, DofKind, Field, KindSelection, ModesError, Pod};
 
 /// The decomposition of F(t, s) = `f(t, s/L)` on `frames` frames over 2 s and `dofs` DOFs
 /// spaced evenly along a 40 cm body (at s/L = (j + ½)/dofs), as one kind `kind`.
@@ -21,7 +21,10 @@ fn decomposition(
     let field = Field::new("test".into(), times, arcs, length, vec![None; frames], values)
         .expect("a field");
     let pod = Pod::of(&field).expect("a POD");
-    Decomposition { kind, field, pod, wave: None }
+    let one =
+        [DofKind::Twist, DofKind::BendY, DofKind::BendZ].into_iter().find(|&k| kind.includes(k));
+    let dof_kinds = vec![one.expect("a one-kind selection"); dofs];
+    Decomposition { kind, dof_kinds, field, pod, wave: None }
 }
 
 /// A field of many modes: standing patterns sin(mπx) with incommensurate time courses.
