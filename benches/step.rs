@@ -27,8 +27,8 @@ use std::time::{Duration, Instant};
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
 use hagfish_bench_support::{knotted_world, long_knotted_world};
 use hagfish_control::{
-    ForceSpace, KindSelection, ModalBasis, ModalSpace, Phase, PhasedController, SlidingTargets,
-    ThigmoParameters, ThigmoPhase, Until, WaterDrag,
+    ControllerState, ForceSpace, KindSelection, ModalBasis, ModalSpace, Phase, PhasedController,
+    SlidingTargets, ThigmoParameters, ThigmoPhase, Until, WaterDrag,
 };
 use hagfish_scenario::LoadedScenario;
 use hagfish_sim::rows::RowGroup;
@@ -124,17 +124,7 @@ fn long_knotted(c: &mut Criterion) {
     let mut group = c.benchmark_group("step");
     group.sample_size(20);
     group.bench_function("knotted_1000/SparseMaximal", |b| {
-        b.iter_custom(|iterations| {
-            let mut elapsed = Duration::ZERO;
-            for _ in 0..iterations {
-                world.set_state(start.clone()).expect("state");
-                controller.restore(&saved).expect("controller state");
-                let begin = Instant::now();
-                black_box(world.step(&mut controller).expect("step").solve.iterations);
-                elapsed += begin.elapsed();
-            }
-            elapsed
-        })
+        time_steps_from(b, &mut world, &mut controller, &start, &saved)
     });
     group.finish();
 }
@@ -181,20 +171,32 @@ fn thigmo_space(c: &mut Criterion) {
         world.step(&mut controller).expect("warm-up step");
         let saved = controller.state();
         group.bench_function(name, |b| {
-            b.iter_custom(|iterations| {
-                let mut elapsed = Duration::ZERO;
-                for _ in 0..iterations {
-                    world.set_state(knotted.clone()).expect("state");
-                    controller.restore(&saved).expect("controller state");
-                    let start = Instant::now();
-                    black_box(world.step(&mut controller).expect("step").solve.iterations);
-                    elapsed += start.elapsed();
-                }
-                elapsed
-            })
+            time_steps_from(b, &mut world, &mut controller, &knotted, &saved)
         });
     }
     group.finish();
+}
+
+/// Times single steps of `world` from `start`, `controller` restored to `saved` before
+/// each (the restoring is not timed).
+fn time_steps_from(
+    b: &mut criterion::Bencher<'_>,
+    world: &mut World,
+    controller: &mut PhasedController,
+    start: &State,
+    saved: &ControllerState,
+) {
+    b.iter_custom(|iterations| {
+        let mut elapsed = Duration::ZERO;
+        for _ in 0..iterations {
+            world.set_state(start.clone()).expect("state");
+            controller.restore(saved).expect("controller state");
+            let begin = Instant::now();
+            black_box(world.step(controller).expect("step").solve.iterations);
+            elapsed += begin.elapsed();
+        }
+        elapsed
+    })
 }
 
 criterion_group!(benches, unconstrained, knotted, long_knotted, thigmo_space);

@@ -23,13 +23,11 @@ fn modes_of_the_thesis_slide_and_clear_errors() {
     {
         assert!(modes.join(name).is_file(), "{name} is written");
     }
-    let text = std::fs::read_to_string(modes.join("modes.json")).expect("modes.json");
-    let json: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+    let json = json_file(&modes.join("modes.json"));
     let selections = json["selections"].as_array().expect("selections");
     assert_eq!(selections.len(), 5, "all, bend, bend-y, bend-z, twist");
     for s in selections {
-        let energy: Vec<f64> =
-            serde_json::from_value(s["energy_fractions"].clone()).expect("energies");
+        let energy: Vec<f64> = numbers(&s["energy_fractions"]);
         assert!((energy.iter().sum::<f64>() - 1.0).abs() < 1e-12, "{energy:?}");
         let counts = ["0.90", "0.95", "0.99"].map(|l| s["modes_for"][l].as_u64().expect("a count"));
         assert!(counts[0] >= 1 && counts[0] <= counts[1] && counts[1] <= counts[2], "{counts:?}");
@@ -47,18 +45,15 @@ fn modes_of_the_thesis_slide_and_clear_errors() {
         run.as_os_str(),
     ]);
     assert!(against.status.success(), "{}", code_and_stderr(&against).1);
-    let text = std::fs::read_to_string(modes.join("against.json")).expect("against.json");
-    let json: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+    let json = json_file(&modes.join("against.json"));
     let compared = json["selections"].as_array().expect("selections");
     assert_eq!(compared.len(), 3, "bend-y, bend-z, twist");
     for c in compared {
-        let angles: Vec<f64> =
-            serde_json::from_value(c["principal_angles_deg"].clone()).expect("angles");
+        let angles: Vec<f64> = numbers(&c["principal_angles_deg"]);
         assert_eq!(angles.len(), 8);
         assert!(angles.iter().all(|a| a.abs() < 1e-9), "a run against itself: {angles:?}");
-        let own: Vec<f64> = serde_json::from_value(c["own_cumulative"].clone()).expect("own");
-        let captured: Vec<f64> =
-            serde_json::from_value(c["captured_by_other"].clone()).expect("captured");
+        let own: Vec<f64> = numbers(&c["own_cumulative"]);
+        let captured: Vec<f64> = numbers(&c["captured_by_other"]);
         assert_eq!(captured.len(), 8);
         for (o, k) in own.iter().zip(&captured) {
             assert!((o - k).abs() < 1e-12, "its own modes capture its cumulative energy");
@@ -98,4 +93,15 @@ fn modes_of_the_thesis_slide_and_clear_errors() {
     let (code, stderr) = code_and_stderr(&tie);
     assert_eq!(code, Some(2));
     assert!(stderr.contains("zero"), "no thigmotaxis force while tying: {stderr}");
+}
+
+/// A JSON file's value.
+fn json_file(path: &std::path::Path) -> serde_json::Value {
+    let text = std::fs::read_to_string(path).expect("a JSON file");
+    serde_json::from_str(&text).expect("JSON")
+}
+
+/// A JSON array of numbers.
+fn numbers(value: &serde_json::Value) -> Vec<f64> {
+    serde_json::from_value(value.clone()).expect("an array of numbers")
 }

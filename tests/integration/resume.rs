@@ -132,11 +132,7 @@ fn a_killed_run_keeps_whole_frames_and_resumes_bit_for_bit() {
         .stdout(std::process::Stdio::null())
         .spawn()
         .expect("hagfish starts");
-    let started = Instant::now();
-    while line_count(&dir.join("metrics.csv")) < 1 + 150 {
-        assert!(started.elapsed() < Duration::from_secs(120), "no frames after 120 s");
-        std::thread::sleep(Duration::from_millis(5));
-    }
+    wait_for_frames(&dir, 150);
     child.kill().expect("SIGKILL");
     child.wait().expect("the killed run is reaped");
     assert_eq!(manifest(&dir)["status"], "running", "the run ended before it was killed");
@@ -205,11 +201,7 @@ fn sigterm_stops_after_a_frame_with_a_resumable_run() {
         .stderr(std::process::Stdio::piped())
         .spawn()
         .expect("hagfish starts");
-    let started = Instant::now();
-    while line_count(&dir.join("metrics.csv")) < 1 + 100 {
-        assert!(started.elapsed() < Duration::from_secs(120), "no frames after 120 s");
-        std::thread::sleep(Duration::from_millis(5));
-    }
+    wait_for_frames(&dir, 100);
     terminate(&child);
     let output = child.wait_with_output().expect("the run ends");
     let (code, stderr) = code_and_stderr(&output);
@@ -226,4 +218,13 @@ fn sigterm_stops_after_a_frame_with_a_resumable_run() {
 
     resume(&dir);
     assert_same_as_straight(&dir);
+}
+
+/// Waits until the run in `dir` has recorded `frames` frames after frame 0 (at most 120 s).
+fn wait_for_frames(dir: &Path, frames: usize) {
+    let started = Instant::now();
+    while line_count(&dir.join("metrics.csv")) < 1 + frames {
+        assert!(started.elapsed() < Duration::from_secs(120), "no frames after 120 s");
+        std::thread::sleep(Duration::from_millis(5));
+    }
 }

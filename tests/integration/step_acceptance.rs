@@ -3,7 +3,7 @@
 //! diverged (exit 3) without recording the bad state. A run stops within a second of SIGTERM
 //! even when its frames are far apart.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use crate::common::{
@@ -23,6 +23,20 @@ fn thesis() -> String {
 fn run_thesis_at(dir: &Path, time_step_s: &str) -> std::process::Output {
     let set = format!("time_step_s={time_step_s}");
     run_hagfish(["run", &thesis(), "--quiet", "--out", &dir.to_string_lossy(), "--set", &set])
+}
+
+/// Runs `thesis_scripted.ron` at `time_step_s` into a fresh directory `name`, asserts its exit
+/// code, and returns the directory, the output and its standard error.
+fn run_thesis_expecting(
+    name: &str,
+    time_step_s: &str,
+    exit_code: i32,
+) -> (PathBuf, std::process::Output, String) {
+    let dir = fresh_dir(name);
+    let output = run_thesis_at(&dir, time_step_s);
+    let (code, stderr) = code_and_stderr(&output);
+    assert_eq!(code, Some(exit_code), "{stderr}");
+    (dir, output, stderr)
 }
 
 /// Asserts that no recorded frame exceeds the acceptance bounds; returns the frame count.
@@ -45,10 +59,7 @@ fn assert_frames_within_bounds(dir: &Path) -> usize {
 
 #[test]
 fn a_coarse_time_step_is_rescued_by_substeps() {
-    let dir = fresh_dir("acceptance_h005");
-    let output = run_thesis_at(&dir, "0.05");
-    let (code, stderr) = code_and_stderr(&output);
-    assert_eq!(code, Some(0), "{stderr}");
+    let (dir, output, _) = run_thesis_expecting("acceptance_h005", "0.05", 0);
     assert_eq!(assert_frames_within_bounds(&dir), 301);
     let run = manifest(&dir);
     assert!(run["substepped_steps"].as_u64().expect("a count") >= 1, "{run}");
@@ -59,10 +70,7 @@ fn a_coarse_time_step_is_rescued_by_substeps() {
 
 #[test]
 fn an_absurd_time_step_stops_cleanly_without_recording_a_bad_frame() {
-    let dir = fresh_dir("acceptance_h10");
-    let output = run_thesis_at(&dir, "10");
-    let (code, stderr) = code_and_stderr(&output);
-    assert_eq!(code, Some(3), "{stderr}");
+    let (dir, _, stderr) = run_thesis_expecting("acceptance_h10", "10", 3);
     assert!(stderr.contains("result rejected"), "{stderr}");
     assert!(stderr.contains("substeps of"), "the substeps were tried: {stderr}");
     let frames = assert_frames_within_bounds(&dir);

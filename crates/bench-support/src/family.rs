@@ -54,6 +54,13 @@ pub fn length_edits(length_cm: f64) -> Vec<(&'static str, String)> {
     ]
 }
 
+/// One edit of the biometrics: the field and value `from` (`name: value`) gets the value
+/// `value`.
+fn edit(from: &'static str, value: &str) -> Vec<(&'static str, String)> {
+    let name = from.split(':').next().unwrap_or(from);
+    vec![(from, format!("{name}: {value}"))]
+}
+
 /// The edits of ES103 to circumferences `k` times its own.
 fn circumference_edits(k: f64) -> Vec<(&'static str, String)> {
     let scaled: Vec<String> =
@@ -90,18 +97,10 @@ pub fn family() -> Vec<Variant> {
         Variant::new("circumference_1.15", circumference_edits(1.15), vec![]),
         Variant::new("stiffness_0.1", stiffness_edits(0.1), vec![]),
         Variant::new("stiffness_10", stiffness_edits(10.0), vec![]),
-        Variant::new(
-            "damping_10",
-            vec![("damping_dyn_cm_s_per_rad: 0.1", "damping_dyn_cm_s_per_rad: 1.0".into())],
-            vec![],
-        ),
+        Variant::new("damping_10", edit("damping_dyn_cm_s_per_rad: 0.1", "1.0"), vec![]),
         Variant::new("bodies_50", body_count(50), vec![]),
         Variant::new("bodies_300", body_count(300), vec![]),
-        Variant::new(
-            "taper",
-            vec![("tail_taper: None", "tail_taper: Some((tip_radius_cm: 0.3))".into())],
-            vec![],
-        ),
+        Variant::new("taper", edit("tail_taper: None", "Some((tip_radius_cm: 0.3))"), vec![]),
         Variant::new("h_0.005", vec![], vec!["time_step_s=0.005"]),
         Variant::new("h_0.02", vec![], vec!["time_step_s=0.02"]),
         Variant::new("drag_0.5", vec![], vec!["drag.quadratic_g_per_cm3=0.25"]),

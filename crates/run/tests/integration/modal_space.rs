@@ -2,6 +2,7 @@
 //! unit vectors as modes (B = I) the whole thesis run is the `Full` run bit for bit, and with a
 //! few smooth modes the step's thigmotaxic force lies in span(B) to rounding.
 
+use crate::freshly_tied::freshly_tied_knot;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -93,13 +94,7 @@ fn the_identity_basis_reproduces_the_full_run_bit_for_bit() {
 /// `‖(I − BBᵀ)f‖ ≤ 1e-12 ‖f‖`, while the `Full` step's force does not.
 #[test]
 fn the_modal_thigmotaxic_force_lies_in_the_span_of_the_basis() {
-    let path = format!("{}/../../data/scenarios/form.ron", env!("CARGO_MANIFEST_DIR"));
-    let loaded = LoadedScenario::load(&path).expect("form.ron loads");
-    let (mut world, mut forming) = loaded.build().expect("world builds");
-    while world.state().t < 17.0 {
-        world.step(&mut forming).expect("forming step");
-    }
-    let knotted = world.state().clone();
+    let (loaded, mut world, knotted) = freshly_tied_knot();
     let model = world.model().clone();
     let (arcs, labels) = (rest_dof_arc_lengths(&model), dof_labels(&model));
     let length = loaded.body.length_cm();

@@ -12,6 +12,7 @@
 //! position that stretch's midpoint. Both flicker by 1–2 cm between frames as contacts at the
 //! knot's ends appear and vanish at the margin, so spans and positions are 0.5 s means.
 
+use crate::freshly_tied::freshly_tied_knot;
 use glam::DVec3;
 use hagfish_control::{
     Actuation, ControlContext, Controller, ForceSpace, KnotSpan, SlidingTargets, ThigmoParameters,
@@ -285,13 +286,7 @@ impl Controller for Thigmo {
 /// head-ward relative to each other instead of tail-ward).
 #[test]
 fn thigmo_rows_reach_their_speeds_with_nonnegative_multipliers() {
-    let path = format!("{}/../../data/scenarios/form.ron", env!("CARGO_MANIFEST_DIR"));
-    let loaded = LoadedScenario::load(&path).expect("form.ron loads");
-    let (mut world, mut forming) = loaded.build().expect("world builds");
-    while world.state().t < 17.0 {
-        world.step(&mut forming).expect("forming step");
-    }
-    let knotted = world.state().clone();
+    let (_, mut world, knotted) = freshly_tied_knot();
     let mut positive_rows: Vec<Vec<f64>> = Vec::new();
     for speed in [1.0, -1.0] {
         world.set_state(knotted.clone()).expect("state restores");
@@ -340,13 +335,7 @@ fn thigmo_rows_reach_their_speeds_with_nonnegative_multipliers() {
 /// at all while its bending torques are not zero.
 #[test]
 fn bending_only_rows_exert_no_twist_torque() {
-    let path = format!("{}/../../data/scenarios/form.ron", env!("CARGO_MANIFEST_DIR"));
-    let loaded = LoadedScenario::load(&path).expect("form.ron loads");
-    let (mut world, mut forming) = loaded.build().expect("world builds");
-    while world.state().t < 17.0 {
-        world.step(&mut forming).expect("forming step");
-    }
-    let knotted = world.state().clone();
+    let (_, mut world, knotted) = freshly_tied_knot();
     let twist = twist_dofs(world.model());
     let targets = SlidingTargets { v_a: 1.0, v_b: 1.0 };
     let mut rows_and_forces = Vec::new();

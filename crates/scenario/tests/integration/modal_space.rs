@@ -69,29 +69,21 @@ fn a_good_spec_resolves_to_k_orthonormal_columns_and_bad_specs_are_positioned_er
     let twist = hagfish_sim::rows::twist_dofs(&loaded.body.to_model().expect("model"));
     assert!(twist.iter().all(|&d| basis.column(0)[d] == 0.0), "bend: no twist entries");
 
-    let missing = load_with_space("Modes((file: \"no/such/modes.csv\", kind: \"all\", modes: 1))")
-        .expect_err("a missing file");
-    assert!(missing.contains("no/such/modes.csv"), "{missing}");
-    assert_positioned(&missing, "file");
-    let too_many = load_with_space(&format!("Modes((file: {good:?}, kind: \"bend\", modes: 3))"))
-        .expect_err("k above the file's modes");
-    assert!(too_many.contains("k = 3") && too_many.contains("2 modes"), "{too_many}");
-    assert_positioned(&too_many, "modes");
-    let other_kind = load_with_space(&format!("Modes((file: {good:?}, kind: \"all\", modes: 1))"))
-        .expect_err("no modes of the kind");
-    assert!(other_kind.contains("no modes of kind all"), "{other_kind}");
-    assert_positioned(&other_kind, "file");
-    let unknown = load_with_space(&format!("Modes((file: {good:?}, kind: \"bendy\", modes: 1))"))
-        .expect_err("an unknown kind");
-    assert!(unknown.contains("bendy") && unknown.contains("bend-y"), "{unknown}");
-    assert_positioned(&unknown, "kind");
-    let zero = load_with_space(&format!("Modes((file: {good:?}, kind: \"bend\", modes: 0))"))
-        .expect_err("k = 0");
-    assert!(zero.contains("at least 1 mode"), "{zero}");
-    assert_positioned(&zero, "modes");
     let dependent = modes_file("dependent.csv", true);
-    let rank = load_with_space(&format!("Modes((file: {dependent:?}, kind: \"bend\", modes: 2))"))
-        .expect_err("a rank-deficient basis");
-    assert!(rank.contains("mode 2") && rank.contains("not a basis"), "{rank}");
-    assert_positioned(&rank, "modes");
+    let space = |file: &Path, kind: &str, modes: u32| {
+        format!("Modes((file: {file:?}, kind: {kind:?}, modes: {modes}))")
+    };
+    let refused: [(String, &[&str], &str); 6] = [
+        (space(Path::new("no/such/modes.csv"), "all", 1), &["no/such/modes.csv"], "file"),
+        (space(&good, "bend", 3), &["k = 3", "2 modes"], "modes"),
+        (space(&good, "all", 1), &["no modes of kind all"], "file"),
+        (space(&good, "bendy", 1), &["bendy", "bend-y"], "kind"),
+        (space(&good, "bend", 0), &["at least 1 mode"], "modes"),
+        (space(&dependent, "bend", 2), &["mode 2", "not a basis"], "modes"),
+    ];
+    for (space, words, field) in refused {
+        let error = load_with_space(&space).expect_err(&space);
+        assert!(words.iter().all(|w| error.contains(w)), "{space}: {error}");
+        assert_positioned(&error, field);
+    }
 }

@@ -44,8 +44,35 @@ pub fn build_tree(
             rotation: DMat3::from_axis_angle(DVec3::new(0.0, 1.0, 1.0).normalize(), tilt),
             translation: DVec3::new(previous_length, 0.0, 0.0),
         };
-        builder.add_body(BodySpec {
-            parent: parents[i],
+        let body = Cylinder { mass, length, radius };
+        builder.add_body(body.spec(parents[i], joint, joint_offset, dofs));
+    }
+    builder.build().expect("valid test chain")
+}
+
+/// A solid cylinder along X: the bodies of the test chains.
+#[derive(Clone, Copy, Debug)]
+pub struct Cylinder {
+    /// Mass (g).
+    pub mass: f64,
+    /// Length ℓ (cm).
+    pub length: f64,
+    /// Radius (cm).
+    pub radius: f64,
+}
+
+impl Cylinder {
+    /// The body, its centre ℓ/2 along X from its joint.
+    pub fn spec(
+        self,
+        parent: Option<usize>,
+        joint: JointKind,
+        joint_offset: Transform,
+        dofs: Vec<DofParams>,
+    ) -> BodySpec {
+        let Cylinder { mass, length, radius } = self;
+        BodySpec {
+            parent,
             joint,
             joint_offset,
             body_offset: Transform::from_translation(DVec3::new(length / 2.0, 0.0, 0.0)),
@@ -54,9 +81,8 @@ pub fn build_tree(
             radius,
             length,
             dofs,
-        });
+        }
     }
-    builder.build().expect("valid test chain")
 }
 
 /// Principal inertia of a solid cylinder along X.

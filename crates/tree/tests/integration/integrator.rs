@@ -5,7 +5,7 @@
 
 use crate::common::*;
 use glam::{DMat3, DVec3};
-use hagfish_tree::{BodySpec, Data, DofParams, JointKind, Model, ModelBuilder, State, Transform};
+use hagfish_tree::{Data, DofParams, JointKind, Model, ModelBuilder, State, Transform};
 use hagfish_tree::{forward_kinematics, mass_matrix, step_unconstrained};
 
 const G: f64 = 980.0;
@@ -23,17 +23,14 @@ fn hanging_rods(rods: &[(f64, f64, f64)]) -> Model {
         } else {
             Transform::from_translation(DVec3::new(previous, 0.0, 0.0))
         };
-        builder.add_body(BodySpec {
-            parent: i.checked_sub(1),
-            joint: JointKind::Revolute { axis: DVec3::Z },
+        let joint = JointKind::Revolute { axis: DVec3::Z };
+        let body = Cylinder { mass, length, radius };
+        builder.add_body(body.spec(
+            i.checked_sub(1),
+            joint,
             joint_offset,
-            body_offset: Transform::from_translation(DVec3::new(length / 2.0, 0.0, 0.0)),
-            mass,
-            principal_inertia: cylinder_inertia(mass, radius, length),
-            radius,
-            length,
-            dofs: vec![DofParams::default()],
-        });
+            vec![DofParams::default()],
+        ));
         previous = length;
     }
     builder.build().expect("valid rods")
