@@ -1,9 +1,22 @@
 //! The freshly tied knot several tests step from: `data/scenarios/form.ron` run from rest to
-//! t = 17 s, its trefoil just tied.
+//! t = 17 s, its trefoil just tied; and one thigmotaxis step from it.
 
+use hagfish_control::{
+    Actuation, ControlContext, Controller, ForceSpace, SlidingTargets, ThigmoParameters,
+};
 use hagfish_scenario::LoadedScenario;
 use hagfish_sim::World;
+use hagfish_sim::rows::RowGroup;
 use hagfish_tree::State;
+
+/// Thigmotaxis alone, as a controller.
+pub struct Thigmo(pub ThigmoParameters);
+
+impl Controller for Thigmo {
+    fn control(&mut self, context: &ControlContext<'_>, out: &mut Actuation) {
+        self.0.actuate(context, out);
+    }
+}
 
 /// `form.ron` loaded, its world stepped to 17 s, and that state.
 pub fn freshly_tied_knot() -> (LoadedScenario, World, State) {
@@ -15,4 +28,23 @@ pub fn freshly_tied_knot() -> (LoadedScenario, World, State) {
     }
     let knotted = world.state().clone();
     (loaded, world, knotted)
+}
+
+/// One step of thigmotaxis from `knotted` (both ends' targets 1 cm/s, no tail pull, a 10⁶ dyn
+/// cap) with its rows confined to `force_space`; returns the step's thigmotaxic generalized
+/// force `C_thᵀλ/h` (dyn·cm per DOF). The step's rows stay in `world.data()`.
+pub fn thigmo_step(world: &mut World, knotted: &State, force_space: ForceSpace) -> Vec<f64> {
+    world.set_state(knotted.clone()).expect("state restores");
+    let targets = SlidingTargets { v_a: 1.0, v_b: 1.0 };
+    let parameters = ThigmoParameters {
+        head: targets,
+        tail: targets,
+        tail_pull_dyn: 0.0,
+        max_force_dyn: 1e6,
+        force_space,
+    };
+    world.step(&mut Thigmo(parameters)).expect("thigmo step");
+    let mut force = vec![0.0; world.model().dof_count()];
+    world.data().group_force(RowGroup::Thigmo, world.options().time_step, &mut force);
+    force
 }

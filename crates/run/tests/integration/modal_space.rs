@@ -2,22 +2,17 @@
 //! unit vectors as modes (B = I) the whole thesis run is the `Full` run bit for bit, and with a
 //! few smooth modes the step's thigmotaxic force lies in span(B) to rounding.
 
-use crate::freshly_tied::freshly_tied_knot;
+use crate::freshly_tied::{freshly_tied_knot, thigmo_step};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use std::sync::Arc;
 
-use hagfish_control::{
-    ForceSpace, KindSelection, ModalBasis, ModalSpace, SlidingTargets, ThigmoParameters,
-};
+use hagfish_control::{ForceSpace, KindSelection, ModalBasis, ModalSpace};
 use hagfish_run::{Frame, FrameSink, RunError, RunOptions};
 use hagfish_scenario::LoadedScenario;
-use hagfish_sim::rows::RowGroup;
 use hagfish_sim::{dof_labels, rest_dof_arc_lengths, state_hash};
 use hagfish_tree::Model;
-
-use crate::thigmotaxis::Thigmo;
 
 const THESIS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/scenarios/thesis.ron");
 
@@ -111,19 +106,8 @@ fn the_modal_thigmotaxic_force_lies_in_the_span_of_the_basis() {
         modes: 4,
         basis: Some(basis.clone()),
     });
-    let targets = SlidingTargets { v_a: 1.0, v_b: 1.0 };
     for (force_space, in_span) in [(ForceSpace::Full, false), (modal, true)] {
-        world.set_state(knotted.clone()).expect("state restores");
-        let parameters = ThigmoParameters {
-            head: targets,
-            tail: targets,
-            tail_pull_dyn: 0.0,
-            max_force_dyn: 1e6,
-            force_space,
-        };
-        world.step(&mut Thigmo(parameters)).expect("thigmo step");
-        let mut force = vec![0.0; model.dof_count()];
-        world.data().group_force(RowGroup::Thigmo, world.options().time_step, &mut force);
+        let force = thigmo_step(&mut world, &knotted, force_space);
         let mut projected = force.clone();
         basis.project(&mut projected, &mut [0.0; 4]);
         let norm = force.iter().map(|f| f * f).sum::<f64>().sqrt();

@@ -12,11 +12,9 @@
 //! position that stretch's midpoint. Both flicker by 1–2 cm between frames as contacts at the
 //! knot's ends appear and vanish at the margin, so spans and positions are 0.5 s means.
 
-use crate::freshly_tied::freshly_tied_knot;
+use crate::freshly_tied::{Thigmo, freshly_tied_knot, thigmo_step};
 use glam::DVec3;
-use hagfish_control::{
-    Actuation, ControlContext, Controller, ForceSpace, KnotSpan, SlidingTargets, ThigmoParameters,
-};
+use hagfish_control::{ForceSpace, KnotSpan, SlidingTargets, ThigmoParameters};
 use hagfish_knots::KnotType;
 use hagfish_run::{Frame, FrameSink, RunError, RunOptions, RunSummary};
 use hagfish_scenario::LoadedScenario;
@@ -270,15 +268,6 @@ fn negative_targets_slide_the_knot_tail_ward() {
     }
 }
 
-/// Thigmotaxis alone, as a controller.
-pub(crate) struct Thigmo(pub(crate) ThigmoParameters);
-
-impl Controller for Thigmo {
-    fn control(&mut self, context: &ControlContext<'_>, out: &mut Actuation) {
-        self.0.actuate(context, out);
-    }
-}
-
 /// Row signs: in a freshly tied knot (form.ron at 17 s), one step of thigmotaxis on the first
 /// and last contact, with positive and with negative targets, achieves each row's relative
 /// tangential speed `cᵀq̇ ≥ |v|` (a row the solver could not satisfy must report slack) with
@@ -337,25 +326,14 @@ fn thigmo_rows_reach_their_speeds_with_nonnegative_multipliers() {
 fn bending_only_rows_exert_no_twist_torque() {
     let (_, mut world, knotted) = freshly_tied_knot();
     let twist = twist_dofs(world.model());
-    let targets = SlidingTargets { v_a: 1.0, v_b: 1.0 };
     let mut rows_and_forces = Vec::new();
     for force_space in [ForceSpace::Full, ForceSpace::BendingOnly] {
-        world.set_state(knotted.clone()).expect("state restores");
-        let parameters = ThigmoParameters {
-            head: targets,
-            tail: targets,
-            tail_pull_dyn: 0.0,
-            max_force_dyn: 1e6,
-            force_space,
-        };
-        world.step(&mut Thigmo(parameters)).expect("thigmo step");
+        let force = thigmo_step(&mut world, &knotted, force_space);
         let data = world.data();
         let rows: Vec<Vec<f64>> = (0..data.rows.len())
             .filter(|&i| data.rows.sources()[i].tag == RowGroup::Thigmo.tag())
             .map(|i| data.rows.coefficients(i).expect("row exists").to_vec())
             .collect();
-        let mut force = vec![0.0; world.model().dof_count()];
-        data.group_force(RowGroup::Thigmo, world.options().time_step, &mut force);
         rows_and_forces.push((rows, force));
     }
     let [(full_rows, full_force), (bending_rows, bending_force)] =
