@@ -63,7 +63,8 @@ impl PartialEq for ModalSpace {
 impl ForceSpace {
     /// Projects the row `c` onto the space, `c ← P c`; `twist_dofs` are the indices of the
     /// twist DOFs (for `BendingOnly`), `scratch` holds at least k values (for `Modes`: `Bᵀc`).
-    /// Allocates nothing.
+    /// A `Modes` space whose basis was never resolved (made by hand rather than loaded with a
+    /// scenario) is the zero space: its rows exert nothing. Allocates nothing.
     pub fn confine(&self, twist_dofs: &[usize], scratch: &mut [f64], row: &mut [f64]) {
         match self {
             ForceSpace::Full => {}
