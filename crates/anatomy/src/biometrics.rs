@@ -48,6 +48,24 @@ pub struct Biometrics {
     /// last-mark radius to the tail tip.
     #[serde(default)]
     pub tail_taper: Option<TailTaper>,
+    /// Optional compressible skin over the body (docs/physics.md, "Skin"); `None` (the
+    /// default) makes the whole radius a rigid tube.
+    #[serde(default)]
+    pub skin: Option<BodySkin>,
+}
+
+/// A compressible outer layer of the body, the loose skin over the subcutaneous sinus
+/// (docs/physics.md, "Skin"): contacts compress it down to the core (the notochord and muscle),
+/// against the pressure of the fluid under it.
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodySkin {
+    /// The layer's thickness as a fraction of the local radius, in (0, 1): the core radius is
+    /// `(1 − thickness_fraction)·r`.
+    pub thickness_fraction: f64,
+    /// The pressure of the fluid under the skin (dyn/cm²), > 0: two tubes crossing with their
+    /// skins compressed by δ in all push apart with `π·p·√(r_a r_b)·δ`.
+    pub pressure_dyn_per_cm2: f64,
 }
 
 /// A linear taper of the radius from its value at the last mark to `tip_radius_cm` at the

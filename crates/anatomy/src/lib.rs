@@ -48,7 +48,7 @@ mod table;
 mod validate;
 
 pub use biometrics::{
-    Biometrics, MAX_BODY_COUNT, MAX_JOINT_LIMIT_DEG, THESIS_BODY_COUNT, TailTaper,
+    Biometrics, BodySkin, MAX_BODY_COUNT, MAX_JOINT_LIMIT_DEG, THESIS_BODY_COUNT, TailTaper,
 };
 pub use body::Body;
 pub use error::{AnatomyError, Field, Origin};

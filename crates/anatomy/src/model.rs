@@ -2,9 +2,9 @@
 //! the root joint anchored at the wall point (the world origin), gravity off (D4).
 
 use glam::DVec3;
-use hagfish_tree::{BodySpec, DofParams, JointKind, Model, ModelBuilder, Transform};
+use hagfish_tree::{BodySpec, DofParams, JointKind, Model, ModelBuilder, Skin, Transform};
 
-use crate::biometrics::Biometrics;
+use crate::biometrics::{Biometrics, BodySkin};
 use crate::error::AnatomyError;
 use crate::rod::Rod;
 use crate::table::{BodyRow, BodyTable};
@@ -20,9 +20,10 @@ impl Biometrics {
     /// Builds the model (the chain of `build_chain`): each DOF gets the stiffness of its joint
     /// type and the common damping, both scaled to this body count
     /// ([`Biometrics::joint_bending_stiffness`] and its siblings, D16), rest 0 and the table's
-    /// limits in radians. Gravity is zero (neutral buoyancy, D4).
+    /// limits in radians, and the skin if the body has one. Gravity is zero (neutral buoyancy,
+    /// D4).
     pub fn to_model(&self) -> Result<Model, AnatomyError> {
-        build_chain(&self.body_table()?, |row| {
+        build_chain(&self.body_table()?, self.skin, |row| {
             let stiffness = match row.joint {
                 JointKind::Revolute { .. } => self.joint_twist_stiffness(),
                 _ => self.joint_bending_stiffness(),
@@ -38,7 +39,7 @@ impl Rod {
     /// limits, gravity zero.
     pub fn to_model(&self) -> Result<Model, AnatomyError> {
         let damping = self.joint_damping_dyn_cm_s_per_rad();
-        build_chain(&self.body_table()?, |row| match row.joint {
+        build_chain(&self.body_table()?, None, |row| match row.joint {
             JointKind::Revolute { .. } => (self.twist_spring_dyn_cm_per_rad(), damping),
             _ => (self.bend_spring_dyn_cm_per_rad(), damping),
         })
@@ -50,8 +51,10 @@ impl Rod {
 /// world origin, joint `i ≥ 1` sits at `(ℓ, 0, 0)` in joint `i − 1`'s frame; solid-cylinder
 /// inertias. `spring_and_damper(row)` gives the stiffness (dyn·cm/rad) and damping
 /// (dyn·cm·s/rad) of every DOF of the row's joint; rest 0, limits from the table in radians.
+/// With a `skin`, every body gets it at its own radius (thickness `fraction·r`).
 fn build_chain(
     table: &BodyTable,
+    skin: Option<BodySkin>,
     spring_and_damper: impl Fn(&BodyRow) -> (f64, f64),
 ) -> Result<Model, AnatomyError> {
     let ell = table.segment_length_cm;
@@ -82,6 +85,10 @@ fn build_chain(
             principal_inertia: cylinder_inertia(row.mass_g, row.radius_cm, ell),
             radius: row.radius_cm,
             length: ell,
+            skin: skin.map(|s| Skin {
+                thickness: s.thickness_fraction * row.radius_cm,
+                pressure: s.pressure_dyn_per_cm2,
+            }),
             dofs,
         });
     }

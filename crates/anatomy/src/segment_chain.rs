@@ -42,6 +42,7 @@ pub fn segment_chain(bodies: usize) -> Result<Model, TreeError> {
             principal_inertia: DVec3::new(0.5 * mass * radius * radius, transverse, transverse),
             radius,
             length,
+            skin: None,
             dofs: vec![dof; joint.dof_count()],
         });
     }

@@ -143,6 +143,18 @@ impl Biometrics {
         }
         check.body_count("body_count", self.body_count)?;
         check.body_count("reference_body_count", self.reference_body_count)?;
+        if let Some(skin) = &self.skin {
+            check.value(
+                Field::whole("skin.thickness_fraction"),
+                skin.thickness_fraction,
+                Bound::Fraction,
+            )?;
+            check.value(
+                Field::whole("skin.pressure_dyn_per_cm2"),
+                skin.pressure_dyn_per_cm2,
+                Bound::Positive,
+            )?;
+        }
         if let Some(taper) = &self.tail_taper {
             check.value(
                 Field::whole("tail_taper.tip_radius_cm"),

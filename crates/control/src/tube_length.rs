@@ -49,6 +49,7 @@ pub(crate) fn cylinder(length: f64, radius: f64) -> Body {
         offset: hagfish_tree::Transform::IDENTITY,
         radius,
         length,
+        skin: None,
     }
 }
 

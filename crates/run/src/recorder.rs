@@ -46,7 +46,7 @@ pub const METRICS_HEADER: &str = "frame,time_s,phase,self_contacts,wall_contacts
 knot,knot_agreement,knot_first_body,knot_last_body,knot_position_cm,\
 knot_core_start_cm,knot_core_end_cm,knot_core_length_cm,\
 knot_core_start_L,knot_core_mid_L,knot_core_length_L,knot_core_length_D,knot_writhe,\
-max_self_penetration_cm,max_self_penetration_rel,max_wall_penetration_cm,max_limit_excess_deg,\
+max_self_penetration_cm,max_self_penetration_rel,max_skin_compression,max_wall_penetration_cm,max_limit_excess_deg,\
 contacts_start_cm,contacts_end_cm,first_contact_cm,last_contact_cm,\
 contact_span_cm,contact_midpoint_cm,solver_path,solver_status,solver_iterations,slack_rows,slack_max_cm_s";
 
@@ -296,12 +296,13 @@ impl Recorder {
             )
         });
         self.metrics.line(format_args!(
-            "{prefix},{},{},{},{knot},{agreement},{first},{last},{position},{core},{writhe},{:.6},{:.6},{:.6},{:.4},{span},{:?},{:?},{},{},{:.3e}",
+            "{prefix},{},{},{},{knot},{agreement},{first},{last},{position},{core},{writhe},{:.6},{:.6},{:.6},{:.6},{:.4},{span},{:?},{:?},{},{},{:.3e}",
             CsvText(frame.phase),
             s.self_contacts,
             s.wall_contacts,
             m.self_penetration,
             m.self_penetration_relative,
+            m.skin_compression,
             m.wall_penetration,
             m.limit_excess.to_degrees(),
             s.solve.path,

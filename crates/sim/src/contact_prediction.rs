@@ -28,6 +28,7 @@ use hagfish_tree::{Data, Model, State};
 use crate::options::StepOptions;
 use crate::rows::RowGroup;
 use crate::rows::unilateral_rhs;
+use crate::skin::SkinLayer;
 
 /// cos of the largest angle between a contact's normal and the line between the predicted
 /// closest points for the prediction to count (25°).
@@ -50,13 +51,14 @@ pub(crate) struct ContactPredictor {
 
 impl ContactPredictor {
     /// Buffers for `model`; `centreline` (a centreline of the model, tube radii included) is
-    /// the starting value of the predicted one.
-    pub(crate) fn new(model: &Model, centreline: &Centreline) -> Self {
+    /// the starting value of the predicted one, whose radii are those of the cores where
+    /// `skin` has a skin (the contact rows hold the cores apart).
+    pub(crate) fn new(model: &Model, centreline: &Centreline, skin: &SkinLayer) -> Self {
         Self {
             q: vec![0.0; model.dof_count()],
             kinematics: Data::new(model),
             centres: vec![DVec3::ZERO; model.body_count()],
-            radii: centreline.radii().to_vec(),
+            radii: skin.core_radii(centreline.radii()),
             centreline: centreline.clone(),
         }
     }
@@ -74,6 +76,7 @@ impl ContactPredictor {
         state: &State,
         qdot: &[f64],
         contacts: &[SelfContact],
+        skin: &SkinLayer,
         rows: &Rows,
         bounds: &mut [f64],
     ) -> usize {
@@ -92,7 +95,9 @@ impl ContactPredictor {
                 _ => continue,
             };
             let gap_after = self.gap_after(contact);
-            let target = contact.gap + time_step * unilateral_rhs(contact.gap, time_step, push_out);
+            let thickness = skin.thickness_at(contact);
+            let core_gap = if thickness > 0.0 { contact.gap + thickness } else { contact.gap };
+            let target = core_gap + time_step * unilateral_rhs(core_gap, time_step, push_out);
             if gap_after >= target - tolerance {
                 continue;
             }

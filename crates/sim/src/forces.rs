@@ -145,6 +145,7 @@ impl GroupForces {
             RowGroup::Wall => "wall",
             RowGroup::Contact => "contact",
             RowGroup::Thigmo => "thigmo",
+            RowGroup::Skin => "skin",
         }
     }
 }

@@ -123,7 +123,7 @@ fn collect_row_wrenches(data: &mut StepData, h: f64) {
                     push(&SplineWeights::single(c.body), 1.0, c.normal, force);
                 }
             }
-            Some(RowGroup::Contact) => {
+            Some(RowGroup::Contact | RowGroup::Skin) => {
                 if let Some(c) = contacts.get(source.id) {
                     push(&c.weights_b, 1.0, c.normal, force);
                     push(&c.weights_a, -1.0, c.normal, force);

@@ -52,6 +52,7 @@ pub mod pipeline;
 mod report;
 mod retry;
 pub mod rows;
+pub mod skin;
 mod step_data;
 mod world;
 
@@ -68,5 +69,6 @@ pub use memory::{available_memory, check_memory, step_memory_estimate};
 pub use options::{FINEST_RESOLVED_CHAIN, RESOLVED_CLUSTER_BODIES, StepOptions};
 pub use report::{Stage, StageTimings, StepReport};
 pub use retry::{Attempt, ContactResolution, RetryableController, StepOutcome, StepTally};
+pub use skin::{ContactSkin, SkinLayer};
 pub use step_data::StepData;
 pub use world::World;

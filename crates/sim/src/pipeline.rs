@@ -111,6 +111,8 @@ pub fn build_rows(model: &Model, options: &StepOptions, state: &State, data: &mu
         model,
         &data.tree,
         &data.self_contacts,
+        &data.centreline,
+        &data.skin,
         h,
         options.push_out,
         &mut data.rows,
@@ -289,6 +291,7 @@ fn solve_with_resolves(
         predictor,
         velocity_guess,
         self_contacts,
+        skin,
         report,
         ..
     } = data;
@@ -313,6 +316,7 @@ fn solve_with_resolves(
                     state,
                     velocity,
                     self_contacts,
+                    skin,
                     factored.rows(),
                     bounds,
                 )
@@ -355,6 +359,8 @@ struct Penetration {
     self_cm: f64,
     /// Self, relative to the local radius `(r_a + r_b)/2`.
     self_relative: f64,
+    /// The skins' compression, fraction of their thickness.
+    skin_compression: f64,
     /// Wall, cm.
     wall_cm: f64,
     /// Wall, relative to the body's radius.
@@ -364,9 +370,14 @@ struct Penetration {
 fn penetration(data: &StepData) -> Penetration {
     let mut deepest = Penetration::default();
     for contact in &data.self_contacts {
-        let depth = (-contact.gap).max(0.0);
-        let radius =
+        let mut depth = (-contact.gap).max(0.0);
+        let mut radius =
             0.5 * (data.centreline.radius(contact.u_a) + data.centreline.radius(contact.u_b));
+        if let Some(skin) = data.skin.at(contact, &data.centreline) {
+            depth = (-skin.core_gap).max(0.0);
+            radius -= 0.5 * skin.thickness;
+            deepest.skin_compression = deepest.skin_compression.max(skin.compression(contact.gap));
+        }
         deepest.self_cm = deepest.self_cm.max(depth);
         deepest.self_relative = deepest.self_relative.max(depth / radius);
     }
@@ -384,6 +395,7 @@ fn measure_penetration(data: &mut StepData) {
     report.wall_contacts = data.wall_contacts.len();
     report.max_self_penetration = deepest.self_cm;
     report.max_self_penetration_relative = deepest.self_relative;
+    report.max_skin_compression = deepest.skin_compression;
     report.max_wall_penetration = deepest.wall_cm;
 }
 

@@ -18,11 +18,15 @@ pub struct StepReport {
     pub self_contacts: usize,
     /// Number of bodies in contact with the wall (within the margin).
     pub wall_contacts: usize,
-    /// Deepest self-contact penetration at the start of the step, `max(0, −gap)` (cm).
+    /// Deepest self-contact penetration at the start of the step, `max(0, −gap)` (cm): of
+    /// the cores where the body has a skin (docs/physics.md, "Skin").
     pub max_self_penetration: f64,
-    /// The deepest self penetration relative to the local radius `(r_a + r_b)/2`
+    /// The deepest self penetration relative to the local (core) radius `(r_a + r_b)/2`
     /// (dimensionless).
     pub max_self_penetration_relative: f64,
+    /// The deepest compression of the skins at a self contact at the start of the step, as a
+    /// fraction of their thickness `t_a + t_b` (0 without a skin, 1 where the cores touch).
+    pub max_skin_compression: f64,
     /// Deepest wall penetration at the start of the step (cm).
     pub max_wall_penetration: f64,
     /// Self-contact bounds raised by the contact predictor, summed over the step's re-solves.

@@ -20,6 +20,7 @@ use crate::memory::check_memory;
 use crate::options::StepOptions;
 use crate::report::StepReport;
 use crate::rows::{RowGroup, twist_dofs};
+use crate::skin::SkinLayer;
 
 /// Rows (and solver buffers) reserved per DOF on the dense backend: 2n rows cover the head,
 /// every limit and more than twice the self contacts of the tightest knots measured (≈ 45), so
@@ -83,6 +84,8 @@ pub struct StepData {
     /// prediction asks for more.
     pub(crate) bounds: Vec<f64>,
     pub(crate) predictor: ContactPredictor,
+    /// The bodies' skins (docs/physics.md, "Skin").
+    pub skin: SkinLayer,
     /// The contacts of the state the last step ended in, for the next step to take over.
     pub(crate) carried: CarriedContacts,
 }
@@ -127,7 +130,8 @@ impl StepData {
         let mut solver = SolverWorkspace::new(options.solver);
         let reserve = row_reserve(model, options.backend);
         solver.reserve(model.dof_count(), reserve);
-        let predictor = ContactPredictor::new(model, &centreline);
+        let skin = SkinLayer::new(model);
+        let predictor = ContactPredictor::new(model, &centreline, &skin);
         let pairs = PAIRS_PER_BODY * model.body_count();
         let carried = CarriedContacts {
             centres: centres.clone(),
@@ -163,6 +167,7 @@ impl StepData {
             effective_mass: Mat::zeros(0, 0),
             bounds: Vec::with_capacity(reserve),
             predictor,
+            skin,
             carried,
         })
     }

@@ -1,8 +1,9 @@
 //! Primal active-set method for the box-constrained dual QP of the contact space.
 //!
 //! Problem (see `contact_space.rs`): min φ(λ) = ½λᵀWλ − rᵀλ subject to lᵢ ≤ λᵢ ≤ uᵢ, with
-//! (l, u) = (−∞, ∞) for equalities, (0, ∞) for inequalities, (0, weight) for soft rows.
-//! Its gradient g = Wλ − r is the vector of row residuals Cq̇ − b.
+//! (l, u) = (−∞, ∞) for equalities, (0, ∞) for inequalities and compliant rows, (0, weight)
+//! for soft rows (W holds the compliances εᵢ on its diagonal). Its gradient g = Wλ − r is the
+//! vector of row residuals Cq̇ + Eλ − b.
 //!
 //! Only bounds constrain λ, so the working set is simply which variables sit at a bound; F
 //! holds the rest (the equalities and the rows in contact), kept linearly independent so that
@@ -214,7 +215,7 @@ impl ActiveSet {
         for (value, kind) in lambda.iter_mut().zip(kinds) {
             let (lower, upper) = match *kind {
                 RowKind::Equality => (f64::NEG_INFINITY, f64::INFINITY),
-                RowKind::Inequality => (0.0, f64::INFINITY),
+                RowKind::Inequality | RowKind::Compliant { .. } => (0.0, f64::INFINITY),
                 RowKind::SoftInequality { weight } => (0.0, weight),
             };
             let start = if value.is_finite() { *value } else { 0.0 };

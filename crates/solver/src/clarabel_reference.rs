@@ -8,9 +8,11 @@
 //! | equality gᵀq̇ = b | gᵀ | b | zero |
 //! | inequality cᵀq̇ ≥ b | −cᵀ | −b | nonnegative |
 //! | soft cᵀq̇ + σₖ ≥ b | (−cᵀ, −eₖᵀ) | −b | nonnegative |
-//! | σₖ ≥ 0 | −eₖᵀ | 0 | nonnegative |
+//! | compliant cᵀq̇ + σₖ ≥ b | (−cᵀ, −eₖᵀ) | −b | nonnegative |
+//! | σₖ ≥ 0 (soft rows only) | −eₖᵀ | 0 | nonnegative |
 //!
-//! with P = M̃ (upper triangle, CSC) on q̇, zero on σ, and q = (−f̃, weights); in fact on
+//! with P = M̃ (upper triangle, CSC) on q̇, 1/εₖ on a compliant row's σₖ (its cost ½σₖ²/εₖ:
+//! at the optimum σₖ = εₖλₖ), zero on a soft row's σₖ, and q = (−f̃, weights or 0); in fact on
 //! x = D⁻¹q̇ with D = diag(M̃ᵢᵢ^(−1/2)) (P = DM̃D, q = −Df̃, A = C D), which brings the hagfish's
 //! 1e-2 … 1e4 diagonal to 1 and makes clarabel's answer accurate; λ is unchanged. Clarabel's
 //! stationarity M̃q̇ − f̃ + Gᵀz_G − Cᵀz_C = 0 against ours M̃q̇ = f̃ + Cᵀλ gives
@@ -53,9 +55,14 @@ pub(crate) fn solve(
 ) -> ReferenceOutcome {
     let rows = problem.rows();
     let n = problem.dofs();
+    let slack_count = rows
+        .kinds()
+        .iter()
+        .filter(|k| matches!(k, RowKind::SoftInequality { .. } | RowKind::Compliant { .. }))
+        .count();
     let soft_count =
         rows.kinds().iter().filter(|k| matches!(k, RowKind::SoftInequality { .. })).count();
-    let variables = n + soft_count;
+    let variables = n + slack_count;
     // Jacobi scaling q̇ = D x, D = diag(M̃ᵢᵢ^(−1/2)): the same problem with a unit diagonal.
     let owned;
     let mass = match problem.mass() {
@@ -82,7 +89,7 @@ pub(crate) fn solve(
             av.push(sign * c * scale[j]);
         }
         b.push(sign * problem.rhs()[row]);
-        if let RowKind::SoftInequality { .. } = rows.kinds()[row] {
+        if let RowKind::SoftInequality { .. } | RowKind::Compliant { .. } = rows.kinds()[row] {
             let sigma = n + slack_rows.len();
             ai.push(constraint);
             aj.push(sigma);
@@ -90,9 +97,12 @@ pub(crate) fn solve(
             slack_rows.push(row);
         }
     }
-    let first_sigma_row = rows.len();
-    for k in 0..soft_count {
-        ai.push(first_sigma_row + k);
+    let soft_slacks = slack_rows
+        .iter()
+        .enumerate()
+        .filter(|(_, row)| matches!(rows.kinds()[**row], RowKind::SoftInequality { .. }));
+    for (constraint, (k, _)) in (rows.len()..).zip(soft_slacks) {
+        ai.push(constraint);
         aj.push(n + k);
         av.push(-1.0);
         b.push(0.0);
@@ -107,6 +117,13 @@ pub(crate) fn solve(
                 pj.push(j);
                 pv.push(scale[i] * mass[(i, j)] * scale[j]);
             }
+        }
+    }
+    for (k, &row) in slack_rows.iter().enumerate() {
+        if let RowKind::Compliant { compliance } = rows.kinds()[row] {
+            pi.push(n + k);
+            pj.push(n + k);
+            pv.push(1.0 / compliance);
         }
     }
     let p = CscMatrix::new_from_triplets(variables, variables, pi, pj, pv);

@@ -2,10 +2,11 @@
 //!
 //! With M̃ = L Lᵀ, Y = L⁻¹Cᵀ (n × m) and z = L⁻¹f̃:
 //!
-//! - W = C M̃⁻¹ Cᵀ = YᵀY (m × m, positive semidefinite; singular when rows are duplicated),
+//! - W = C M̃⁻¹ Cᵀ + E = YᵀY + E (m × m, positive semidefinite; E the diagonal of the rows'
+//!   compliances εᵢ, zero but for compliant rows; singular when hard rows are duplicated),
 //! - q_free = M̃⁻¹f̃ = L⁻ᵀz, and r = b − C q_free = b − Yᵀz,
 //! - for any λ, q̇(λ) = M̃⁻¹(f̃ + Cᵀλ) = L⁻ᵀ(z + Yλ), and the row residuals are
-//!   Cq̇(λ) − b = Wλ − r.
+//!   Cq̇(λ) + Eλ − b = Wλ − r.
 //!
 //! Substituting q̇(λ) into the Lagrangian gives the dual QP
 //! min ½λᵀWλ − λᵀr over the box (λ free on equalities, λ ≥ 0 on inequalities,
@@ -13,8 +14,9 @@
 //! residuals: stationarity of the primal holds by construction, and the box QP's optimality
 //! conditions are primal feasibility and complementarity.
 //!
-//! W is not regularised: duplicated or degenerate rows make it singular, and the active-set
-//! method (`active_set.rs`) keeps the rows it factors linearly independent instead.
+//! W is not regularised beyond the compliant rows' own εᵢ: duplicated or degenerate hard rows
+//! make it singular, and the active-set method (`active_set.rs`) keeps the rows it factors
+//! linearly independent instead.
 //!
 //! Trailing zeros: a row cᵢ vanishing from entry e on (a contact on body k in reduced
 //! coordinates rooted at the head: e = the end of the DOFs of joints 0..k) gives a column
@@ -46,6 +48,7 @@ pub(crate) struct ContactSpace {
     sorted: Mat<f64>,
     sorted_w: Mat<f64>,
     w: Mat<f64>,
+    compliance: Vec<f64>,
     z: Vec<f64>,
     r: Vec<f64>,
     b: Vec<f64>,
@@ -62,6 +65,7 @@ impl ContactSpace {
             sorted: Mat::zeros(0, 0),
             sorted_w: Mat::zeros(0, 0),
             w: Mat::zeros(0, 0),
+            compliance: Vec::new(),
             z: Vec::new(),
             r: Vec::new(),
             b: Vec::new(),
@@ -77,12 +81,13 @@ impl ContactSpace {
         self.sorted.reserve(dofs, rows);
         self.sorted_w.reserve(rows, rows);
         self.w.reserve(rows, rows);
+        self.compliance.reserve(rows);
         self.z.reserve(dofs);
         self.r.reserve(rows);
         self.b.reserve(rows);
     }
 
-    /// Forms Y = L⁻¹Cᵀ, W = YᵀY, z = L⁻¹f̃ and r = b − Yᵀz for `problem`, with `factor`
+    /// Forms Y = L⁻¹Cᵀ, W = YᵀY + E, z = L⁻¹f̃ and r = b − Yᵀz for `problem`, with `factor`
     /// holding a factor of its M̃ (M̃ = L Lᵀ); skips the rows' trailing zeros when the factor
     /// keeps them (module docs).
     pub(crate) fn build(&mut self, factor: &dyn FactoredMass, problem: &Problem<'_>) {
@@ -130,6 +135,13 @@ impl ContactSpace {
                 self.w[(j, i)] = value;
             }
         }
+        self.compliance.clear();
+        self.compliance.extend(rows.kinds().iter().map(|kind| kind.compliance()));
+        for (i, &compliance) in self.compliance.iter().enumerate() {
+            if compliance != 0.0 {
+                self.w[(i, i)] += compliance;
+            }
+        }
 
         self.update_force(factor, problem);
     }
@@ -153,6 +165,11 @@ impl ContactSpace {
             -1.0,
             Par::Seq,
         );
+    }
+
+    /// The rows' compliances εᵢ (the diagonal E in W; 0 but for compliant rows).
+    pub(crate) fn compliance(&self) -> &[f64] {
+        &self.compliance
     }
 
     /// Number of rows m of the last build.

@@ -60,4 +60,12 @@ pub enum SolverError {
         /// The weight given.
         weight: f64,
     },
+    /// A compliant row has a compliance that is not finite and strictly positive.
+    #[error("compliant row {row}: compliance {compliance} must be finite and > 0")]
+    InvalidCompliance {
+        /// Index of the row.
+        row: usize,
+        /// The compliance given.
+        compliance: f64,
+    },
 }

@@ -225,7 +225,7 @@ fn first_mass_error(mass: MatRef<'_, f64>, max_diagonal: f64) -> Result<(), Solv
     Ok(())
 }
 
-/// Finite coefficients, valid soft weights (the right-hand sides are checked with f̃). The
+/// Finite coefficients, valid soft weights and compliances (the right-hand sides are checked with f̃). The
 /// coefficients are checked in one branch-free pass; only when it fails are they searched for
 /// the first offending entry.
 fn check_rows(rows: &Rows) -> Result<(), SolverError> {
@@ -236,6 +236,11 @@ fn check_rows(rows: &Rows) -> Result<(), SolverError> {
             && !(weight.is_finite() && weight > 0.0)
         {
             return Err(SolverError::InvalidWeight { row: i, weight });
+        }
+        if let RowKind::Compliant { compliance } = kind
+            && !(compliance.is_finite() && compliance > 0.0)
+        {
+            return Err(SolverError::InvalidCompliance { row: i, compliance });
         }
         if !finite {
             for j in 0..transposed.nrows() {

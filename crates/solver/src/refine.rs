@@ -3,13 +3,14 @@
 //! With the free rows F fixed (their constraints hold as equalities, the other multipliers
 //! stay on their bounds) the exact answer solves the reduced KKT system
 //!
-//! M̃q̇ − C_Fᵀλ_F = f̃ + C_Aᵀλ_A,  C_F q̇ = b_F.
+//! M̃q̇ − C_Fᵀλ_F = f̃ + C_Aᵀλ_A,  C_F q̇ + E_F λ_F = b_F  (E the compliances).
 //!
-//! Given the residuals r₁ = f̃ + Cᵀλ − M̃q̇ and r₂ = b_F − C_F q̇ of the current (q̇, λ), the
+//! Given the residuals r₁ = f̃ + Cᵀλ − M̃q̇ and r₂ = b_F − C_F q̇ − E_F λ_F of the current
+//! (q̇, λ), the
 //! correction solves the same system with right-hand side (r₁, r₂), by the Schur complement
 //! on the factors already at hand (u = L⁻¹r₁):
 //!
-//! W_FF δλ_F = r₂ − Y_Fᵀu,  δq = L⁻ᵀ(u + Y_F δλ_F).
+//! W_FF δλ_F = r₂ − Y_Fᵀu,  δq = L⁻ᵀ(u + Y_F δλ_F)  (W_FF holds E_F on its diagonal).
 //!
 //! The residuals are formed with the original M̃ and C, so each step removes the rounding of
 //! the Y/W route (which loses accuracy when M̃ or W_FF is ill-conditioned). Steps stop when
@@ -74,12 +75,12 @@ impl Refinement {
         zeroed(&mut self.compact, free.indices().len());
         let mut previous = f64::INFINITY;
         for step in 0..max_steps {
-            // r₁ = f̃ + Cᵀλ − M̃q̇ and r₂ = b_F − C_F q̇, with their relative size.
+            // r₁ = f̃ + Cᵀλ − M̃q̇ and r₂ = b_F − C_F q̇ − E_F λ_F, with their relative size.
             let measured =
                 Stationarity::measure(problem, qdot, lambda, &mut self.residual, &mut self.work);
             let mut relative = measured.norm / measured.scale;
             for (r2, &i) in self.compact.iter_mut().zip(free.indices()) {
-                let (v, s) = row_residual(problem, i, qdot, dual.supports()[i]);
+                let (v, s) = row_residual(problem, i, qdot, lambda, dual.supports()[i]);
                 *r2 = -v;
                 relative = relative.max(v.abs() / s);
             }

@@ -1,7 +1,8 @@
 //! KKT residuals of an answer (q̇, λ), evaluated against the original data.
 //!
-//! Row residual vᵢ = cᵢᵀq̇ − bᵢ with scale sᵢ = 1 + |bᵢ| + Σⱼ|cᵢⱼq̇ⱼ| (the size of the terms
-//! that cancel, so vᵢ/sᵢ is the relative accuracy a floating-point answer can reach).
+//! Row residual vᵢ = cᵢᵀq̇ + εᵢλᵢ − bᵢ (εᵢ = 0 but on compliant rows) with scale
+//! sᵢ = 1 + |bᵢ| + Σⱼ|cᵢⱼq̇ⱼ| + |εᵢλᵢ| (the size of the terms that cancel, so vᵢ/sᵢ is the
+//! relative accuracy a floating-point answer can reach).
 //! Stationarity t = M̃q̇ − f̃ − Cᵀλ with scale 1 + ‖f̃‖∞ + ‖M̃q̇‖∞ + ‖Cᵀλ‖∞. Soft-row slack
 //! σᵢ = max(0, −vᵢ). The same evaluation serves the iterative refinement (which drives the
 //! free rows' vᵢ and t to rounding level) and the final report, for every backend.
@@ -14,7 +15,9 @@ use crate::problem::Problem;
 use crate::report::{Residuals, SlackUsage};
 use crate::rows::{PerTag, RowKind};
 
-/// vᵢ = cᵢᵀq̇ − bᵢ and its scale sᵢ = 1 + |bᵢ| + Σⱼ|cᵢⱼq̇ⱼ|, summed over the entries
+/// vᵢ = cᵢᵀq̇ + εᵢλᵢ − bᵢ and its scale sᵢ = 1 + |bᵢ| + Σⱼ|cᵢⱼq̇ⱼ| + |εᵢλᵢ| (the ε terms
+/// only on compliant rows, so other rows are evaluated as without them, bit for bit), summed
+/// over the entries
 /// `..support` only: cᵢ must vanish from `support` on (n always does; the contact space
 /// knows each row's support). For a finite q̇ that is the full sum bit for bit: the partial
 /// sums of [`dot_and_magnitude`] take entry j in lane j mod 4 either way, and a zero term
@@ -23,12 +26,19 @@ pub(crate) fn row_residual(
     problem: &Problem<'_>,
     row: usize,
     qdot: &[f64],
+    lambda: &[f64],
     support: usize,
 ) -> (f64, f64) {
     let coefficients = problem.rows().row(row);
     let rhs = problem.rhs()[row];
     let (product, magnitude) = dot_and_magnitude(coefficients, &qdot[..support]);
-    (product - rhs, 1.0 + rhs.abs() + magnitude)
+    match problem.rows().kinds()[row].compliance() {
+        0.0 => (product - rhs, 1.0 + rhs.abs() + magnitude),
+        compliance => {
+            let spring = compliance * lambda[row];
+            (product + spring - rhs, 1.0 + rhs.abs() + magnitude + spring.abs())
+        }
+    }
 }
 
 /// (vᵢ, sᵢ) of [`row_residual`] for every row, into `out` (m pairs; grow-only): measured once
@@ -37,13 +47,14 @@ pub(crate) fn row_residual(
 pub(crate) fn row_residuals(
     problem: &Problem<'_>,
     qdot: &[f64],
+    lambda: &[f64],
     supports: Option<&[usize]>,
     out: &mut Vec<(f64, f64)>,
 ) {
     out.clear();
     out.extend((0..problem.rows().len()).map(|i| {
         let support = supports.map_or(qdot.len(), |supports| supports[i]);
-        row_residual(problem, i, qdot, support)
+        row_residual(problem, i, qdot, lambda, support)
     }));
 }
 
@@ -130,7 +141,9 @@ pub(crate) fn evaluate(
     for (((&kind, &source), &(v, s)), &l) in each_row {
         let (primal, dual, complementarity) = match kind {
             RowKind::Equality => (v.abs(), 0.0, 0.0),
-            RowKind::Inequality => ((-v).max(0.0), (-l).max(0.0), (l * v).abs()),
+            RowKind::Inequality | RowKind::Compliant { .. } => {
+                ((-v).max(0.0), (-l).max(0.0), (l * v).abs())
+            }
             RowKind::SoftInequality { weight } => {
                 let sigma = (-v).max(0.0);
                 if sigma > acceptance * s {
@@ -182,8 +195,8 @@ mod tests {
             let problem = Problem::new(mass.as_ref(), &qdot, &rows).map_err(|e| {
                 TestCaseError::fail(e.to_string())
             })?;
-            let full = row_residual(&problem, 0, &qdot, n);
-            let supported = row_residual(&problem, 0, &qdot, end);
+            let full = row_residual(&problem, 0, &qdot, &[0.0], n);
+            let supported = row_residual(&problem, 0, &qdot, &[0.0], end);
             prop_assert_eq!(full.0.to_bits(), supported.0.to_bits());
             prop_assert_eq!(full.1.to_bits(), supported.1.to_bits());
         }
@@ -202,7 +215,7 @@ mod tests {
         let (mut a, mut b, mut rows) = ([0.0; 2], [0.0; 2], Vec::new());
         let mut evaluate = |qdot: &[f64], lambda: &[f64]| {
             let measured = Stationarity::measure(&problem, qdot, lambda, &mut a, &mut b);
-            row_residuals(&problem, qdot, None, &mut rows);
+            row_residuals(&problem, qdot, lambda, None, &mut rows);
             evaluate(&problem, lambda, measured, &rows, 1e-9)
         };
         let exact = evaluate(&[0.0, 1.0], &[1.0, 1.0]);

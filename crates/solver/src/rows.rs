@@ -8,10 +8,16 @@
 //! | `Equality` | cᵢᵀq̇ = bᵢ | free |
 //! | `Inequality` | cᵢᵀq̇ ≥ bᵢ | λᵢ ≥ 0 |
 //! | `SoftInequality { weight }` | cᵢᵀq̇ + σᵢ ≥ bᵢ, σᵢ ≥ 0, cost weight·σᵢ | 0 ≤ λᵢ ≤ weight |
+//! | `Compliant { compliance }` | cᵢᵀq̇ + εᵢλᵢ ≥ bᵢ, complementary to λᵢ | λᵢ ≥ 0 |
 //!
 //! For all rows the solve satisfies M̃q̇ = f̃ + Cᵀλ, so an inequality row *pushes* along +cᵢ.
 //! The soft penalty is exact: whenever the hard problem is feasible with λᵢ < weight the
 //! solution is the hard one; "slack used" means λᵢ reached the weight.
+//!
+//! A compliant row is an implicit spring: with ε = 1/(k h²) and b = −g/h for a gap g, the
+//! impulse is λ = h·k·max(0, −(g + h cᵀq̇)), the force of a spring of stiffness k at the end of
+//! the step (backward Euler). In the primal it costs ½σᵢ²/εᵢ for a violation σᵢ = εᵢλᵢ; in the
+//! contact space it adds εᵢ to Wᵢᵢ, so it is never linearly dependent.
 //!
 //! Storage: the coefficients sit in one column-major n × capacity matrix whose column i is
 //! cᵢ, i.e. the columns form Cᵀ. That is the layout the contact-space solve needs (it copies
@@ -36,13 +42,27 @@ pub enum RowKind {
         /// Penalty per unit of slack (impulse units, g·cm/s for a point row); finite, > 0.
         weight: f64,
     },
+    /// Compliant unilateral row cᵀq̇ + ελ ≥ b, λ ≥ 0, complementary (a skin's implicit
+    /// spring, see the module docs): λ ≥ 0.
+    Compliant {
+        /// ε (1/g for a point row: velocity per impulse), finite and > 0.
+        compliance: f64,
+    },
 }
 
 impl RowKind {
-    /// True for rows with a sign-constrained multiplier (hard or soft inequalities); their
-    /// presence selects the QP path.
+    /// True for rows with a sign-constrained multiplier (hard, soft or compliant
+    /// inequalities); their presence selects the QP path.
     pub fn is_inequality(self) -> bool {
         !matches!(self, RowKind::Equality)
+    }
+
+    /// The row's compliance ε: its own for a compliant row, 0 for every other kind.
+    pub fn compliance(self) -> f64 {
+        match self {
+            RowKind::Compliant { compliance } => compliance,
+            _ => 0.0,
+        }
     }
 }
 

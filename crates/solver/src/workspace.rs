@@ -183,7 +183,8 @@ impl SolverWorkspace {
             Some(QpBackend::Clarabel) => {
                 let outcome =
                     clarabel_reference::solve(problem, &mut self.velocity, &mut self.multipliers);
-                row_residuals(problem, &self.velocity, None, &mut self.row_residuals);
+                let (qdot, lambda) = (&self.velocity, &self.multipliers);
+                row_residuals(problem, qdot, lambda, None, &mut self.row_residuals);
                 (outcome.status, outcome.iterations, Refined { steps: 0, stationarity: None })
             }
             _ => self.solve_contact_space(problem, reuse)?,
@@ -292,7 +293,8 @@ impl SolverWorkspace {
             );
             refined = Refined { steps: refined.steps + run.steps, ..run };
             let supports = Some(self.dual.supports());
-            row_residuals(problem, &self.velocity, supports, &mut self.row_residuals);
+            let (qdot, lambda) = (&self.velocity, &self.multipliers);
+            row_residuals(problem, qdot, lambda, supports, &mut self.row_residuals);
             if outcome.termination != Termination::Optimal || pass == VERIFICATION_PASSES {
                 break;
             }
@@ -443,7 +445,7 @@ mod tests {
         let (qdot, lambda) = (workspace.velocity(), workspace.multipliers());
         let fresh = Stationarity::measure(&problem, qdot, lambda, &mut residual, &mut work);
         let mut residuals = Vec::new();
-        row_residuals(&problem, qdot, None, &mut residuals);
+        row_residuals(&problem, qdot, lambda, None, &mut residuals);
         let evaluation = evaluate(&problem, lambda, fresh, &residuals, options.acceptance);
         assert_eq!(report.residuals, evaluation.residuals);
     }

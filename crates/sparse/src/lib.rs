@@ -39,6 +39,7 @@
 //!         principal_inertia: DVec3::new(0.01, 0.1, 0.1),
 //!         radius: 0.1,
 //!         length: 1.0,
+//!         skin: None,
 //!         dofs: vec![DofParams { stiffness: 2.0, damping: 0.1, ..DofParams::default() }; 2],
 //!     });
 //! }

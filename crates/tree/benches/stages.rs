@@ -34,6 +34,7 @@ fn chain(bodies: usize) -> (Model, State) {
             principal_inertia: DVec3::new(0.5 * mass * radius * radius, transverse, transverse),
             radius,
             length,
+            skin: None,
             dofs: vec![
                 DofParams { stiffness: 1.0, damping: 0.1, ..DofParams::default() };
                 joint.dof_count()

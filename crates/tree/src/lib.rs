@@ -37,6 +37,7 @@
 //!     principal_inertia: DVec3::new(0.005, 100.0 / 12.0, 100.0 / 12.0),
 //!     radius: 0.1,
 //!     length: 10.0,
+//!     skin: None,
 //!     dofs: vec![DofParams::default()],
 //! });
 //! let model = builder.build()?;
@@ -76,6 +77,6 @@ pub use kinematics::{
     forward_kinematics, frame_kinematics, position_kinematics, velocity_kinematics,
 };
 pub use mass_matrix::{effective_mass, mass_matrix};
-pub use model::{Body, BodySpec, Joint, Model, ModelBuilder, PathToRoot};
+pub use model::{Body, BodySpec, Joint, Model, ModelBuilder, PathToRoot, Skin};
 pub use spatial::{RigidInertia, Spatial, SpatialComponents, Transform};
 pub use state::State;

@@ -27,6 +27,21 @@ pub struct Body {
     pub radius: f64,
     /// Length along the body's X axis, used by contact geometry (cm).
     pub length: f64,
+    /// The compressible outer layer of the contact tube, if any (`radius` is its outside).
+    pub skin: Option<Skin>,
+}
+
+/// The compressible outer layer of a body's contact tube (docs/physics.md, "Skin"): a contact
+/// may compress it, against the pressure of the fluid under it, down to the hard core of
+/// radius `radius − thickness`, never deeper.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Skin {
+    /// Thickness t of the layer (cm), 0 < t < radius.
+    pub thickness: f64,
+    /// Pressure p of the fluid under the skin (dyn/cm²), > 0: two tubes crossing with their
+    /// skins compressed by δ in all press on a patch of area π√(r_a r_b)·δ, with the force
+    /// p·π√(r_a r_b)·δ.
+    pub pressure: f64,
 }
 
 /// One joint, connecting a body to its parent.
@@ -69,6 +84,9 @@ pub struct BodySpec {
     pub radius: f64,
     /// Length (cm), > 0.
     pub length: f64,
+    /// The compressible outer layer of the contact tube, if any (0 < thickness < radius,
+    /// pressure > 0).
+    pub skin: Option<Skin>,
     /// One entry per DOF of `joint` (extra entries are an error).
     pub dofs: Vec<DofParams>,
 }
@@ -211,6 +229,7 @@ impl ModelBuilder {
                 offset: spec.body_offset,
                 radius: spec.radius,
                 length: spec.length,
+                skin: spec.skin,
             });
         }
         // A body's runs are its own DOFs followed by its parent's runs (parents come first),
@@ -259,6 +278,18 @@ fn validate_spec(i: usize, spec: &BodySpec) -> Result<(), TreeError> {
     positive("inertia z", spec.principal_inertia.z)?;
     positive("radius", spec.radius)?;
     positive("length", spec.length)?;
+    if let Some(skin) = spec.skin {
+        positive("skin thickness", skin.thickness)?;
+        positive("skin pressure", skin.pressure)?;
+        if skin.thickness >= spec.radius {
+            return Err(TreeError::InvalidBody {
+                body: i,
+                quantity: "skin thickness",
+                value: skin.thickness,
+                expected: "below the radius (the core keeps a radius > 0)",
+            });
+        }
+    }
     for (quantity, t) in [("joint offset", &spec.joint_offset), ("body offset", &spec.body_offset)]
     {
         if !(t.translation.is_finite() && t.rotation.is_finite()) {

@@ -18,14 +18,23 @@ pub enum RowGroup {
     Contact,
     /// Thigmotaxic velocity targets; id: the index of the request in the step's actuation.
     Thigmo,
+    /// The skin's spring at a self contact (docs/physics.md, "Skin"); id: the index in the
+    /// step's self contacts (the same contact's core row is a [`RowGroup::Contact`] row).
+    Skin,
 }
 
 impl RowGroup {
     /// Number of groups.
-    pub const COUNT: usize = 5;
+    pub const COUNT: usize = 6;
     /// All groups in tag order.
-    pub const ALL: [RowGroup; RowGroup::COUNT] =
-        [RowGroup::Head, RowGroup::Limit, RowGroup::Wall, RowGroup::Contact, RowGroup::Thigmo];
+    pub const ALL: [RowGroup; RowGroup::COUNT] = [
+        RowGroup::Head,
+        RowGroup::Limit,
+        RowGroup::Wall,
+        RowGroup::Contact,
+        RowGroup::Thigmo,
+        RowGroup::Skin,
+    ];
 
     /// The solver tag of the group's rows.
     pub const fn tag(self) -> RowTag {

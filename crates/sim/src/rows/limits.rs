@@ -121,6 +121,7 @@ mod tests {
             principal_inertia: DVec3::splat(0.1),
             radius: 0.1,
             length: 2.0,
+            skin: None,
             dofs: vec![DofParams { lower: -0.1, upper: 0.1, ..DofParams::default() }],
         });
         builder.build().expect("a valid hinge")

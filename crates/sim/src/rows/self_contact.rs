@@ -2,28 +2,35 @@
 //! body centres, `x(u) = Σ_m w_m(u) c_m`, so its velocity is `P(u) q̇` with
 //! `P(u) = Σ_m w_m R_m [0 I₃] J_m`. With the normal n from the anterior point a to the
 //! posterior point b, the row is `nᵀ(P(u_b) − P(u_a)) q̇ ≥ b(d)`: the gap may not close
-//! faster than allowed.
+//! faster than allowed. Where the body has a skin, d is the gap between the cores and a second
+//! row on the same `nᵀ(P(u_b) − P(u_a))`, the skin's spring, is compliant (`crate::skin`).
 
 use glam::DVec3;
-use hagfish_geometry::{SelfContact, SplineWeights};
-use hagfish_solver::Rows;
+use hagfish_geometry::{Centreline, SelfContact, SplineWeights};
+use hagfish_solver::{RowKind, Rows};
 use hagfish_tree::jacobian::add_point_rows;
 use hagfish_tree::{Data, Model};
 
 use super::RowGroup;
 use super::stabilisation::push_unilateral_row;
+use crate::skin::SkinLayer;
 
-/// Appends one row per self contact, id its index in `contacts` (both spline points blended in one walk to the root).
+/// Appends one row per self contact, id its index in `contacts` (both spline points blended in
+/// one walk to the root): on the core gap, and where `skin` has a skin at the contact (on
+/// `centreline`) the skin's compliant row `ḋ + ελ ≥ −g/h` after it, tagged
+/// [`RowGroup::Skin`].
+#[allow(clippy::too_many_arguments)] // the stage's inputs, each read once
 pub fn add_self_contact_rows(
     model: &Model,
     data: &Data,
     contacts: &[SelfContact],
+    centreline: &Centreline,
+    skin: &SkinLayer,
     time_step: f64,
     push_out: f64,
     rows: &mut Rows,
 ) {
     for (i, contact) in contacts.iter().enumerate() {
-        let row = push_unilateral_row(rows, RowGroup::Contact, i, contact.gap, time_step, push_out);
         let mut points = [(0, DVec3::ZERO, 0.0); 2 * SplineWeights::CAPACITY];
         let mut count = 0;
         for (weights, sign) in [(&contact.weights_b, 1.0), (&contact.weights_a, -1.0)] {
@@ -32,7 +39,15 @@ pub fn add_self_contact_rows(
                 count += 1;
             }
         }
+        let contact_skin = skin.at(contact, centreline);
+        let core_gap = contact_skin.map_or(contact.gap, |s| s.core_gap);
+        let row = push_unilateral_row(rows, RowGroup::Contact, i, core_gap, time_step, push_out);
         add_point_rows(model, data, &points[..count], contact.normal, row);
+        if let Some(contact_skin) = contact_skin {
+            let kind = RowKind::Compliant { compliance: contact_skin.compliance(time_step) };
+            let spring = rows.push_zeroed(kind, RowGroup::Skin.source(i), -contact.gap / time_step);
+            add_point_rows(model, data, &points[..count], contact.normal, spring);
+        }
     }
 }
 

@@ -83,6 +83,7 @@ fn planar_chain(bodies: usize, limit: f64) -> Model {
             principal_inertia: DVec3::new(0.02, 0.1, 0.1),
             radius: 0.2,
             length: 1.0,
+            skin: None,
             dofs: vec![dof],
         });
     }

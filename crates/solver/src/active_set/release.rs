@@ -11,9 +11,10 @@
 //! with the rate ν = gᵀd, computed in the primal rather than from the rounded gradients
 //! (which at a degenerate vertex are pure rounding):
 //!
-//! ν = (Σ dⱼ L⁻¹cⱼ)ᵀ(z + Yλ) − s·ρ,  ρ = bᵢ − Σ_p z_p b_p,
+//! ν = (Σ dⱼ L⁻¹cⱼ)ᵀ(z + Yλ) + dᵀEλ − s·ρ,  ρ = bᵢ − Σ_p z_p b_p,
 //!
-//! i.e. (Σ dⱼcⱼ)ᵀq̇ − dᵀb; the first term vanishes for an exact dependence.
+//! i.e. (Σ dⱼcⱼ)ᵀq̇ + dᵀEλ − dᵀb; the first term vanishes for an exact dependence, the second
+//! but for compliant rows (E their compliances, which keep them independent in W).
 //!
 //! - ν not significantly negative (`CONSISTENCY`): the release was rounding; the row is
 //!   implied by F and skipped until F changes.
@@ -108,7 +109,7 @@ impl ActiveSet {
         true
     }
 
-    /// The rate ν = (Σ dⱼL⁻¹cⱼ)ᵀ(z + Yλ) − s·ρ of φ along d (z in `self.z`), with its parts.
+    /// The rate ν = (Σ dⱼL⁻¹cⱼ)ᵀ(z + Yλ) + dᵀEλ − s·ρ of φ along d (z in `self.z`), with its parts.
     fn dependent_rate(&mut self, dual: &ContactSpace, lambda: &[f64], row: usize, s: f64) -> Rate {
         let b = dual.b();
         let terms = self.z.iter().zip(self.free.indices()).map(|(z, &i)| z * b[i]);
@@ -123,9 +124,14 @@ impl ActiveSet {
             axpy(-s * zp, dual.y_column(i), &mut self.ray);
         }
         let (ray, size) = (dot(&self.ray, &self.ray).sqrt(), dot(&self.lift, &self.lift).sqrt());
+        let e = dual.compliance();
+        let springs = self.z.iter().zip(self.free.indices()).map(|(z, &i)| z * e[i] * lambda[i]);
+        let (implied_spring, spring_size) = springs
+            .fold((0.0, (e[row] * lambda[row]).abs()), |(sum, size), t| (sum + t, size + t.abs()));
+        let spring = s * (e[row] * lambda[row] - implied_spring);
         Rate {
-            value: dot(&self.ray, &self.lift) - s * rho,
-            scale: data + ray * size,
+            value: dot(&self.ray, &self.lift) + spring - s * rho,
+            scale: data + spring_size + ray * size,
             rho,
             ray,
             size,

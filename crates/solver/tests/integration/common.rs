@@ -139,7 +139,9 @@ pub fn scenario(rng: &mut Rng, mass: Mat<f64>, shape: Shape) -> Scenario {
                 RowKind::Equality => at_target,
                 RowKind::Inequality if rng.uniform() < shape.tight => at_target,
                 RowKind::Inequality => at_target - rng.uniform() * 2.0 * dot(&row, &row).sqrt(),
-                RowKind::SoftInequality { .. } => at_target + rng.normal() * dot(&row, &row).sqrt(),
+                RowKind::SoftInequality { .. } | RowKind::Compliant { .. } => {
+                    at_target + rng.normal() * dot(&row, &row).sqrt()
+                }
             };
             (row, rhs)
         };

@@ -7,6 +7,7 @@
 mod common;
 
 mod allocations;
+mod compliant_rows;
 mod own_row_kinds;
 mod random_problems;
 mod signs;

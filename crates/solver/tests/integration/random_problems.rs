@@ -15,13 +15,13 @@ use hagfish_solver::{
 use proptest::prelude::*;
 use proptest::test_runner::TestCaseError;
 
-type Outcome = Result<(), TestCaseError>;
+pub(crate) type Outcome = Result<(), TestCaseError>;
 
 /// Case counts are multiplied by this in release builds (a release case costs ~0.5 ms, a
 /// debug one ~50 ms).
 const RELEASE_FACTOR: u32 = if cfg!(debug_assertions) { 1 } else { 4 };
 
-fn dot(a: &[f64], b: &[f64]) -> f64 {
+pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
@@ -48,7 +48,7 @@ fn solve_in(
 }
 
 /// Solves `s` with a fresh workspace.
-fn solve(
+pub(crate) fn solve(
     s: &Scenario,
     backend: QpBackend,
 ) -> Result<(SolveReport, Vec<f64>, Vec<f64>), TestCaseError> {
@@ -56,7 +56,7 @@ fn solve(
 }
 
 /// M̃x.
-fn mass_times(s: &Scenario, x: &[f64]) -> Vec<f64> {
+pub(crate) fn mass_times(s: &Scenario, x: &[f64]) -> Vec<f64> {
     (0..x.len()).map(|i| dot(s.mass.col_as_slice(i), x)).collect()
 }
 
@@ -76,7 +76,7 @@ fn residual_rounding(c: &[f64], qdot: &[f64], b: f64) -> f64 {
 }
 
 /// The issue's acceptance, computed independently of the solver's own residuals.
-fn check_kkt(s: &Scenario, qdot: &[f64], lambda: &[f64]) -> Outcome {
+pub(crate) fn check_kkt(s: &Scenario, qdot: &[f64], lambda: &[f64]) -> Outcome {
     let mut stationarity = mass_times(s, qdot);
     let mass_qdot = norm(&stationarity);
     for (t, f) in stationarity.iter_mut().zip(&s.force) {
@@ -100,6 +100,12 @@ fn check_kkt(s: &Scenario, qdot: &[f64], lambda: &[f64]) -> Outcome {
                      residual {floor:e})",
                     l * v
                 );
+            }
+            RowKind::Compliant { compliance } => {
+                let v = v + compliance * l;
+                prop_assert!(v > -1e-9, "compliant {i}: Cq̇ + ελ − b = {v:e}");
+                prop_assert!(l > -1e-9, "compliant {i}: λ = {l:e}");
+                prop_assert!((l * v).abs() < 1e-8, "compliant {i}: λ(Cq̇ + ελ − b) = {:e}", l * v);
             }
             RowKind::SoftInequality { weight } => {
                 let sigma = (-v).max(0.0);
@@ -134,6 +140,11 @@ fn check_kkt_relative(s: &Scenario, qdot: &[f64], lambda: &[f64]) -> Outcome {
         let l = lambda[i] / lambda_scale;
         match *kind {
             RowKind::Equality => prop_assert!(v.abs() < 1e-9, "equality {i}: {v:e}"),
+            RowKind::Compliant { compliance } => {
+                let v = v + compliance * lambda[i] / (1.0 + s.rows.rhs()[i].abs() + size);
+                prop_assert!(v > -1e-9 && l > -1e-9, "row {i}: v {v:e} λ {l:e}");
+                prop_assert!((l * v).abs() < 1e-9, "row {i}: v {v:e} λ {l:e}");
+            }
             RowKind::Inequality => {
                 prop_assert!(v > -1e-9 && l > -1e-9, "row {i}: v {v:e} λ {l:e}");
                 prop_assert!((l * v).abs() < 1e-9, "row {i}: v {v:e} λ {l:e}");

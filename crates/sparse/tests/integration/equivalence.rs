@@ -52,6 +52,7 @@ fn build(spec: &TreeSpec, chain: bool, damping: f64, stiffness: f64) -> Model {
             principal_inertia: DVec3::new(0.5 * mass * radius * radius, transverse, transverse),
             radius,
             length,
+            skin: None,
             dofs: vec![DofParams { stiffness, damping, ..DofParams::default() }; joint.dof_count()],
         });
     }
@@ -297,6 +298,7 @@ fn a_massless_direction_is_not_positive_definite() -> Result<(), SparseError> {
         principal_inertia: DVec3::new(0.5, 1.0, 1.0),
         radius: 0.1,
         length: 1.0,
+        skin: None,
         dofs: vec![DofParams { stiffness: 0.0, damping: 0.0, ..DofParams::default() }],
     });
     let model = builder.build().expect("valid rod");

@@ -80,6 +80,7 @@ impl Cylinder {
             principal_inertia: cylinder_inertia(mass, radius, length),
             radius,
             length,
+            skin: None,
             dofs,
         }
     }
