@@ -1,7 +1,7 @@
 //! The measured biometrics of one specimen, as stored in a RON data file
 //! (`data/hagfish/es103.ron`). Field names carry their units (CGS, degrees).
 
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// Measured biometrics of one hagfish and the joint parameters of its model (thesis
 /// Tables 3.1 and 6.1; `docs/physics.md` D1, D5–D8).
@@ -57,7 +57,7 @@ pub struct Biometrics {
 /// A compressible outer layer of the body, the loose skin over the subcutaneous sinus
 /// (docs/physics.md, "Skin"): contacts compress it down to the core (the notochord and muscle),
 /// against the pressure of the fluid under it.
-#[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BodySkin {
     /// The layer's thickness as a fraction of the local radius, in (0, 1): the core radius is

@@ -9,6 +9,12 @@ pub enum ScenarioError {
     /// A scenario or biometrics file is unreadable or invalid (message has file:line:column).
     #[error(transparent)]
     DataFile(#[from] hagfish_anatomy::AnatomyError),
+    /// The scenario gives a skin to a body that is not a hagfish (a rod has none).
+    #[error("{at}: skin: a skin needs a hagfish body, and this body file is a rod")]
+    SkinOnRod {
+        /// Where the scenario gives the skin.
+        at: hagfish_anatomy::Origin,
+    },
     /// The body file a scenario names cannot be read (the position is the scenario's `body`).
     #[error("{at}: body: {source}")]
     BodyFile {

@@ -15,7 +15,7 @@
 
 use std::path::{Path, PathBuf};
 
-use hagfish_anatomy::{AnatomyError, Body, DataFile, Field};
+use hagfish_anatomy::{AnatomyError, Body, BodySkin, DataFile, Field};
 use hagfish_control::{Phase, PhasedController, WaterDrag, diameters_tail_ward};
 use hagfish_tree::{Model, State};
 use serde::{Deserialize, Serialize};
@@ -61,6 +61,12 @@ pub struct Scenario {
     /// The body's shape at t = 0 ([`InitialShape`]), or `None` (default): straight along +X.
     #[serde(default)]
     pub initial_shape: Option<InitialShape>,
+    /// A skin for the body (docs/physics.md, "Skin") in place of the body file's, for studies
+    /// that give one body file a skin (`--set skin=Some((thickness_fraction: 0.25,
+    /// pressure_dyn_per_cm2: 300.0))`); `None` (default): the body file's own. A hagfish body
+    /// only.
+    #[serde(default)]
+    pub skin: Option<BodySkin>,
     /// The phases of control, in order.
     pub phases: Vec<Phase>,
     /// The linear algebra of the velocity step: `SparseMaximal` (default; linear in the number
@@ -148,7 +154,7 @@ impl LoadedScenario {
     fn checked(file: DataFile<Scenario>) -> Result<Self, ScenarioError> {
         let directory = file.path.parent().unwrap_or(Path::new("."));
         let body = directory.join(&file.value.body);
-        let loaded = Body::load(&body).map_err(|source| match source {
+        let mut loaded = Body::load(&body).map_err(|source| match source {
             AnatomyError::Io { .. } => ScenarioError::BodyFile {
                 at: file.locate(&Field::whole("body")),
                 source: Box::new(source),
@@ -158,6 +164,12 @@ impl LoadedScenario {
         let model = loaded.to_model()?;
         let diameters = diameters_tail_ward(model.bodies(), 0.0);
         check_scenario(&file, loaded.body_count(), loaded.length_cm(), diameters)?;
+        if let Some(skin) = file.value.skin {
+            let Body::Hagfish(biometrics) = &mut loaded else {
+                return Err(ScenarioError::SkinOnRod { at: file.locate(&Field::whole("skin")) });
+            };
+            biometrics.skin = Some(skin);
+        }
         let phases = resolve_modal_spaces(&file, directory, &model, loaded.length_cm())?;
         let bytes = std::fs::read(&body).map_err(|source| ScenarioError::BodyFile {
             at: file.locate(&Field::whole("body")),

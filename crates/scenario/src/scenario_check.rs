@@ -295,6 +295,10 @@ pub(crate) fn check_scenario(
         checker.check("linear_dyn_s_per_cm3", drag.linear_dyn_s_per_cm3, Range::NonNegative)?;
         checker.check("quadratic_g_per_cm3", drag.quadratic_g_per_cm3, Range::NonNegative)?;
     }
+    if let Some(skin) = s.skin {
+        checker.check("thickness_fraction", skin.thickness_fraction, Range::Proportion)?;
+        checker.check("pressure_dyn_per_cm2", skin.pressure_dyn_per_cm2, Range::Positive)?;
+    }
     if let Some(InitialShape::OpenTorusKnot(knot)) = &s.initial_shape {
         checker.open_torus_knot(knot, body_length_cm)?;
     }
