@@ -31,8 +31,12 @@ pub struct KnotRun {
     /// frame-to-frame noise: 1.38 against 2.22 cm/s on the two mirror-image ES103 runs, 1.87
     /// against 1.93 fitted; docs/physics.md).
     pub speed: f64,
-    /// The deepest self penetration of the run (fraction of the local radius).
+    /// The deepest self penetration of the run (fraction of the local radius; of the cores
+    /// for a body with a skin).
     pub penetration: f64,
+    /// The deepest compression of the skins in the run (fraction of their thickness; 0
+    /// without a skin).
+    pub skin_compression: f64,
     /// The largest joint-limit excess of the run (deg).
     pub limit_excess_deg: f64,
 }
@@ -46,7 +50,7 @@ const MIN_SLIDE_FRAMES: usize = 10;
 /// The Markdown header of [`KnotRun::table_row`]'s table.
 pub const TABLE_HEADER: &str = "| variant | tied at (s) | held | core start when tied (L) | \
      slide (s) | travel (L) | nearest core end (L) | core length change | speed (cm/s) | \
-     max penetration (% r) |\n|---|---|---|---|---|---|---|---|---|---|";
+     max penetration (% r) | max skin compression (%) |\n|---|---|---|---|---|---|---|---|---|---|---|";
 
 impl KnotRun {
     /// Reads the run in `dir`, or says why it has no such measures (no file, not tied, too
@@ -62,8 +66,11 @@ impl KnotRun {
         );
         let (length_cm, length_l) =
             (csv.column("knot_core_length_cm")?, csv.column("knot_core_length_L")?);
-        let (penetration, excess) =
-            (csv.column("max_self_penetration_rel")?, csv.column("max_limit_excess_deg")?);
+        let (penetration, excess, skin) = (
+            csv.column("max_self_penetration_rel")?,
+            csv.column("max_limit_excess_deg")?,
+            csv.column("max_skin_compression")?,
+        );
         let rows = &csv.rows;
         let tied = first_after_tie(rows, phase).ok_or_else(|| csv.unusable("not tied"))?;
         let after = &rows[tied..];
@@ -94,6 +101,7 @@ impl KnotRun {
                 - 1.0,
             speed: -slope(&path),
             penetration: maximum(penetration),
+            skin_compression: maximum(skin),
             limit_excess_deg: maximum(excess),
         })
     }
@@ -111,7 +119,7 @@ impl KnotRun {
     pub fn table_row(&self, name: &str, knot: &str, writhe_sign: Option<f64>) -> String {
         format!(
             "| {name} | {:.1} | {:.0} % | {:.3} | {:.1}–{:.1} | {:.3} | {:.3} | {} | {:.2} | \
-             {:.2} |",
+             {:.2} | {:.0} |",
             self.tied_s,
             100.0 * self.held(knot, writhe_sign),
             self.tied_core_start,
@@ -122,6 +130,7 @@ impl KnotRun {
             signed_percent(self.change),
             self.speed,
             100.0 * self.penetration,
+            100.0 * self.skin_compression,
         )
     }
 }
@@ -160,7 +169,7 @@ mod tests {
         let mut text = String::from(
             "time_s,phase,knot,knot_writhe,knot_core_start_L,knot_core_mid_L,\
              knot_core_length_cm,knot_core_length_L,max_self_penetration_rel,\
-             max_limit_excess_deg\n",
+             max_limit_excess_deg,max_skin_compression\n",
         );
         for k in 0..=40 {
             let t = 0.1 * f64::from(k);
@@ -172,7 +181,7 @@ mod tests {
                 "slide"
             };
             let start = if t < 1.95 { 0.5 } else { 0.5 - 0.1 * (t - 2.0) };
-            text += &format!("{t},{phase},3_1,2.0,{start},{},4.0,0.4,0.01,0.0\n", start + 0.2);
+            text += &format!("{t},{phase},3_1,2.0,{start},{},4.0,0.4,0.01,0.0,0.5\n", start + 0.2);
         }
         text
     }
@@ -194,7 +203,7 @@ mod tests {
         let row = run.table_row("test", "3_1", None);
         assert_eq!(
             row,
-            "| test | 1.0 | 100 % | 0.500 | 2.0–4.0 | 0.200 | 0.300 | 0 % | 1.00 | 1.00 |"
+            "| test | 1.0 | 100 % | 0.500 | 2.0–4.0 | 0.200 | 0.300 | 0 % | 1.00 | 1.00 | 50 |"
         );
         let signed = [0.26, -0.04, -0.004, f64::NAN].map(signed_percent);
         assert_eq!(signed, ["+26 %", "−4 %", "0 %", "—"].map(String::from));

@@ -15,5 +15,6 @@ mod no_allocation;
 mod recorded_loads;
 mod recording_rate;
 mod self_contact;
+mod skin;
 mod sparse_backend;
 mod thigmotaxis;
