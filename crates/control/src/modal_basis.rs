@@ -41,7 +41,8 @@ impl ModalBasis {
                 }
             }
             let rest = dot(&v, &v).sqrt();
-            if !(rest > RANK_TOLERANCE * norm) {
+            // Not greater: zero, below the tolerance or NaN.
+            if rest.partial_cmp(&(RANK_TOLERANCE * norm)) != Some(std::cmp::Ordering::Greater) {
                 return Err(ControlError::NotABasis {
                     mode: j + 1,
                     reason: "zero, or in the span of the earlier modes on this body's DOFs",

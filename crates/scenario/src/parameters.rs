@@ -47,6 +47,9 @@ pub const PARAMETERS: &[Parameter] = &[
     p("initial_shape.OpenTorusKnot.radius_l", "L", "required", "the torus' major radius R₀ (its minor radius is R₀/2)"),
     p("initial_shape.OpenTorusKnot.start_l", "L", "required", "the straight head part before the knot, ≥ 3(R₀ + R₀/2)/L (off the wall)"),
     p("initial_shape.OpenTorusKnot.mirror", "-", "false", "the mirror image (z → −z)"),
+    p("skin", "-", "None", "a skin for the body in place of the body file's: Some((...)) or None (the body file's own)"),
+    p("skin.thickness_fraction", "-", "required in skin", "the compressible layer's thickness, fraction of the local radius, in (0, 1)"),
+    p("skin.pressure_dyn_per_cm2", "dyn/cm²", "required in skin", "pressure under the skin: a crossing compressed by δ pushes π·p·√(r_a r_b)·δ"),
     p("phases", "-", "required", "the phases of control, in order; passive after the last"),
     p("backend", "-", "SparseMaximal", "velocity-step linear algebra: SparseMaximal (linear in the bodies), or DenseReduced"),
     p("acceptance", "-", "(...)", "when a step's result is kept; a rejected step is retried with substeps"),
@@ -159,6 +162,10 @@ mod tests {
             record_every_s: 0.1,
             observe_every_s: 0.2,
             drag: Some(WaterDrag::default()),
+            skin: Some(hagfish_anatomy::BodySkin {
+                thickness_fraction: 0.25,
+                pressure_dyn_per_cm2: 1000.0,
+            }),
             initial_shape: Some(crate::InitialShape::OpenTorusKnot(crate::OpenTorusKnot {
                 crossings: 3,
                 radius_l: 0.025,
