@@ -13,6 +13,8 @@ mod knot_core;
 mod knot_size;
 mod modes_command;
 mod overrides;
+mod overwrite_kill;
+mod refusals;
 mod render_command;
 mod resume;
 mod run_command;
