@@ -159,9 +159,9 @@ impl LoadedScenario {
         let diameters = diameters_tail_ward(model.bodies(), 0.0);
         check_scenario(&file, loaded.body_count(), loaded.length_cm(), diameters)?;
         let phases = resolve_modal_spaces(&file, directory, &model, loaded.length_cm())?;
-        let bytes = std::fs::read(&body).map_err(|source| ScenarioError::BodyFile {
+        let bytes = read_data_file(&body).map_err(|source| ScenarioError::BodyFile {
             at: file.locate(&Field::whole("body")),
-            source: Box::new(AnatomyError::Io { path: body.clone(), source }),
+            source: Box::new(source),
         })?;
         let body_hash = format!("{:016x}", fnv1a64(&bytes));
         let body = std::fs::canonicalize(&body).unwrap_or(body);
