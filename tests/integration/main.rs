@@ -9,6 +9,7 @@ mod body_counts;
 mod commands;
 mod errors;
 mod export_command;
+mod hostile_inputs;
 mod knot_core;
 mod knot_size;
 mod modes_command;

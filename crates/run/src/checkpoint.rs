@@ -116,7 +116,8 @@ impl Checkpoint {
     /// lost byte is refused), then the RON is parsed (errors at their `file:line:column`).
     pub fn read(path: &Path) -> Result<Self, RunError> {
         let refuse = |reason: String| RunError::Checkpoint { path: path.to_path_buf(), reason };
-        let bytes = std::fs::read(path).map_err(|e| refuse(e.to_string()))?;
+        let bytes = hagfish_anatomy::read_bounded(path, hagfish_anatomy::MAX_DATA_FILE_BYTES)
+            .map_err(|e| refuse(e.to_string()))?;
         let (first, rest) = match bytes.iter().position(|&b| b == b'\n') {
             Some(end) => (&bytes[..end], &bytes[end + 1..]),
             None => (&bytes[..], &[][..]),

@@ -15,7 +15,7 @@
 
 use std::path::{Path, PathBuf};
 
-use hagfish_anatomy::{AnatomyError, Body, DataFile, Field};
+use hagfish_anatomy::{AnatomyError, Body, DataFile, Field, read_data_file};
 use hagfish_control::{Phase, PhasedController, WaterDrag, diameters_tail_ward};
 use hagfish_tree::{Model, State};
 use serde::{Deserialize, Serialize};
