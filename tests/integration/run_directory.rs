@@ -184,3 +184,25 @@ fn a_resume_refuses_an_edited_checkpoint() {
     assert_eq!(code, Some(2), "{stderr}");
     assert!(stderr.contains("checksum mismatch"), "{stderr}");
 }
+
+#[test]
+fn a_resume_refuses_an_array_changed_in_place_naming_both_hashes() {
+    let (out, _) = stopped_run("run_dir_npy_edit");
+    let path = out.join("q.npy");
+    let mut bytes = std::fs::read(&path).expect("q.npy");
+    let length = bytes.len();
+    bytes[128 + 8 * 3] ^= 1; // one bit of a value of row 0, same length
+    std::fs::write(&path, &bytes).expect("write");
+    let output = run_hagfish(["run", "--resume", &out.to_string_lossy(), "--quiet"]);
+    let (code, stderr) = code_and_stderr(&output);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("q.npy: cannot resume: its first 6 rows changed"), "{stderr}");
+    let hashes = stderr.split_once("bytes: checkpoint ").map(|(_, rest)| rest).unwrap_or_default();
+    let (expected, found) = hashes.split_once(", file ").unwrap_or_default();
+    assert_eq!(expected.len(), 16, "{stderr}");
+    assert_eq!(&found[..16], &format!("{:016x}", hagfish_sim::fnv1a64(&bytes[128..]))[..]);
+    assert_ne!(expected, &found[..16]);
+    assert_eq!(std::fs::read(&path).expect("q.npy"), bytes, "the refused resume cut q.npy");
+    assert_eq!(bytes.len(), length);
+    assert_eq!(manifest(&out)["status"], "interrupted");
+}

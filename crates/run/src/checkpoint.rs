@@ -181,7 +181,11 @@ mod tests {
             substepped_steps: 3,
             max_substeps: 4,
             resolved_steps: 2,
-            files: vec![RecordedFile { name: "q.npy".into(), bytes: 128 }],
+            files: vec![RecordedFile {
+                name: "q.npy".into(),
+                bytes: 128,
+                fnv1a64: Some("cbf29ce484222325".into()),
+            }],
         };
         let dir = std::env::temp_dir().join(format!("hagfish-checkpoint-{}", std::process::id()));
         std::fs::create_dir_all(&dir)
