@@ -5,8 +5,9 @@
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
-use crate::common::{code_and_stderr, fresh_dir, hagfish, manifest, run_hagfish};
-use crate::refusals::{everything, run_into, short};
+use crate::common::{
+    code_and_stderr, everything, fresh_dir, hagfish, manifest, run_hagfish, run_into, short,
+};
 
 /// Copies the directory tree `from` to `to` (files and directories only).
 fn copy_tree(from: &Path, to: &Path) {

@@ -10,37 +10,14 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use crate::common::{ROOT, code_and_stderr, fresh_dir, hagfish, manifest, run_hagfish};
+use crate::common::{
+    ROOT, code_and_stderr, everything, fresh_dir, hagfish, manifest, run_hagfish, run_into, short,
+};
 
-/// The short forming scenario (1.5 s, 16 frames).
-fn short() -> String {
-    format!("{ROOT}/tests/data/form.ron")
-}
-
-/// `hagfish run SCENARIO --quiet --out DIR` with `extra` arguments.
-fn run_into(scenario: &str, dir: &Path, extra: &[&str]) -> std::process::Output {
-    let dir = dir.to_string_lossy();
-    let mut args = vec!["run", scenario, "--quiet", "--out", &dir];
-    args.extend_from_slice(extra);
-    run_hagfish(args)
-}
-
-/// Every file under `dir` (recursively) with its bytes, sorted by path.
+/// Every file under `dir` (recursively, the lock file left out) with its bytes, sorted.
 fn snapshot(dir: &Path) -> Vec<(PathBuf, Vec<u8>)> {
-    let mut files = Vec::new();
-    let mut pending = vec![dir.to_path_buf()];
-    while let Some(next) = pending.pop() {
-        for entry in std::fs::read_dir(&next).expect("readable") {
-            let path = entry.expect("an entry").path();
-            if path.is_dir() {
-                pending.push(path);
-            } else if !path.ends_with(".hagfish.lock") {
-                files.push((path.clone(), std::fs::read(&path).expect("readable")));
-            }
-        }
-    }
-    files.sort();
-    files
+    let files = everything(dir).into_iter().filter(|(path, _)| !path.ends_with(".hagfish.lock"));
+    files.filter_map(|(path, bytes)| Some((path, bytes?))).collect()
 }
 
 #[test]
