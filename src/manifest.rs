@@ -192,10 +192,12 @@ fn list_files(directory: &Path) -> Result<Vec<FileEntry>, CliError> {
     Ok(files)
 }
 
-/// Reads the JSON file at `path` (a run's or a sweep's record); a missing or malformed file
-/// is a [`CliError::RunDirectory`].
+/// Reads the JSON file at `path` (a run's or a sweep's record; a regular file of at most
+/// [`hagfish_anatomy::MAX_DATA_FILE_BYTES`]); a missing, irregular, too large or malformed
+/// file is a [`CliError::RunDirectory`].
 pub(crate) fn read_json<T: serde::de::DeserializeOwned>(path: PathBuf) -> Result<T, CliError> {
-    let text = std::fs::read_to_string(&path)
+    let bytes = hagfish_anatomy::read_bounded(&path, hagfish_anatomy::MAX_DATA_FILE_BYTES)
         .map_err(|e| CliError::RunDirectory { path: path.clone(), reason: e.to_string() })?;
-    serde_json::from_str(&text).map_err(|e| CliError::RunDirectory { path, reason: e.to_string() })
+    serde_json::from_slice(&bytes)
+        .map_err(|e| CliError::RunDirectory { path, reason: e.to_string() })
 }

@@ -14,7 +14,8 @@ use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
 use hagfish_run::{
-    CHECKPOINT_FILE, Checkpoint, Progress, Recorder, RunEnd, RunError, RunOptions, RunOutcome,
+    CHECKPOINT_FILE, Checkpoint, Frame, FrameSink, PreparedRun, Progress, Recorder, RunEnd,
+    RunError, RunOptions, RunOutcome,
 };
 use hagfish_scenario::{LoadedScenario, Override};
 use hagfish_sim::state_hash;
@@ -114,22 +115,85 @@ pub fn run_into_directory(
     progress: &mut dyn FnMut(&Progress<'_>),
 ) -> Result<Finished, CliError> {
     let started = Instant::now();
-    let create = matches!(request.source, Source::Scenario { .. });
-    let lock = LockedDirectory::lock(request.directory, create)?;
-    let (loaded, checkpoint, mut manifest) = open(request)?;
+    // Every refusal that does not depend on the directory's run is made before the directory
+    // is touched (not even created or locked): scenario, body, overrides, step cap, memory.
+    let given = match request.source {
+        Source::Scenario { path, overrides } => Some(given_run(path, overrides, request)?),
+        Source::Stopped => None,
+    };
+    let lock = LockedDirectory::lock(request.directory, given.is_some())?;
+    // A replacement stopped before its new run's first checkpoint is undone first.
+    SetAside::recover(request.directory)?;
+    let (loaded, checkpoint, mut manifest, prepared) = open(request, given)?;
     let directory = request.directory.to_path_buf();
-    let mut recorder = prepare(&loaded, &directory, checkpoint.as_ref(), &mut manifest)?;
+    let model = prepared.model();
+    let (dofs, joints) = (model.dof_count(), model.body_count());
+    let (mut recorder, earlier) =
+        prepare(&loaded, &directory, checkpoint.as_ref(), &mut manifest, (dofs, joints))?;
     let options = RunOptions {
         resume: checkpoint.as_ref(),
         stop_after_frame: request.stop_after_frame,
         stop: Some(stop),
         max_steps: request.max_steps,
     };
-    let outcome = hagfish_run::run(&loaded, options, &mut recorder, progress)?;
+    let mut sink = Committing { recorder: &mut recorder, earlier };
+    let outcome = match prepared.run(&loaded, options, &mut sink, progress) {
+        Ok(outcome) => outcome,
+        Err(error) => {
+            if let Some(earlier) = sink.earlier.take() {
+                earlier.restore()?;
+            }
+            return Err(error.into());
+        }
+    };
     let wall_s = started.elapsed().as_secs_f64();
     finish(&outcome, &directory, &mut manifest, wall_s)?;
     let steps_run = outcome.summary.steps - checkpoint.as_ref().map_or(0, |c| c.steps);
     Ok(Finished { loaded, directory, outcome, manifest, wall_s, steps_run, _lock: lock })
+}
+
+/// A scenario given to run, checked and built before any directory is touched: its world,
+/// controller and manifest.
+type Given = (LoadedScenario, PreparedRun, Manifest);
+
+/// Loads the scenario at `path` with `overrides`, checks its steps against the request's cap
+/// and builds it (the memory check), and starts its manifest.
+fn given_run(
+    path: &Path,
+    overrides: &[Override],
+    request: &RunRequest<'_>,
+) -> Result<Given, CliError> {
+    let loaded = LoadedScenario::load_with(path, overrides)?;
+    let prepared = PreparedRun::new(&loaded, request.max_steps)?;
+    let given = overrides.iter().map(Override::text).collect();
+    let mut manifest = Manifest::start(path, given, &loaded);
+    manifest.tie_crossovers_l = loaded.tie_crossovers_l()?;
+    Ok((loaded, prepared, manifest))
+}
+
+/// The recorder of a new run holding the earlier run's files aside until the new run has
+/// its first checkpoint, then discarding them: a kill before that leaves the earlier run
+/// recoverable, after it the new run resumable.
+struct Committing<'a> {
+    recorder: &'a mut Recorder,
+    earlier: Option<SetAside>,
+}
+
+impl FrameSink for Committing<'_> {
+    fn record(&mut self, frame: &Frame<'_>) -> Result<(), RunError> {
+        self.recorder.record(frame)
+    }
+
+    fn checkpoint(&mut self, checkpoint: &mut Checkpoint) -> Result<(), RunError> {
+        self.recorder.checkpoint(checkpoint)?;
+        match self.earlier.take() {
+            Some(earlier) => earlier.discard().map_err(|e| RunError::Output {
+                path: PathBuf::from(".hagfish-previous"),
+                source: std::io::Error::other(e.to_string()),
+            }),
+            None => Ok(()),
+        }
+    }
 }
 
 impl Finished {
@@ -157,19 +221,25 @@ impl Finished {
 }
 
 /// What a run or resume starts from.
-type Opened = (LoadedScenario, Option<Checkpoint>, Manifest);
+type Opened = (LoadedScenario, Option<Checkpoint>, Manifest, PreparedRun);
 
-/// The scenario, checkpoint (when resuming) and manifest of `request`.
-fn open(request: &RunRequest<'_>) -> Result<Opened, CliError> {
+/// The scenario, checkpoint (when resuming), manifest and prepared run of `request`, whose
+/// scenario (if it names one) is `given`.
+fn open(request: &RunRequest<'_>, given: Option<Given>) -> Result<Opened, CliError> {
     let directory = request.directory;
     let holds_run = directory.join(MANIFEST_FILE).exists();
-    match (request.source, request.existing) {
-        (Source::Stopped, _) => open_stopped(directory, None),
-        (Source::Scenario { path, overrides }, Existing::Resume) if holds_run => {
-            let hash = LoadedScenario::load_with(path, overrides)?.hash();
-            open_stopped(directory, Some(&hash))
+    match (given, request.existing) {
+        (None, _) => {
+            let (loaded, checkpoint, manifest) = open_stopped(directory, None)?;
+            let prepared = PreparedRun::new(&loaded, request.max_steps)?;
+            Ok((loaded, checkpoint, manifest, prepared))
         }
-        (Source::Scenario { .. }, Existing::Refuse) if holds_run => {
+        (Some((given, prepared, _)), Existing::Resume) if holds_run => {
+            // Of the same hash, so the same resolved scenario as the one prepared.
+            let (loaded, checkpoint, manifest) = open_stopped(directory, Some(&given.hash()))?;
+            Ok((loaded, checkpoint, manifest, prepared))
+        }
+        (Some(_), Existing::Refuse) if holds_run => {
             let status = Manifest::read(directory).map_or("unreadable", |m| m.status.name());
             Err(CliError::RunDirectory {
                 path: directory.to_path_buf(),
@@ -179,50 +249,37 @@ fn open(request: &RunRequest<'_>) -> Result<Opened, CliError> {
                 ),
             })
         }
-        (Source::Scenario { path, overrides }, _) => {
-            let loaded = LoadedScenario::load_with(path, overrides)?;
-            let given = overrides.iter().map(Override::text).collect();
-            let mut manifest = Manifest::start(path, given, &loaded);
-            manifest.tie_crossovers_l = loaded.tie_crossovers_l()?;
-            Ok((loaded, None, manifest))
-        }
+        (Some((loaded, prepared, manifest)), _) => Ok((loaded, None, manifest, prepared)),
     }
 }
 
 /// Opens the output files (cut to the checkpoint when resuming; new, with `scenario.ron`,
-/// otherwise), removes a stale `diverged.ron` and writes the manifest of the starting part.
+/// otherwise, with an earlier run's files set aside), removes a stale `diverged.ron` and
+/// writes the manifest of the starting part.
 fn prepare(
     loaded: &LoadedScenario,
     directory: &Path,
     checkpoint: Option<&Checkpoint>,
     manifest: &mut Manifest,
-) -> Result<Recorder, CliError> {
-    let model = loaded.body.to_model()?;
-    let (dofs, joints) = (model.dof_count(), model.body_count());
-    let recorder = match checkpoint {
-        Some(checkpoint) => Recorder::reopen(directory, dofs, joints, checkpoint)?,
-        None => {
-            // An earlier run here (replaced with --overwrite) is kept until the new one has
-            // its files, and put back if they cannot be made.
-            let earlier = SetAside::new(directory)?;
-            match start_files(loaded, directory, (dofs, joints), manifest) {
-                Ok(recorder) => {
-                    earlier.discard()?;
-                    recorder
-                }
-                Err(error) => {
-                    earlier.restore()?;
-                    return Err(error);
-                }
+    (dofs, joints): (usize, usize),
+) -> Result<(Recorder, Option<SetAside>), CliError> {
+    let Some(checkpoint) = checkpoint else {
+        // An earlier run here (replaced with --overwrite) is kept until the new one has its
+        // first checkpoint, and put back if its files cannot be made.
+        let earlier = SetAside::new(directory)?;
+        return match start_files(loaded, directory, (dofs, joints), manifest) {
+            Ok(recorder) => Ok((recorder, Some(earlier))),
+            Err(error) => {
+                earlier.restore()?;
+                Err(error)
             }
-        }
+        };
     };
-    if let Some(checkpoint) = checkpoint {
-        manifest.resumed_at_frames.push(checkpoint.frames);
-        manifest.status = Status::Running;
-        manifest.ended_utc = None;
-        manifest.error = None;
-    }
+    let recorder = Recorder::reopen(directory, dofs, joints, checkpoint)?;
+    manifest.resumed_at_frames.push(checkpoint.frames);
+    manifest.status = Status::Running;
+    manifest.ended_utc = None;
+    manifest.error = None;
     // The failing state of an earlier part of this run no longer describes the directory.
     match std::fs::remove_file(directory.join(DIVERGED_FILE)) {
         Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
@@ -234,7 +291,7 @@ fn prepare(
         _ => {}
     }
     manifest.write(directory)?;
-    Ok(recorder)
+    Ok((recorder, None))
 }
 
 /// The files a new run starts with in `directory`: the recorder's outputs, `scenario.ron`
@@ -253,7 +310,10 @@ fn start_files(
 
 /// The scenario, checkpoint and manifest of the stopped run in `directory`, which must be of
 /// the scenario with hash `expected` if one is given.
-fn open_stopped(directory: &Path, expected: Option<&str>) -> Result<Opened, CliError> {
+fn open_stopped(
+    directory: &Path,
+    expected: Option<&str>,
+) -> Result<(LoadedScenario, Option<Checkpoint>, Manifest), CliError> {
     let manifest = Manifest::read(directory)?;
     if manifest.status == Status::Completed {
         return Err(CliError::RunDirectory {

@@ -99,14 +99,15 @@ impl Grid {
     /// Reads a grid file; errors name the file, line and column.
     ///
     /// # Errors
-    /// [`CliError::RunDirectory`] if the file cannot be read, [`CliError::Grid`] if it is
-    /// malformed.
+    /// [`CliError::Anatomy`] if the file cannot be read (or is not a regular file of at most
+    /// [`hagfish_anatomy::MAX_DATA_FILE_BYTES`]), [`CliError::Grid`] if it is malformed.
     pub fn read(path: &Path) -> Result<Self, CliError> {
-        let text = std::fs::read_to_string(path).map_err(|e| CliError::RunDirectory {
+        let bytes = hagfish_anatomy::read_data_file(path)?;
+        let text = std::str::from_utf8(&bytes).map_err(|e| CliError::RunDirectory {
             path: path.to_path_buf(),
-            reason: e.to_string(),
+            reason: format!("not UTF-8 text: {e}"),
         })?;
-        ron::from_str(&text).map_err(|e| CliError::Grid {
+        ron::from_str(text.trim_start_matches('\u{feff}')).map_err(|e| CliError::Grid {
             path: path.to_path_buf(),
             line: e.span.start.line,
             column: e.span.start.col,
@@ -206,12 +207,30 @@ impl Plan {
         hagfish_run::replace_file(&path, (text + "\n").as_bytes()).map_err(CliError::from)
     }
 
-    /// Reads the plan of the sweep folder `folder`.
+    /// Reads the plan of the sweep folder `folder`; every run id must name a directory of
+    /// its own under `runs/` ([`check_run_id`]), and `runs/` must not be a symbolic link, so
+    /// that no run is written outside the folder.
     ///
     /// # Errors
-    /// [`CliError::RunDirectory`] if `plan.json` is missing or malformed.
+    /// [`CliError::RunDirectory`] if `plan.json` is missing or malformed, [`CliError::Sweep`]
+    /// for a run id that is not a plain name or a `runs/` that is a link.
     pub fn read(folder: &Path) -> Result<Self, CliError> {
-        crate::manifest::read_json(folder.join(PLAN_FILE))
+        let path = folder.join(PLAN_FILE);
+        let plan: Self = crate::manifest::read_json(path.clone())?;
+        for run in &plan.runs {
+            check_run_id(&run.id).map_err(|reason| {
+                let id = hagfish_scenario::echo(&run.id);
+                CliError::Sweep(format!("{}: run id {id:?}: {reason}", path.display()))
+            })?;
+        }
+        let runs = folder.join(RUNS_DIRECTORY);
+        if runs.symlink_metadata().is_ok_and(|m| m.file_type().is_symlink()) {
+            return Err(CliError::Sweep(format!(
+                "{}: is a symbolic link; a sweep writes its runs only inside its folder",
+                runs.display()
+            )));
+        }
+        Ok(plan)
     }
 
     /// The run directory of `run` in the sweep folder `folder`.
@@ -233,6 +252,25 @@ impl Plan {
                     .map_or_else(String::new, |(_, v)| v.trim().to_owned())
             })
             .collect()
+    }
+}
+
+/// Refuses a run id that is not a plain directory name: empty, `.` or `..`, or holding a
+/// character other than ASCII letters, digits, `-`, `_` and `.` (a `/` or `\\`, so no
+/// absolute path and no `../x`), or longer than 100 characters.
+///
+/// # Errors
+/// What is wrong with it.
+pub fn check_run_id(id: &str) -> Result<(), &'static str> {
+    let plain = |c: char| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.');
+    if id.is_empty() || id == "." || id == ".." {
+        Err("is not a directory name")
+    } else if id.len() > 100 {
+        Err("is longer than 100 characters")
+    } else if !id.chars().all(plain) {
+        Err("may hold only ASCII letters, digits, `-`, `_` and `.` (no path separator)")
+    } else {
+        Ok(())
     }
 }
 

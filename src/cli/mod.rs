@@ -1,5 +1,5 @@
 //! The command line: one `Command` variant and one file per subcommand (`body`, `run`,
-//! `params`, `knot`, `render`, `report`, `export`, `sweep`, `modes`), all sharing [`CliError`].
+//! `params`, `knot`, `render`, `report`, `export`, `sweep`, `modes`, `recover`), all sharing [`CliError`].
 
 mod body;
 mod export;
@@ -7,6 +7,7 @@ mod knot;
 mod modes;
 mod params;
 mod progress;
+mod recover;
 mod render;
 mod report;
 mod run;
@@ -48,6 +49,8 @@ enum Command {
     Report(report::ReportArgs),
     /// The modes (POD) of a run's thigmotaxis force field, their energies and a wave fit.
     Modes(modes::ModesArgs),
+    /// Put back the run an `--overwrite` killed before its first checkpoint set aside.
+    Recover(recover::RecoverArgs),
 }
 
 /// Runs the chosen subcommand, writing its report to stdout (buffered, flushed at the end).
@@ -63,6 +66,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Export(args) => export::run(&args, &mut out)?,
         Command::Sweep(args) => sweep::run(&args, &mut out)?,
         Command::Modes(args) => modes::run(&args, &mut out)?,
+        Command::Recover(args) => recover::run(&args, &mut out)?,
     }
     out.flush()?;
     Ok(())

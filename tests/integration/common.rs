@@ -102,3 +102,37 @@ pub fn metrics_table(dir: &Path) -> (std::collections::HashMap<String, usize>, V
     let columns = header.enumerate().map(|(k, h)| (h.to_owned(), k)).collect();
     (columns, csv_rows(&dir.join("metrics.csv")))
 }
+
+/// The short forming scenario (1.5 s, 16 frames).
+pub fn short() -> String {
+    format!("{ROOT}/tests/data/form.ron")
+}
+
+/// `hagfish run SCENARIO --quiet --out DIR` with `extra` arguments.
+pub fn run_into(scenario: &str, dir: &Path, extra: &[&str]) -> std::process::Output {
+    let dir = dir.to_string_lossy();
+    let mut args = vec!["run", scenario, "--quiet", "--out", &dir];
+    args.extend_from_slice(extra);
+    run_hagfish(args)
+}
+
+/// Every entry under `dir` (recursively, hidden ones and the lock file included): files with
+/// their bytes, directories with none, sorted by path.
+pub fn everything(dir: &Path) -> Vec<(PathBuf, Option<Vec<u8>>)> {
+    let mut entries = Vec::new();
+    let mut pending = vec![dir.to_path_buf()];
+    while let Some(next) = pending.pop() {
+        for entry in std::fs::read_dir(&next).expect("readable") {
+            let path = entry.expect("an entry").path();
+            if path.is_dir() {
+                pending.push(path.clone());
+                entries.push((path, None));
+            } else {
+                let bytes = std::fs::read(&path).expect("readable");
+                entries.push((path, Some(bytes)));
+            }
+        }
+    }
+    entries.sort();
+    entries
+}

@@ -140,3 +140,23 @@ fn a_phase_name_with_a_comma_stays_one_field_and_the_report_reads_it() {
     let (code, stderr) = code_and_stderr(&report);
     assert_eq!(code, Some(0), "hagfish report: {stderr}");
 }
+
+/// A 100 kB value is echoed once, cut to its ends (`hagfish_scenario::echo`), in a message of
+/// a few hundred bytes, and the refused run leaves no directory; `drag=[0.1, 0.2]` (a list
+/// for a struct) is refused naming the struct's fields.
+#[test]
+fn a_huge_value_is_echoed_cut_and_a_list_for_a_struct_is_refused() {
+    let dir = fresh_dir("overrides_huge");
+    let out = dir.join("out");
+    let huge = format!("duration_s=\"{}\"", "7".repeat(100_000));
+    let output = run_form(&out, &["--set", &huge]);
+    let (code, stderr) = code_and_stderr(&output);
+    assert_eq!(code, Some(2), "{}", stderr.len());
+    assert!(stderr.len() < 1_000, "{} bytes: {}", stderr.len(), &stderr[..300]);
+    assert!(stderr.contains("characters left out"), "{stderr}");
+    assert!(!out.exists(), "a refused run made its directory");
+    let output = run_form(&out, &["--set", "drag=[0.1, 0.2]"]);
+    let (code, stderr) = code_and_stderr(&output);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("`drag` is a struct with the fields linear_dyn_s_per_cm3"), "{stderr}");
+}

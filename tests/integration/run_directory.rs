@@ -10,37 +10,14 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use crate::common::{ROOT, code_and_stderr, fresh_dir, hagfish, manifest, run_hagfish};
+use crate::common::{
+    ROOT, code_and_stderr, everything, fresh_dir, hagfish, manifest, run_hagfish, run_into, short,
+};
 
-/// The short forming scenario (1.5 s, 16 frames).
-fn short() -> String {
-    format!("{ROOT}/tests/data/form.ron")
-}
-
-/// `hagfish run SCENARIO --quiet --out DIR` with `extra` arguments.
-fn run_into(scenario: &str, dir: &Path, extra: &[&str]) -> std::process::Output {
-    let dir = dir.to_string_lossy();
-    let mut args = vec!["run", scenario, "--quiet", "--out", &dir];
-    args.extend_from_slice(extra);
-    run_hagfish(args)
-}
-
-/// Every file under `dir` (recursively) with its bytes, sorted by path.
+/// Every file under `dir` (recursively, the lock file left out) with its bytes, sorted.
 fn snapshot(dir: &Path) -> Vec<(PathBuf, Vec<u8>)> {
-    let mut files = Vec::new();
-    let mut pending = vec![dir.to_path_buf()];
-    while let Some(next) = pending.pop() {
-        for entry in std::fs::read_dir(&next).expect("readable") {
-            let path = entry.expect("an entry").path();
-            if path.is_dir() {
-                pending.push(path);
-            } else if !path.ends_with(".hagfish.lock") {
-                files.push((path.clone(), std::fs::read(&path).expect("readable")));
-            }
-        }
-    }
-    files.sort();
-    files
+    let files = everything(dir).into_iter().filter(|(path, _)| !path.ends_with(".hagfish.lock"));
+    files.filter_map(|(path, bytes)| Some((path, bytes?))).collect()
 }
 
 #[test]
@@ -183,4 +160,26 @@ fn a_resume_refuses_an_edited_checkpoint() {
     let (code, stderr) = code_and_stderr(&output);
     assert_eq!(code, Some(2), "{stderr}");
     assert!(stderr.contains("checksum mismatch"), "{stderr}");
+}
+
+#[test]
+fn a_resume_refuses_an_array_changed_in_place_naming_both_hashes() {
+    let (out, _) = stopped_run("run_dir_npy_edit");
+    let path = out.join("q.npy");
+    let mut bytes = std::fs::read(&path).expect("q.npy");
+    let length = bytes.len();
+    bytes[128 + 8 * 3] ^= 1; // one bit of a value of row 0, same length
+    std::fs::write(&path, &bytes).expect("write");
+    let output = run_hagfish(["run", "--resume", &out.to_string_lossy(), "--quiet"]);
+    let (code, stderr) = code_and_stderr(&output);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("q.npy: cannot resume: its first 6 rows changed"), "{stderr}");
+    let hashes = stderr.split_once("bytes: checkpoint ").map(|(_, rest)| rest).unwrap_or_default();
+    let (expected, found) = hashes.split_once(", file ").unwrap_or_default();
+    assert_eq!(expected.len(), 16, "{stderr}");
+    assert_eq!(&found[..16], &format!("{:016x}", hagfish_sim::fnv1a64(&bytes[128..]))[..]);
+    assert_ne!(expected, &found[..16]);
+    assert_eq!(std::fs::read(&path).expect("q.npy"), bytes, "the refused resume cut q.npy");
+    assert_eq!(bytes.len(), length);
+    assert_eq!(manifest(&out)["status"], "interrupted");
 }

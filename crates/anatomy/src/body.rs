@@ -26,15 +26,13 @@ impl Body {
     /// `file:line:column` (see [`Body::from_ron`]).
     pub fn load(path: impl AsRef<Path>) -> Result<Self, AnatomyError> {
         let path = path.as_ref();
-        let bytes = std::fs::read(path)
-            .map_err(|source| AnatomyError::Io { path: path.to_path_buf(), source })?;
-        Self::from_ron(&bytes, path)
+        Self::from_ron(&crate::load::read_data_file(path)?, path)
     }
 
     /// Parses RON `bytes` as a [`Rod`] when the value is named `Rod(…)`, as [`Biometrics`]
     /// otherwise, and validates it; `path` names the source in messages.
     pub fn from_ron(bytes: &[u8], path: &Path) -> Result<Self, AnatomyError> {
-        let text = String::from_utf8_lossy(bytes);
+        let text = String::from_utf8_lossy(bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes));
         if value_name(&text) == Some("Rod") {
             let file = DataFile::<Rod>::parse(bytes, path)?;
             file.value.validate_with(&|field| file.locate(field))?;

@@ -52,7 +52,7 @@ pub use biometrics::{
 };
 pub use body::Body;
 pub use error::{AnatomyError, Field, Origin};
-pub use load::DataFile;
+pub use load::{DataFile, MAX_DATA_FILE_BYTES, read_bounded, read_data_file};
 pub use model::cylinder_inertia;
 pub use profile::interpolate_clamped;
 pub use rod::Rod;

@@ -28,13 +28,13 @@ impl<T: DeserializeOwned> DataFile<T> {
     /// ron's position.
     pub fn read(path: impl AsRef<Path>) -> Result<Self, AnatomyError> {
         let path = path.as_ref();
-        let bytes = std::fs::read(path)
-            .map_err(|source| AnatomyError::Io { path: path.to_path_buf(), source })?;
-        Self::parse(&bytes, path)
+        Self::parse(&read_data_file(path)?, path)
     }
 
-    /// Parses RON `bytes`; `path` names the source in messages.
+    /// Parses RON `bytes`; `path` names the source in messages. A leading UTF-8 byte order
+    /// mark is accepted (and dropped).
     pub fn parse(bytes: &[u8], path: &Path) -> Result<Self, AnatomyError> {
+        let bytes = bytes.strip_prefix(UTF8_BOM).unwrap_or(bytes);
         let text = std::str::from_utf8(bytes).map_err(|e| {
             let valid = String::from_utf8_lossy(&bytes[..e.valid_up_to()]);
             AnatomyError::NotUtf8 { at: position(&valid, path, valid.len()) }
@@ -70,6 +70,55 @@ impl Biometrics {
     }
 }
 
+/// The UTF-8 byte order mark, which some editors put at the start of a text file.
+const UTF8_BOM: &[u8] = b"\xEF\xBB\xBF";
+
+/// The most bytes a data file (scenario, body, checkpoint, grid) may have: 64 MiB, far above
+/// any real one (a checkpoint of 100 000 bodies is ≈ 8 MB), so a wrong path (a device, a
+/// huge log) is refused before it fills the memory.
+pub const MAX_DATA_FILE_BYTES: u64 = 64 << 20;
+
+/// The bytes of the data file at `path`: a regular file (a link to one included) of at most
+/// [`MAX_DATA_FILE_BYTES`], read to its end but never beyond that bound (a file growing while
+/// read included).
+///
+/// # Errors
+/// [`AnatomyError::Io`] naming the path: missing or unreadable, not a regular file (a device
+/// such as `/dev/zero`, a FIFO, a directory), or larger than the bound.
+pub fn read_data_file(path: &Path) -> Result<Vec<u8>, AnatomyError> {
+    read_bounded(path, MAX_DATA_FILE_BYTES)
+        .map_err(|source| AnatomyError::Io { path: path.to_path_buf(), source })
+}
+
+/// The bytes of the regular file at `path` if it has at most `limit` bytes.
+///
+/// # Errors
+/// As [`read_data_file`], as an `io::Error` that says what is wrong.
+pub fn read_bounded(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
+    use std::io::Read;
+    let file = std::fs::File::open(path)?;
+    let metadata = file.metadata()?;
+    if !metadata.is_file() {
+        return Err(std::io::Error::other(
+            "not a regular file (a device, FIFO, socket or directory); give a file",
+        ));
+    }
+    let too_large = || {
+        std::io::Error::other(format!(
+            "larger than {limit} bytes, the most a data file may have; is it the right file?"
+        ))
+    };
+    if metadata.len() > limit {
+        return Err(too_large());
+    }
+    let mut bytes = Vec::with_capacity(usize::try_from(metadata.len()).unwrap_or(0));
+    file.take(limit.saturating_add(1)).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > limit {
+        return Err(too_large());
+    }
+    Ok(bytes)
+}
+
 /// Maps ron's error to a typed [`AnatomyError`] at ron's start position.
 fn parse_error(e: ron::error::SpannedError, path: &Path) -> AnatomyError {
     let at = Origin::Position {
@@ -83,5 +132,36 @@ fn parse_error(e: ron::error::SpannedError, path: &Path) -> AnatomyError {
             AnatomyError::UnknownField { at, field: found, expected }
         }
         code => AnatomyError::Parse { at, message: code.to_string() },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn es103() -> std::path::PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/hagfish/es103.ron")
+    }
+
+    #[test]
+    fn a_byte_order_mark_is_accepted() -> Result<(), AnatomyError> {
+        let bytes =
+            std::fs::read(es103()).map_err(|source| AnatomyError::Io { path: es103(), source })?;
+        let plain = Biometrics::from_ron(&bytes, &es103())?;
+        let marked = [UTF8_BOM, &bytes].concat();
+        assert_eq!(Biometrics::from_ron(&marked, &es103())?, plain);
+        assert!(crate::Body::from_ron(&marked, &es103()).is_ok());
+        Ok(())
+    }
+
+    #[test]
+    fn a_device_or_a_file_over_the_bound_is_refused_before_it_is_read() {
+        let error = Biometrics::load("/dev/zero").expect_err("a device").to_string();
+        assert!(error.contains("/dev/zero: cannot read the file: not a regular file"), "{error}");
+        let error = Biometrics::load("/tmp").expect_err("a directory").to_string();
+        assert!(error.contains("not a regular file"), "{error}");
+        let error = read_bounded(&es103(), 100).expect_err("over the bound").to_string();
+        assert!(error.contains("larger than 100 bytes"), "{error}");
+        assert!(read_bounded(&es103(), MAX_DATA_FILE_BYTES).is_ok());
     }
 }

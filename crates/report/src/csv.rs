@@ -214,7 +214,12 @@ impl Record<'_> {
 fn reader(path: &Path) -> Result<(csv::Reader<Newlines<File>>, Option<u64>), ReportError> {
     let read_error = |source| ReportError::Read { path: path.to_path_buf(), source };
     let mut file = File::open(path).map_err(read_error)?;
-    let length = file.metadata().map_err(read_error)?.len();
+    let metadata = file.metadata().map_err(read_error)?;
+    if !metadata.is_file() {
+        let what = "not a regular file (a device, FIFO, socket or directory); give a file";
+        return Err(read_error(std::io::Error::other(what)));
+    }
+    let length = metadata.len();
     let mut last = [b'\n'];
     if length > 0 {
         file.seek(SeekFrom::End(-1)).map_err(read_error)?;
@@ -225,7 +230,7 @@ fn reader(path: &Path) -> Result<(csv::Reader<Newlines<File>>, Option<u64>), Rep
         .has_headers(false)
         .flexible(true)
         .buffer_capacity(READ_BUFFER_BYTES)
-        .from_reader(Newlines { inner: file, read: 0, at: VecDeque::new() });
+        .from_reader(Newlines { inner: file, read: 0, at: VecDeque::new(), line_start: 0 });
     Ok((reader, (last[0] != b'\n').then_some(length)))
 }
 
@@ -235,7 +240,13 @@ struct Newlines<R> {
     inner: R,
     read: u64,
     at: VecDeque<u64>,
+    /// Where the line being read starts (after the last newline read).
+    line_start: u64,
 }
+
+/// The longest line a CSV file may have: 16 MiB (a `centreline.csv` row is < 100 bytes; a
+/// file without line breaks is not a CSV file of a run, and would be held whole).
+pub const MAX_LINE_BYTES: u64 = 16 << 20;
 
 impl<R> Newlines<R> {
     /// The number of noted newlines before byte `end`, forgotten.
@@ -251,7 +262,17 @@ impl<R: Read> Read for Newlines<R> {
         let count = self.inner.read(buffer)?;
         let found = buffer[..count].iter().enumerate().filter(|(_, b)| **b == b'\n');
         self.at.extend(found.map(|(i, _)| self.read + i as u64));
+        let last = buffer[..count].iter().rposition(|b| *b == b'\n');
+        if let Some(i) = last {
+            self.line_start = self.read + i as u64 + 1;
+        }
         self.read += count as u64;
+        if self.read - self.line_start > MAX_LINE_BYTES {
+            return Err(std::io::Error::other(format!(
+                "a line longer than {MAX_LINE_BYTES} bytes, from byte {}: not a CSV file",
+                self.line_start
+            )));
+        }
         Ok(count)
     }
 }
@@ -266,6 +287,18 @@ fn csv_error(path: &Path, error: &csv::Error) -> ReportError {
 mod tests {
     use super::*;
     use crate::test_files::write;
+
+    #[test]
+    fn a_device_or_a_line_without_end_is_refused_not_read_whole() {
+        let error = CsvFile::open(Path::new("/dev/zero")).err().map(|e| e.to_string());
+        assert!(error.as_deref().is_some_and(|e| e.contains("not a regular file")), "{error:?}");
+        let endless = "a,b\n".to_owned() + &"7".repeat(MAX_LINE_BYTES as usize + 10);
+        let path = write("endless.csv", &endless);
+        let file = CsvFile::open(&path).expect("the header is read");
+        let error = file.for_each_record(|_| Ok(())).expect_err("an endless line");
+        assert!(error.to_string().contains("a line longer than 16777216 bytes"), "{error}");
+        let _ = std::fs::remove_file(path);
+    }
 
     #[test]
     fn reads_numbers_empty_fields_and_names_the_line_of_a_bad_one() {

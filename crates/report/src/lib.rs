@@ -69,7 +69,7 @@ mod vtk;
 mod wcon;
 
 pub use centreline::Centreline;
-pub use csv::{CsvFile, Record, Rows};
+pub use csv::{CsvFile, MAX_LINE_BYTES, Record, Rows};
 pub use error::ReportError;
 pub use forces::{AXES, ThigmoForces};
 pub use frame_selection::{BODY_FRAME_BUDGET, FrameSelection};
@@ -77,7 +77,8 @@ pub use knot_run::{KnotRun, TABLE_HEADER, signed_percent};
 pub use loosen_tighten::LoosenTighten;
 pub use metrics::Metrics;
 pub use outputs::{
-    ANIMATION, GLB, PLOTS, REPORT, VTK, Written, own_files, render, report, write_all,
+    ANIMATION, GLB, PLOTS, REPORT, VTK, Written, own_files, own_subdirectory, render, report,
+    write_all,
 };
 pub use plots::{Line, Scatter, TimeSeries, write_line_plots, write_scatters};
 pub use radii::{DEFAULT_RADIUS_CM, Radii};

@@ -54,9 +54,24 @@ pub fn own_files(dir: &Path) -> Result<Vec<PathBuf>, ReportError> {
         .map(|name| dir.join(name))
         .filter(|path| path.symlink_metadata().is_ok())
         .collect();
-    files.extend(own_files_in(&dir.join(PLOTS), plots::is_own_file)?);
-    files.extend(own_files_in(&dir.join(VTK), vtk::is_own_file)?);
+    files.extend(own_files_in(&own_subdirectory(dir, PLOTS)?, plots::is_own_file)?);
+    files.extend(own_files_in(&own_subdirectory(dir, VTK)?, vtk::is_own_file)?);
     Ok(files)
+}
+
+/// `dir/name` (`plots/` or `vtk/`), refused if it is a symbolic link: the program writes and
+/// removes its files only in a directory of the run's own, never through a link to another.
+///
+/// # Errors
+/// [`ReportError::Write`] naming the link.
+pub fn own_subdirectory(dir: &Path, name: &str) -> Result<PathBuf, ReportError> {
+    let path = dir.join(name);
+    if path.symlink_metadata().is_ok_and(|m| m.file_type().is_symlink()) {
+        let what = "is a symbolic link; the program writes its files only into a directory of \
+                    the run's own: remove the link (or replace it with a directory)";
+        return Err(ReportError::write(&path)(std::io::Error::other(what)));
+    }
+    Ok(path)
 }
 
 /// The entries of `dir` (none if it does not exist) whose names `own` accepts, sorted.
@@ -96,8 +111,8 @@ struct Parts {
 
 fn make(dir: &Path, parts: Parts) -> Result<Written, ReportError> {
     let mut written = Written::default();
+    let (plot_dir, vtk_dir) = (own_subdirectory(dir, PLOTS)?, own_subdirectory(dir, VTK)?);
     let run = written.time("read", || RunDir::read(dir))?;
-    let plot_dir = dir.join(PLOTS);
     let drawn = written.time("plots", || plots::draw(&run, &plot_dir))?;
     let gif_path = dir.join(ANIMATION);
     let gif = written.time("animation", || animation::encode(&run, &gif_path))?;
@@ -107,8 +122,8 @@ fn make(dir: &Path, parts: Parts) -> Result<Written, ReportError> {
         written.files.push(gif_path);
     }
     if parts.exports {
-        let (series, frames) = written
-            .time("vtk", || vtk::write(&run.centreline, &run.radii.values, &dir.join(VTK)))?;
+        let (series, frames) =
+            written.time("vtk", || vtk::write(&run.centreline, &run.radii.values, &vtk_dir))?;
         written.files.push(series);
         written.vtk_frames = frames;
         let path = dir.join(GLB);
@@ -166,5 +181,23 @@ mod tests {
         let all = write_all(&dir).expect("write_all");
         assert_eq!(all.files.len(), rendered.files.len() + 1);
         assert!(all.total_seconds() > 0.0);
+    }
+
+    #[test]
+    fn a_linked_plots_or_vtk_directory_is_refused_and_not_written_through() {
+        for name in [PLOTS, VTK] {
+            let dir = synthetic(&format!("linked_{name}"));
+            let elsewhere = dir.join("elsewhere");
+            std::fs::create_dir_all(&elsewhere).expect("mkdir");
+            std::fs::write(elsewhere.join("frame_0000.vtk"), "not the run's").expect("write");
+            let _ = std::fs::remove_dir_all(dir.join(name));
+            std::os::unix::fs::symlink(&elsewhere, dir.join(name)).expect("symlink");
+            let error = write_all(&dir).expect_err("a link").to_string();
+            assert!(error.contains("is a symbolic link"), "{error}");
+            assert!(own_files(&dir).is_err(), "{name}: listed through the link");
+            let entries = std::fs::read_dir(&elsewhere).expect("read").count();
+            assert_eq!(entries, 1, "{name}: written through the link");
+            assert!(!dir.join(REPORT).exists());
+        }
     }
 }

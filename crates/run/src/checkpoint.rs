@@ -116,7 +116,8 @@ impl Checkpoint {
     /// lost byte is refused), then the RON is parsed (errors at their `file:line:column`).
     pub fn read(path: &Path) -> Result<Self, RunError> {
         let refuse = |reason: String| RunError::Checkpoint { path: path.to_path_buf(), reason };
-        let bytes = std::fs::read(path).map_err(|e| refuse(e.to_string()))?;
+        let bytes = hagfish_anatomy::read_bounded(path, hagfish_anatomy::MAX_DATA_FILE_BYTES)
+            .map_err(|e| refuse(e.to_string()))?;
         let (first, rest) = match bytes.iter().position(|&b| b == b'\n') {
             Some(end) => (&bytes[..end], &bytes[end + 1..]),
             None => (&bytes[..], &[][..]),
@@ -180,7 +181,11 @@ mod tests {
             substepped_steps: 3,
             max_substeps: 4,
             resolved_steps: 2,
-            files: vec![RecordedFile { name: "q.npy".into(), bytes: 128 }],
+            files: vec![RecordedFile {
+                name: "q.npy".into(),
+                bytes: 128,
+                fnv1a64: Some("cbf29ce484222325".into()),
+            }],
         };
         let dir = std::env::temp_dir().join(format!("hagfish-checkpoint-{}", std::process::id()));
         std::fs::create_dir_all(&dir)

@@ -29,6 +29,24 @@ pub enum RunError {
         /// What is wrong.
         what: String,
     },
+    /// An `.npy` array whose rows up to the checkpoint are not those the run wrote (edited or
+    /// damaged since): both hashes are shown, to tell which file and that it changed.
+    #[error(
+        "{}: cannot resume: its first {rows} rows changed since the checkpoint (FNV-1a 64 of \
+         their bytes: checkpoint {expected}, file {found}); the file was edited or damaged: \
+         start a new run",
+        path.display()
+    )]
+    ChangedArray {
+        /// The file.
+        path: std::path::PathBuf,
+        /// Rows checked.
+        rows: usize,
+        /// The hash the checkpoint recorded.
+        expected: String,
+        /// The hash of the file's rows now.
+        found: String,
+    },
     /// A run cannot be resumed from its checkpoint (unreadable, or not of this scenario).
     #[error("{}: cannot resume: {reason}", path.display())]
     Checkpoint {

@@ -54,5 +54,6 @@ pub use recorder::{
     RecordedFile, Recorder,
 };
 pub use run::{
-    DEFAULT_MAX_STEPS, KnotSample, Progress, RunEnd, RunOptions, RunOutcome, RunSummary, run,
+    DEFAULT_MAX_STEPS, KnotSample, PreparedRun, Progress, RunEnd, RunOptions, RunOutcome,
+    RunSummary, run,
 };

@@ -28,13 +28,65 @@ fn header(rows: usize, columns: usize) -> Vec<u8> {
     out
 }
 
-/// An `.npy` file of f64 rows of a fixed width, growing by one row at a time.
+/// FNV-1a 64's offset basis: the hash of no bytes ([`hagfish_sim::fnv1a64`]'s).
+const FNV_OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
+
+/// `hash` (FNV-1a 64, as [`hagfish_sim::fnv1a64`]) continued over `bytes`.
+fn fnv_extend(hash: u64, bytes: &[u8]) -> u64 {
+    bytes.iter().fold(hash, |hash, &b| (hash ^ u64::from(b)).wrapping_mul(0x100_0000_01b3))
+}
+
+/// An `.npy` file of f64 rows of a fixed width, growing by one row at a time, with the FNV-1a
+/// 64 hash of its rows' bytes so far (the checkpoint records it; a resume checks it).
 #[derive(Debug)]
 pub(crate) struct NpyWriter {
     file: OutputFile,
     columns: usize,
     rows: usize,
     buffer: Vec<u8>,
+    hash: u64,
+}
+
+/// The FNV-1a 64 hash of the first `rows` rows of `columns` values of the `.npy` file at
+/// `path` (its bytes after the header), read a MiB at a time; checked against `expected`
+/// (16 hex digits, as a checkpoint records it) when given.
+///
+/// # Errors
+/// [`RunError::Output`] if the file cannot be read or is shorter, [`RunError::ChangedArray`]
+/// if the hash is not `expected`.
+pub(crate) fn rows_hash(
+    path: &Path,
+    columns: usize,
+    rows: usize,
+    expected: Option<&str>,
+) -> Result<u64, RunError> {
+    use std::io::{Read, Seek, SeekFrom};
+    let fail = |source| RunError::Output { path: path.to_path_buf(), source };
+    let mut file = std::fs::File::open(path).map_err(fail)?;
+    let mut left = 8 * rows as u64 * columns as u64;
+    if file.metadata().map_err(fail)?.len() < HEADER_BYTES as u64 + left {
+        // Too short: reopening it says so, with the lengths.
+        return Ok(FNV_OFFSET);
+    }
+    file.seek(SeekFrom::Start(HEADER_BYTES as u64)).map_err(fail)?;
+    let mut chunk = vec![0u8; 1 << 20];
+    let mut hash = FNV_OFFSET;
+    while left > 0 {
+        let take = left.min(chunk.len() as u64) as usize;
+        file.read_exact(&mut chunk[..take]).map_err(fail)?;
+        hash = fnv_extend(hash, &chunk[..take]);
+        left -= take as u64;
+    }
+    let found = format!("{hash:016x}");
+    match expected {
+        Some(expected) if expected != found => Err(RunError::ChangedArray {
+            path: path.to_path_buf(),
+            rows,
+            expected: expected.to_owned(),
+            found,
+        }),
+        _ => Ok(hash),
+    }
 }
 
 impl NpyWriter {
@@ -43,15 +95,26 @@ impl NpyWriter {
         let mut file = OutputFile::create(path)?;
         file.bytes(&header(0, columns));
         file.flush()?;
-        Ok(Self { file, columns, rows: 0, buffer: Vec::new() })
+        Ok(Self { file, columns, rows: 0, buffer: Vec::new(), hash: FNV_OFFSET })
     }
 
-    /// Reopens the file at `path`, keeping its first `rows` rows of `columns` values.
-    pub(crate) fn reopen(path: &Path, columns: usize, rows: usize) -> Result<Self, RunError> {
+    /// Reopens the file at `path`, keeping its first `rows` rows of `columns` values, whose
+    /// hash ([`rows_hash`]) is `hash`.
+    pub(crate) fn reopen(
+        path: &Path,
+        columns: usize,
+        rows: usize,
+        hash: u64,
+    ) -> Result<Self, RunError> {
         let length = (HEADER_BYTES + 8 * rows * columns) as u64;
         let mut file = OutputFile::reopen(path, length)?;
         file.overwrite(0, &header(rows, columns))?;
-        Ok(Self { file, columns, rows, buffer: Vec::new() })
+        Ok(Self { file, columns, rows, buffer: Vec::new(), hash })
+    }
+
+    /// The FNV-1a 64 hash of the rows written, as 16 hex digits.
+    pub(crate) fn rows_hash(&self) -> String {
+        format!("{:016x}", self.hash)
     }
 
     /// Appends one row (`values.len()` must be the width; shorter rows are padded with NaN,
@@ -64,6 +127,7 @@ impl NpyWriter {
         }
         self.file.bytes(&self.buffer);
         self.file.flush()?;
+        self.hash = fnv_extend(self.hash, &self.buffer);
         self.rows += 1;
         self.file.overwrite(0, &header(self.rows, self.columns))
     }
@@ -153,9 +217,18 @@ mod tests {
         assert_eq!((read.rows, read.columns), (4, 3));
         assert_eq!(read.values[9].to_bits(), 3f64.to_bits());
         assert_eq!(read.values[1].to_bits(), (-0.0f64).to_bits());
+        let four_rows = writer.rows_hash();
         drop(writer);
-        let mut writer = NpyWriter::reopen(&path, 3, 2)?;
+        assert_eq!(format!("{:016x}", rows_hash(&path, 3, 4, Some(&four_rows))?), four_rows);
+        let bytes = std::fs::read(&path)
+            .map_err(|source| RunError::Output { path: path.clone(), source })?;
+        assert_eq!(four_rows, format!("{:016x}", hagfish_sim::fnv1a64(&bytes[HEADER_BYTES..])));
+        let two_rows = rows_hash(&path, 3, 2, None)?;
+        let mut writer = NpyWriter::reopen(&path, 3, 2, two_rows)?;
         writer.append(&[7.0, 8.0])?;
+        assert_eq!(writer.rows_hash(), format!("{:016x}", rows_hash(&path, 3, 3, None)?));
+        let changed = rows_hash(&path, 3, 2, Some("0123456789abcdef")).expect_err("changed");
+        assert!(changed.to_string().contains("checkpoint 0123456789abcdef, file"), "{changed}");
         let read = read_npy(&path)?;
         assert_eq!((read.rows, read.columns), (3, 3));
         assert_eq!(read.values[6..8], [7.0, 8.0]);

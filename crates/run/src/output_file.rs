@@ -106,7 +106,8 @@ impl OutputFile {
 /// Writes `bytes` as the file at `path` atomically and without following symbolic links: into
 /// a new file beside it (`NAME.partial`, created exclusively), then renamed over `path`, which
 /// replaces a file or a link of that name but never writes through a link. A reader sees the
-/// old content or the new, never a part.
+/// old content or the new, never a part; a write that fails (a full disk) removes its
+/// `.partial` file.
 pub fn replace_file(path: &Path, bytes: &[u8]) -> Result<(), RunError> {
     let mut name = path.file_name().unwrap_or_default().to_os_string();
     name.push(".partial");
@@ -115,9 +116,17 @@ pub fn replace_file(path: &Path, bytes: &[u8]) -> Result<(), RunError> {
     let fail = |source| output(path, source);
     let mut file =
         OpenOptions::new().write(true).create_new(true).open(&temporary).map_err(fail)?;
-    file.write_all(bytes).map_err(fail)?;
-    drop(file);
-    std::fs::rename(&temporary, path).map_err(fail)
+    let written = file.write_all(bytes).and_then(|()| {
+        drop(file);
+        std::fs::rename(&temporary, path)
+    });
+    if let Err(source) = written {
+        // A full disk or a failed rename leaves no partial file behind; removing it is all
+        // that can be tried, and the write's error is the one to report.
+        let _ = std::fs::remove_file(&temporary);
+        return Err(fail(source));
+    }
+    Ok(())
 }
 
 /// Removes the file or symbolic link at `path` if there is one.
@@ -141,4 +150,26 @@ fn refuse_symlink(path: &Path) -> Result<(), RunError> {
 
 fn output(path: &Path, source: std::io::Error) -> RunError {
     RunError::Output { path: path.to_path_buf(), source }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_replacement_that_fails_leaves_no_partial_file() {
+        let dir = std::env::temp_dir().join(format!("hagfish-replace-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        // A non-empty directory in the way: the rename fails after the bytes are written.
+        let path = dir.join("manifest.json");
+        std::fs::create_dir_all(path.join("in the way")).expect("mkdir");
+        let error = replace_file(&path, b"{}").expect_err("a directory is in the way");
+        assert!(error.to_string().contains("manifest.json"), "{error}");
+        assert!(!dir.join("manifest.json.partial").exists(), "the partial file is left");
+        std::fs::remove_dir_all(&path).expect("rmdir");
+        replace_file(&path, b"{}").expect("replaced");
+        assert_eq!(std::fs::read(&path).ok().as_deref(), Some(&b"{}"[..]));
+        assert!(!dir.join("manifest.json.partial").exists());
+        std::fs::remove_dir_all(&dir).expect("rm");
+    }
 }

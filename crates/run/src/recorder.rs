@@ -25,7 +25,7 @@ use crate::csv_text::CsvText;
 use crate::error::RunError;
 use crate::force_columns::ForceColumns;
 use crate::knot_core::KnotCore;
-use crate::npy::NpyWriter;
+use crate::npy::{NpyWriter, rows_hash};
 use crate::output_file::OutputFile;
 use crate::scientific::Scientific;
 use hagfish_sim::StepReport;
@@ -118,6 +118,10 @@ pub struct RecordedFile {
     pub name: String,
     /// Length (bytes).
     pub bytes: u64,
+    /// For an `.npy` array: the FNV-1a 64 hash of its rows' bytes (16 hex digits), checked on
+    /// resume (absent in checkpoints written before it existed, and for CSV files).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fnv1a64: Option<String>,
 }
 
 /// The open output files of a run.
@@ -204,13 +208,20 @@ impl Recorder {
                 }
             })
         };
+        // The arrays are checked against the checkpoint's hashes before any file is cut.
+        let frames = checkpoint.frames;
+        let columns = Self::npy_columns(dofs, joints);
+        let mut hashes = [0; 4];
+        for (k, name) in NPY_FILES.iter().enumerate() {
+            let recorded = checkpoint.files.iter().find(|f| f.name == *name);
+            let expected = recorded.and_then(|f| f.fnv1a64.as_deref());
+            hashes[k] = rows_hash(&directory.join(name), columns[k], frames, expected)?;
+        }
         let csv = CSV_FILES.map(|(name, _)| {
             length(name).and_then(|l| OutputFile::reopen(&directory.join(name), l))
         });
-        let frames = checkpoint.frames;
-        let columns = Self::npy_columns(dofs, joints);
         let npy = std::array::from_fn(|k| {
-            NpyWriter::reopen(&directory.join(NPY_FILES[k]), columns[k], frames)
+            NpyWriter::reopen(&directory.join(NPY_FILES[k]), columns[k], frames, hashes[k])
         });
         Self::from_files(directory, csv, npy)
     }
@@ -242,9 +253,12 @@ impl Recorder {
     /// Every output file with its current length.
     pub fn files(&self) -> Vec<RecordedFile> {
         let csv = [&self.centreline, &self.metrics, &self.forces, &self.contacts, &self.internal]
-            .map(|f| RecordedFile { name: file_name(f.path()), bytes: f.len() });
-        let npy = [&self.q, &self.qdot, &self.thigmo, &self.internal_npy]
-            .map(|f| RecordedFile { name: file_name(f.path()), bytes: f.len() });
+            .map(|f| RecordedFile { name: file_name(f.path()), bytes: f.len(), fnv1a64: None });
+        let npy = [&self.q, &self.qdot, &self.thigmo, &self.internal_npy].map(|f| RecordedFile {
+            name: file_name(f.path()),
+            bytes: f.len(),
+            fnv1a64: Some(f.rows_hash()),
+        });
         csv.into_iter().chain(npy).collect()
     }
 

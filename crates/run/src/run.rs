@@ -156,34 +156,91 @@ pub fn run(
     sink: &mut dyn FrameSink,
     progress: &mut dyn FnMut(&Progress<'_>),
 ) -> Result<RunOutcome, RunError> {
-    let (mut world, mut controller) = loaded.build()?;
-    let mut centres = Vec::new();
-    world.body_centres(&mut centres);
-    let arcs = dof_arc_lengths(&centres, world.model().dof_joint());
-    let mut summary = RunSummary {
-        force_field: ForceFieldLog::new(dof_labels(world.model()), arcs),
-        ..RunSummary::default()
-    };
-    if let Some(checkpoint) = options.resume {
-        world.resume(checkpoint.state(), checkpoint.steps, &checkpoint.multipliers.0)?;
-        controller.restore(&checkpoint.controller).map_err(|e| RunError::Checkpoint {
-            path: CHECKPOINT_FILE.into(),
-            reason: e.to_string(),
-        })?;
-        summary.frames = checkpoint.frames;
-        summary.maxima = checkpoint.maxima;
-        summary.substepped_steps = checkpoint.substepped_steps;
-        summary.max_substeps = checkpoint.max_substeps;
-        summary.resolved_steps = checkpoint.resolved_steps;
+    PreparedRun::new(loaded, options.max_steps)?.run(loaded, options, sink, progress)
+}
+
+/// A run checked and built, before anything is recorded: every refusal that does not depend
+/// on a run directory (the step cap, a duration too long for it, a body too large for the
+/// memory, a world that cannot be built) is made by [`PreparedRun::new`], so a caller can
+/// make it before it touches its outputs.
+#[derive(Debug)]
+pub struct PreparedRun {
+    world: World,
+    controller: PhasedController,
+    steps: u64,
+}
+
+impl PreparedRun {
+    /// Checks the steps `loaded` needs against `max_steps` (`None`: [`DEFAULT_MAX_STEPS`])
+    /// and builds its world and controller (which checks the memory the step needs).
+    ///
+    /// # Errors
+    /// [`RunError::TooManySteps`] first (no world is built then), else the errors of
+    /// [`LoadedScenario::build`].
+    pub fn new(loaded: &LoadedScenario, max_steps: Option<u64>) -> Result<Self, RunError> {
+        let scenario = &loaded.scenario;
+        let steps = (scenario.duration_s / scenario.time_step_s).round();
+        let cap = max_steps.unwrap_or(DEFAULT_MAX_STEPS);
+        if steps.is_nan() || steps > cap as f64 {
+            return Err(RunError::TooManySteps { steps, cap });
+        }
+        let (world, controller) = loaded.build()?;
+        Ok(Self { world, controller, steps: steps as u64 })
     }
-    summary.max_substeps = summary.max_substeps.max(1);
+
+    /// The body model of the run.
+    pub fn model(&self) -> &hagfish_tree::Model {
+        self.world.model()
+    }
+
+    /// Runs it as [`run`] does (`options.max_steps` was applied by [`PreparedRun::new`]);
+    /// `loaded` must be the scenario it was prepared from.
+    ///
+    /// # Errors
+    /// Those of resuming from `options.resume` and of recording into `sink`.
+    pub fn run(
+        self,
+        loaded: &LoadedScenario,
+        options: RunOptions<'_>,
+        sink: &mut dyn FrameSink,
+        progress: &mut dyn FnMut(&Progress<'_>),
+    ) -> Result<RunOutcome, RunError> {
+        let Self { mut world, mut controller, steps } = self;
+        let mut centres = Vec::new();
+        world.body_centres(&mut centres);
+        let arcs = dof_arc_lengths(&centres, world.model().dof_joint());
+        let mut summary = RunSummary {
+            force_field: ForceFieldLog::new(dof_labels(world.model()), arcs),
+            ..RunSummary::default()
+        };
+        if let Some(checkpoint) = options.resume {
+            world.resume(checkpoint.state(), checkpoint.steps, &checkpoint.multipliers.0)?;
+            controller.restore(&checkpoint.controller).map_err(|e| RunError::Checkpoint {
+                path: CHECKPOINT_FILE.into(),
+                reason: e.to_string(),
+            })?;
+            summary.frames = checkpoint.frames;
+            summary.maxima = checkpoint.maxima;
+            summary.substepped_steps = checkpoint.substepped_steps;
+            summary.max_substeps = checkpoint.max_substeps;
+            summary.resolved_steps = checkpoint.resolved_steps;
+        }
+        summary.max_substeps = summary.max_substeps.max(1);
+        stepping(world, controller, steps, summary, (loaded, options), sink, progress)
+    }
+}
+
+/// The loop of [`PreparedRun::run`]: steps, frames and the end.
+fn stepping(
+    mut world: World,
+    mut controller: PhasedController,
+    steps: u64,
+    mut summary: RunSummary,
+    (loaded, options): (&LoadedScenario, RunOptions<'_>),
+    sink: &mut dyn FrameSink,
+    progress: &mut dyn FnMut(&Progress<'_>),
+) -> Result<RunOutcome, RunError> {
     let scenario = &loaded.scenario;
-    let steps = (scenario.duration_s / scenario.time_step_s).round();
-    let cap = options.max_steps.unwrap_or(DEFAULT_MAX_STEPS);
-    if steps.is_nan() || steps > cap as f64 {
-        return Err(RunError::TooManySteps { steps, cap });
-    }
-    let steps = steps as u64;
     let record_every = whole_steps(scenario.record_every_s, scenario.time_step_s);
     let observe_every = whole_steps(scenario.observe_every_s, scenario.time_step_s);
     let mut recording = Recording::new(&world, loaded.hash(), loaded.body_hash.clone());
@@ -227,7 +284,9 @@ pub fn run(
         // observation, as a failed tie is recorded there).
         let next = world.steps() + 1;
         world.set_internal_forces_due(
-            scenario.end_after_phases || next % record_every == 0 || next % observe_every == 0,
+            scenario.end_after_phases
+                || next.is_multiple_of(record_every)
+                || next.is_multiple_of(observe_every),
         );
         match world.advance(&mut controller, &mut recording.tally) {
             StepOutcome::Accepted => {}
@@ -242,8 +301,8 @@ pub fn run(
             }
         }
         let phases_over = scenario.end_after_phases && controller.finished();
-        record = world.steps() % record_every == 0 || phases_over;
-        observe = world.steps() % observe_every == 0;
+        record = world.steps().is_multiple_of(record_every) || phases_over;
+        observe = world.steps().is_multiple_of(observe_every);
         if !record && options.stop.is_some_and(|flag| flag.load(Ordering::Relaxed)) {
             break RunEnd::Interrupted;
         }

@@ -37,7 +37,7 @@ pub enum ScenarioError {
     #[error("building the model: {0}")]
     Model(#[from] hagfish_tree::TreeError),
     /// A `--set PATH=VALUE` override that cannot be applied (`overrides.rs`).
-    #[error("--set {given}: {reason}")]
+    #[error("--set {}: {reason}", echo(given))]
     Override {
         /// The override as given.
         given: String,
@@ -46,7 +46,7 @@ pub enum ScenarioError {
     },
     /// The scenario with its overrides applied fails a check (the location is in the
     /// overridden scenario, as its run directory's `scenario.ron` records it).
-    #[error("with --set {overrides}: {source}")]
+    #[error("with --set {}: {source}", echo(overrides))]
     Overridden {
         /// The overrides, as given.
         overrides: String,
@@ -56,4 +56,38 @@ pub enum ScenarioError {
     /// Building the scenario's world, or stepping it (`LoadedScenario::build_at`), failed.
     #[error(transparent)]
     Sim(#[from] SimError),
+}
+
+/// Characters of an echoed text kept from its start, and from its end ([`echo`]).
+pub const ECHO_HEAD: usize = 80;
+/// See [`ECHO_HEAD`].
+pub const ECHO_TAIL: usize = 40;
+
+/// `text` as an error message echoes it: whole up to [`ECHO_HEAD`] + [`ECHO_TAIL`] characters,
+/// else its first [`ECHO_HEAD`] and last [`ECHO_TAIL`] characters around the count of those
+/// left out, so a 100 kB `--set` value costs a line, not 100 kB (twice: as given and in
+/// serde's reason).
+pub fn echo(text: &str) -> String {
+    let count = text.chars().count();
+    if count <= ECHO_HEAD + ECHO_TAIL {
+        return text.to_owned();
+    }
+    let head: String = text.chars().take(ECHO_HEAD).collect();
+    let tail: String = text.chars().skip(count - ECHO_TAIL).collect();
+    format!("{head}…[{} characters left out]…{tail}", count - ECHO_HEAD - ECHO_TAIL)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_long_echo_keeps_its_ends_and_counts_the_rest() {
+        assert_eq!(echo("short"), "short");
+        let long = format!("a{}z", "é".repeat(100_000));
+        let shown = echo(&long);
+        assert!(shown.starts_with('a') && shown.ends_with('z'), "{shown}");
+        assert!(shown.contains("…[99882 characters left out]…"), "{shown}");
+        assert!(shown.chars().count() < 200, "{}", shown.len());
+    }
 }

@@ -34,7 +34,7 @@ mod parameters;
 mod scenario;
 mod scenario_check;
 
-pub use error::ScenarioError;
+pub use error::{ECHO_HEAD, ECHO_TAIL, ScenarioError, echo};
 pub use initial_shape::{InitialShape, OpenTorusKnot};
 pub use overrides::{Override, apply_overrides};
 pub use parameters::{PARAMETERS, Parameter};

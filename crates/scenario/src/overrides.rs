@@ -21,7 +21,7 @@
 
 use serde_json::{Map, Value};
 
-use crate::error::ScenarioError;
+use crate::error::{ECHO_HEAD, ECHO_TAIL, ScenarioError, echo};
 use crate::override_value::parse_override_value;
 use crate::scenario::Scenario;
 
@@ -60,8 +60,18 @@ impl Override {
         format!("{}={}", self.path, self.value)
     }
 
+    /// The error of this override for `reason`, in which a long value (as given, or the
+    /// string inside its quotes, as serde quotes it) is [`echo`]ed cut.
     fn error(&self, reason: impl Into<String>) -> ScenarioError {
-        ScenarioError::Override { given: self.text(), reason: reason.into() }
+        let mut reason = reason.into();
+        let value = self.value.as_str();
+        let inner = value.strip_prefix('"').and_then(|v| v.strip_suffix('"')).unwrap_or(value);
+        for text in [value, inner] {
+            if text.chars().count() > ECHO_HEAD + ECHO_TAIL {
+                reason = reason.replace(text, &echo(text));
+            }
+        }
+        ScenarioError::Override { given: self.text(), reason }
     }
 }
 
@@ -96,9 +106,12 @@ pub fn apply_overrides(
         for target in targets {
             set(target, leaf, value.clone()).map_err(|reason| given.error(reason))?;
         }
-        serde_json::from_value::<Scenario>(tree.clone()).map_err(|e| {
+        let overridden = serde_json::from_value::<Scenario>(tree.clone()).map_err(|e| {
             given.error(format!("wrong value for {}: {}", given.path, explain(&e, &given.value)))
         })?;
+        if is_list(&given.value) {
+            refuse_list_for_struct(&overridden, &segments).map_err(|reason| given.error(reason))?;
+        }
     }
     serde_json::from_value(tree).map_err(|e| ScenarioError::Override {
         given: overrides.iter().map(Override::text).collect::<Vec<_>>().join(" "),
@@ -116,6 +129,59 @@ fn explain(error: &serde_json::Error, value: &str) -> String {
     } else {
         reason
     }
+}
+
+/// Whether an override's VALUE is a list `[…]` (inside any `Some(…)`): serde reads a list into
+/// a struct's fields in order, as it does a tuple, but a list names a sequence of like
+/// values, so one given where a struct is expected is a mistake to refuse.
+fn is_list(value: &str) -> bool {
+    let mut rest = value.trim_start();
+    while let Some(inner) = rest.strip_prefix("Some").map(str::trim_start) {
+        match inner.strip_prefix('(') {
+            Some(inner) => rest = inner.trim_start(),
+            None => break,
+        }
+    }
+    rest.starts_with('[')
+}
+
+/// Refuses an override at `segments` whose field in `overridden` is a struct (serde's map):
+/// it was given as a list ([`is_list`]).
+fn refuse_list_for_struct(overridden: &Scenario, segments: &[&str]) -> Result<(), String> {
+    let mut back = serde_json::to_value(overridden).map_err(|e| e.to_string())?;
+    let (targets, leaf) = match segments.first() {
+        Some(kind) if PHASE_KINDS.contains(kind) => {
+            (phases_of_kind(&mut back, kind), &segments[1..])
+        }
+        _ => (vec![&mut back], segments),
+    };
+    for target in targets {
+        if let Some(Value::Object(fields)) = get(target, leaf) {
+            let names: Vec<&str> = fields.keys().map(String::as_str).collect();
+            return Err(format!(
+                "`{}` is a struct with the fields {}: a list `[…]` names none of them; write \
+                 `({}: …)`",
+                segments.join("."),
+                names.join(", "),
+                names.join(": …, ")
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The value at `path` (as [`set`] reads it) under `node`, if there is one.
+fn get<'a>(node: &'a Value, path: &[&str]) -> Option<&'a Value> {
+    let Some((first, rest)) = path.split_first() else {
+        return Some(node);
+    };
+    let (name, index) = split_index(first).ok()?;
+    let child = node.get(name)?;
+    let child = match index {
+        None => child,
+        Some(i) => child.get(i)?,
+    };
+    get(child, rest)
 }
 
 /// The bodies of every phase `{kind: …}` of `tree`'s `phases`.
@@ -188,6 +254,21 @@ mod tests {
 
     fn set_one(text: &str) -> Result<Scenario, ScenarioError> {
         apply_overrides(&scenario(), &[Override::parse(text)?])
+    }
+
+    #[test]
+    fn a_list_where_a_struct_is_expected_is_refused_naming_its_fields() {
+        for text in ["drag=[0.1, 0.2]", "drag=Some([0.1, 0.2])", "Form.gains=[1.0, 2.0, 3.0]"] {
+            let error = set_one(text).expect_err(text).to_string();
+            assert!(error.contains("is a struct with the fields"), "{text}: {error}");
+            assert!(error.contains("a list `[…]` names none of them"), "{text}: {error}");
+        }
+        let error = set_one("drag=[0.1, 0.2]").expect_err("a list").to_string();
+        assert!(error.contains("linear_dyn_s_per_cm3"), "{error}");
+        // The struct by its field names, and a list where a list is expected, still apply.
+        let drag = "drag=Some((linear_dyn_s_per_cm3: 0.1, quadratic_g_per_cm3: 0.2))";
+        assert!(set_one(drag).is_ok());
+        assert!(!is_list("(0.1, 0.2)") && is_list(" Some( [1]) ") && !is_list("Some(x)"));
     }
 
     #[test]

@@ -15,7 +15,7 @@
 
 use std::path::{Path, PathBuf};
 
-use hagfish_anatomy::{AnatomyError, Body, BodySkin, DataFile, Field};
+use hagfish_anatomy::{AnatomyError, Body, BodySkin, DataFile, Field, read_data_file};
 use hagfish_control::{Phase, PhasedController, WaterDrag, diameters_tail_ward};
 use hagfish_tree::{Model, State};
 use serde::{Deserialize, Serialize};
@@ -171,9 +171,9 @@ impl LoadedScenario {
             biometrics.skin = Some(skin);
         }
         let phases = resolve_modal_spaces(&file, directory, &model, loaded.length_cm())?;
-        let bytes = std::fs::read(&body).map_err(|source| ScenarioError::BodyFile {
+        let bytes = read_data_file(&body).map_err(|source| ScenarioError::BodyFile {
             at: file.locate(&Field::whole("body")),
-            source: Box::new(AnatomyError::Io { path: body.clone(), source }),
+            source: Box::new(source),
         })?;
         let body_hash = format!("{:016x}", fnv1a64(&bytes));
         let body = std::fs::canonicalize(&body).unwrap_or(body);

@@ -29,7 +29,11 @@ fn checkpoint() -> Checkpoint {
         substepped_steps: 1,
         max_substeps: 2,
         resolved_steps: 1,
-        files: vec![RecordedFile { name: "q.npy".into(), bytes: 128 + 8 * 150 * 42 }],
+        files: vec![RecordedFile {
+            name: "q.npy".into(),
+            bytes: 128 + 8 * 150 * 42,
+            fnv1a64: Some("0123456789abcdef".into()),
+        }],
     }
 }
 
