@@ -124,10 +124,11 @@ impl Checkpoint {
         };
         let expected = format!("{CHECKSUM_PREFIX}{:016x}", fnv1a64(rest));
         if first != expected.as_bytes() {
-            return Err(refuse(format!(
-                "checksum mismatch: the first line should be `{expected}` for the content that \
-                 follows; the file was changed or damaged after it was written"
-            )));
+            return Err(refuse(
+                "checksum mismatch: the content after the first line is not what its recorded \
+                 checksum covers; the file was changed or damaged after it was written"
+                    .to_owned(),
+            ));
         }
         let checkpoint =
             DataFile::<Checkpoint>::parse(&bytes, path).map_err(ScenarioError::from)?.value;

@@ -30,11 +30,11 @@ pub enum RunError {
         what: String,
     },
     /// An `.npy` array whose rows up to the checkpoint are not those the run wrote (edited or
-    /// damaged since): both hashes are shown, to tell which file and that it changed.
+    /// damaged since): the message names the file and the rows that differ from what the
+    /// checkpoint recorded, never the recorded hash (which would let an edit be made to match).
     #[error(
-        "{}: cannot resume: its first {rows} rows changed since the checkpoint (FNV-1a 64 of \
-         their bytes: checkpoint {expected}, file {found}); the file was edited or damaged: \
-         start a new run",
+        "{}: cannot resume: its first {rows} rows are not those the checkpoint recorded (their \
+         FNV-1a 64 hash differs); the file was edited or damaged: start a new run",
         path.display()
     )]
     ChangedArray {
@@ -42,10 +42,6 @@ pub enum RunError {
         path: std::path::PathBuf,
         /// Rows checked.
         rows: usize,
-        /// The hash the checkpoint recorded.
-        expected: String,
-        /// The hash of the file's rows now.
-        found: String,
     },
     /// A run cannot be resumed from its checkpoint (unreadable, or not of this scenario).
     #[error("{}: cannot resume: {reason}", path.display())]
