@@ -91,11 +91,16 @@ impl GroupForces {
     /// Adds the impulses of the last (sub)step of `data` without counting a step: the
     /// substeps of one step add their impulses, and the step is counted once
     /// ([`GroupForces::count_as_one_step`]).
+    /// A self contact's force is its core row's and, where the body has a skin, its skin row's:
+    /// both are recorded as the contact group's.
     pub fn add_impulses(&mut self, data: &StepData, dofs: usize) {
         for (values, group) in self.values.iter_mut().zip(RECORDED_GROUPS) {
             values.resize(dofs, 0.0);
-            for (value, impulse) in values.iter_mut().zip(data.solver.tag_impulse(group.tag())) {
-                *value += impulse;
+            let skin =
+                (group == RowGroup::Contact && data.skin.is_present()).then_some(RowGroup::Skin);
+            for member in std::iter::once(group).chain(skin) {
+                let impulses = data.solver.tag_impulse(member.tag());
+                values.iter_mut().zip(impulses).for_each(|(value, impulse)| *value += impulse);
             }
         }
     }

@@ -5,6 +5,7 @@
 //! cores stay apart while the skins compress.
 
 use hagfish_scenario::{LoadedScenario, Override};
+use hagfish_sim::GroupForces;
 use hagfish_sim::rows::RowGroup;
 
 /// The skin of these tests: a quarter of the radius, 1000 dyn/cm².
@@ -50,6 +51,18 @@ fn each_skin_row_pushes_with_the_implicit_spring_of_its_contact() {
         }
     }
     assert!(compressed > 100, "skins compressed in {compressed} of {springs_checked} rows");
+    // The recorded contact force is the core rows' and the skin rows' together.
+    let (data, dofs) = (world.data(), world.model().dof_count());
+    let mut recorded = GroupForces::default();
+    recorded.add_impulses(data, dofs);
+    let (core, skin) = (
+        data.solver.tag_impulse(RowGroup::Contact.tag()),
+        data.solver.tag_impulse(RowGroup::Skin.tag()),
+    );
+    assert!(skin.iter().any(|&f| f != 0.0), "the last step's skins push");
+    for ((r, c), k) in recorded.group(RowGroup::Contact).iter().zip(core).zip(skin) {
+        assert_eq!(*r, 0.0 + c + k);
+    }
     assert!(deepest_core < 0.02, "the cores kept apart: {deepest_core}");
     assert!(world.data().report.max_skin_compression > 0.0, "the tied knot presses its skins");
 }
