@@ -41,7 +41,9 @@ impl ModalBasis {
                 }
             }
             let rest = dot(&v, &v).sqrt();
-            if !(rest > RANK_TOLERANCE * norm) {
+            // Not above the tolerance, NaN included.
+            let independent = rest.partial_cmp(&(RANK_TOLERANCE * norm));
+            if !matches!(independent, Some(std::cmp::Ordering::Greater)) {
                 return Err(ControlError::NotABasis {
                     mode: j + 1,
                     reason: "zero, or in the span of the earlier modes on this body's DOFs",

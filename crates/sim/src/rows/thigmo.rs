@@ -27,6 +27,7 @@ use super::self_contact::add_spline_point_row;
 /// contact are skipped), each confined to its request's force space; `twist_dofs` are the
 /// indices of the twist DOFs ([`twist_dofs`]), `scratch` (one value per DOF) holds a modal
 /// space's `Bᵀc`.
+#[allow(clippy::too_many_arguments)]
 pub fn add_thigmo_rows(
     model: &Model,
     data: &Data,
