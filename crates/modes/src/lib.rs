@@ -18,6 +18,7 @@ mod field;
 mod line_fit;
 mod output;
 mod pod;
+mod report_section;
 mod run_field;
 mod wave;
 
@@ -30,5 +31,6 @@ pub use hagfish_control::{DofKind, KindSelection};
 pub use line_fit::{LineFit, fit_line, unwrap};
 pub use output::{Decomposition, MODES_DIR, write_outputs};
 pub use pod::{ENERGY_LEVELS, Pod};
+pub use report_section::{SECTION_ID, SECTION_TITLE, report_section, report_sections};
 pub use run_field::RunField;
 pub use wave::{AMPLITUDE_THRESHOLD, WaveFit};

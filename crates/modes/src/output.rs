@@ -148,7 +148,7 @@ fn spectrum(d: &Decomposition) -> Scatter {
 }
 
 /// The first four mode shapes against s/L.
-fn shape_plot(d: &Decomposition) -> (String, TimeSeries) {
+pub(crate) fn shape_plot(d: &Decomposition) -> (String, TimeSeries) {
     const COLOURS: [[u8; 3]; PLOTTED_MODES] =
         [[31, 119, 180], [214, 39, 40], [44, 160, 44], [148, 103, 189]];
     let energy = d.pod.energy_fractions();

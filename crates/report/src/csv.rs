@@ -295,7 +295,11 @@ mod tests {
         let file = CsvFile::open(&path).expect("open");
         assert_eq!(file.header(), ["frame", "phase"]);
         let mut phases = Vec::new();
-        file.for_each_record(|record| Ok(phases.push(record.text(1).to_owned()))).expect("rows");
+        file.for_each_record(|record| {
+            phases.push(record.text(1).to_owned());
+            Ok(())
+        })
+        .expect("rows");
         assert_eq!(phases, ["a,b", "say \"hi\""]);
     }
 
