@@ -42,6 +42,7 @@ pub fn thigmo_step(world: &mut World, knotted: &State, force_space: ForceSpace) 
         tail_pull_dyn: 0.0,
         max_force_dyn: 1e6,
         force_space,
+        replay: None,
     };
     world.step(&mut Thigmo(parameters)).expect("thigmo step");
     let mut force = vec![0.0; world.model().dof_count()];
