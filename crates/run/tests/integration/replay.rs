@@ -5,11 +5,12 @@
 use std::sync::Arc;
 
 use hagfish_control::{
-    Actuation, ControlContext, Controller, ForceSpace, Replay, ReplayField, SlidingTargets,
-    ThigmoParameters,
+    Actuation, ControlContext, Controller, ForceSpace, Replay, ReplayField, ThigmoParameters,
 };
 use hagfish_scenario::LoadedScenario;
 use hagfish_sim::rows::RowGroup;
+
+use crate::freshly_tied::thigmo_parameters;
 
 /// A thigmotaxis phase `since` seconds after it began, as a controller.
 struct ThigmoSince(ThigmoParameters, f64);
@@ -32,14 +33,9 @@ fn a_replay_applies_its_field_as_joint_torques_and_no_row_force() {
     let mut step = |scale: f64| {
         let values = [&pattern[..], &pattern[..]].concat().iter().map(|v| scale * v).collect();
         let field = ReplayField::new(vec![0.0, 1.0], n, values).expect("a field");
-        let targets = SlidingTargets { v_a: 2.0, v_b: 2.0 };
         let parameters = ThigmoParameters {
-            head: targets,
-            tail: targets,
-            tail_pull_dyn: 0.0,
-            max_force_dyn: 2000.0,
-            force_space: ForceSpace::Full,
             replay: Some(Replay { file: "test".into(), field: Some(Arc::new(field)) }),
+            ..thigmo_parameters(ForceSpace::Full)
         };
         world.set_state(rest.clone()).expect("state restores");
         world.step(&mut ThigmoSince(parameters, 0.5)).expect("a step");
