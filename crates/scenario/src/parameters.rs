@@ -137,7 +137,7 @@ mod tests {
 
     use hagfish_control::{
         Condition, Direction, ForceSpace, FormingScript, Handedness, KindSelection, LoadDirection,
-        LoadPhase, ModalSpace, Phase, Quantity, ScriptStep, SlidingTargets, TailGains,
+        LoadPhase, ModalSpace, Phase, Quantity, Replay, ScriptStep, SlidingTargets, TailGains,
         ThigmoParameters, ThigmoPhase, Threshold, TieKnot, TiePhase, Until, WaterDrag, Waypoint,
     };
 
@@ -225,7 +225,7 @@ mod tests {
                             modes: 4,
                             basis: None,
                         }),
-                        replay: None,
+                        replay: Some(Replay { file: "replay.csv".into(), field: None }),
                     },
                     until: Until { seconds: 1.0, ..Until::default() },
                 }),
