@@ -159,6 +159,7 @@ fn thigmo_space(c: &mut Criterion) {
             tail_pull_dyn: 20.0,
             max_force_dyn: 2000.0,
             force_space,
+            replay: None,
         };
         let phase = ThigmoPhase {
             name: "slide".into(),

@@ -203,7 +203,10 @@ impl Finished {
     /// # Errors
     /// [`CliError::Report`] if the run directory cannot be read or a picture written.
     pub fn write_pictures(&mut self) -> Result<f64, CliError> {
-        let written = hagfish_report::write_all(&self.directory)?;
+        let written = hagfish_report::write_all(
+            &self.directory,
+            &hagfish_modes::report_sections(&self.directory),
+        )?;
         self.manifest.write(&self.directory)?;
         Ok(written.total_seconds())
     }

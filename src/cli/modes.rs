@@ -37,6 +37,11 @@ pub struct ModesArgs {
     /// kind (principal angles, the energy its modes capture of this run's field).
     #[arg(long, value_name = "OTHER_RUN_DIR")]
     against: Option<PathBuf>,
+    /// Also write each selection's field rebuilt from its first K modes on every DOF
+    /// (`modes/replay_KIND_kK.csv`, `replay_KIND_all.csv` for K ≥ the modes there are: the
+    /// recorded field) for an open-loop replay (`parameters.replay`).
+    #[arg(long, value_name = "K")]
+    replay: Option<usize>,
 }
 
 /// The one-kind selections `--against` compares by default.
@@ -60,7 +65,12 @@ pub fn run(args: &ModesArgs, out: &mut dyn Write) -> Result<(), CliError> {
     for d in &decompositions {
         print(d, args.modes, out)?;
     }
-    let files = hagfish_modes::write_outputs(&args.dir, phase, &decompositions, args.modes)?;
+    let mut files = hagfish_modes::write_outputs(&args.dir, phase, &decompositions, args.modes)?;
+    if let Some(k) = args.replay {
+        for d in &decompositions {
+            files.push(hagfish_modes::write_replay(d, &field, k)?);
+        }
+    }
     for file in files {
         writeln!(out, "wrote {}", file.display())?;
     }

@@ -16,6 +16,6 @@ pub struct ReportArgs {
 
 /// Writes the run directory's `report.html`.
 pub fn run(args: &ReportArgs, out: &mut dyn Write) -> Result<(), CliError> {
-    let written = hagfish_report::report(&args.dir)?;
+    let written = hagfish_report::report(&args.dir, &hagfish_modes::report_sections(&args.dir))?;
     print_written(&written, out)
 }

@@ -1,4 +1,5 @@
-//! `hagfish modes` on a real run: the thesis scenario (tie, tighten, slide on ES103), then
+//! `hagfish modes` on a real run: the thesis scenario (tie, tighten, slide on ES103) with its
+//! report's modes section, then
 //! the decomposition of its slide, the slide against itself (`--against`), and the errors of
 //! a missing run, an unknown phase, a phase without force and a selection that mixes kinds.
 
@@ -11,6 +12,18 @@ fn modes_of_the_thesis_slide_and_clear_errors() {
     let scenario = format!("{ROOT}/data/scenarios/thesis.ron");
     let made = run_hagfish(["run", scenario.as_str(), "--out", run.to_str().expect("utf-8")]);
     assert!(made.status.success(), "{}", code_and_stderr(&made).1);
+    // The report's modes section: a table for each thigmotaxis phase and the shapes.
+    let html = std::fs::read_to_string(run.join("report.html")).expect("report.html");
+    let section = html.split_once("<section id=\"modes\">").expect("a modes section").1;
+    let section = section.split_once("</section>").expect("the section ends").0;
+    assert!(section.contains("<h2>Modes of the force field</h2>"));
+    for phase in ["tighten", "slide"] {
+        assert!(section.contains(&format!("<h3>Phase {phase}</h3>")), "{phase}");
+    }
+    assert!(!section.contains("<h3>Phase tie</h3>"), "the tie has no thigmotaxic force");
+    assert_eq!(section.matches("<tr><td>").count(), 2 * 5, "five selections per phase");
+    assert_eq!(section.matches("<figure>").count(), 2 * 3, "bend-y, bend-z, twist shapes");
+    assert!(section.contains("Mode shapes, phase slide, bend-y"));
 
     let output =
         run_hagfish(["modes".as_ref(), run.as_os_str(), "--phase".as_ref(), "slide".as_ref()]);
@@ -18,9 +31,14 @@ fn modes_of_the_thesis_slide_and_clear_errors() {
     let stdout = String::from_utf8_lossy(&output.stdout);
     assert!(stdout.contains("modes for 90 %"), "{stdout}");
     let modes = run.join("modes");
-    for name in
-        ["modes.csv", "time_courses.csv", "modes.json", "energy_all.png", "shapes_bend-y.svg"]
-    {
+    for name in [
+        "modes.csv",
+        "time_courses.csv",
+        "modes.json",
+        "modes.npz",
+        "energy_all.png",
+        "shapes_bend-y.svg",
+    ] {
         assert!(modes.join(name).is_file(), "{name} is written");
     }
     let json = json_file(&modes.join("modes.json"));

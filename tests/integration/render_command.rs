@@ -105,6 +105,7 @@ fn run_writes_everything_and_render_and_report_remake_it() {
     let html = String::from_utf8(read(&dir.join("report.html"))).expect("UTF-8");
     assert!(html.contains("the body file named by"), "radii from scenario.ron's body file");
     assert!(html.contains("Scenario(") && html.contains("duration_s: 1.0"), "scenario text");
+    assert!(!html.contains("<section id=\"modes\">"), "a Form phase has no thigmotaxic force");
     let stdout = String::from_utf8_lossy(&report.stdout);
     assert!(stdout.contains("report.html") && stdout.contains("total"), "{stdout}");
 }

@@ -68,6 +68,9 @@ pub struct Actuation {
     pub dampers: Vec<PointDamper>,
     /// Thigmotaxis rows for the constraint solve.
     pub thigmo: Vec<ThigmoRequest>,
+    /// Joint torques τ_ext, one per DOF (dyn·cm), or empty for none (an open-loop replay,
+    /// [`crate::Replay`]).
+    pub torques: Vec<f64>,
 }
 
 impl Actuation {
@@ -76,9 +79,10 @@ impl Actuation {
         self.forces.clear();
         self.dampers.clear();
         self.thigmo.clear();
+        self.torques.clear();
     }
 
-    /// Writes the forces and dampers into the tree data for the dynamics stage (the
+    /// Writes the forces, dampers and joint torques into the tree data for the dynamics stage (the
     /// thigmotaxis requests are rows, built by the pipeline).
     pub fn apply_to(&self, data: &mut Data) {
         for f in &self.forces {
@@ -86,6 +90,9 @@ impl Actuation {
         }
         for d in &self.dampers {
             data.apply_point_damping(d.body, d.point, d.coefficient);
+        }
+        for (applied, torque) in data.applied_torques.iter_mut().zip(&self.torques) {
+            *applied += torque;
         }
     }
 }

@@ -62,6 +62,7 @@ mod load;
 mod loops;
 mod modal_basis;
 mod phases;
+mod replay;
 mod tail_pd;
 mod thigmotaxis;
 mod tie;
@@ -85,6 +86,7 @@ pub use phases::{
     KnotObservation, Phase, PhaseProgress, PhasedController, ThigmoPhase, TieFailure,
     kinetic_energy,
 };
+pub use replay::{Replay, ReplayField};
 pub use tail_pd::TailGains;
 pub use thigmotaxis::{SlidingTargets, Strand, ThigmoParameters, ThigmoRequest};
 pub use tie::{

@@ -377,7 +377,10 @@ impl Controller for PhasedController {
                 }
                 self.check_crossings(context);
             }
-            Some(Phase::Thigmotaxis(phase)) => phase.parameters.actuate(context, out),
+            Some(Phase::Thigmotaxis(phase)) => {
+                let since = context.state.t - self.progress.started_at;
+                phase.parameters.actuate_since(since, context, out);
+            }
             Some(Phase::Load(_)) | None => {}
         }
         if let Some((load, since)) = self.active_load() {

@@ -18,6 +18,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::controller::{Actuation, ControlContext, PointForce};
 use crate::force_space::ForceSpace;
+use crate::replay::Replay;
 
 /// Target sliding speeds (cm/s) at one contact: anterior strand a, posterior strand b.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -43,6 +44,22 @@ pub struct ThigmoParameters {
     /// The generalized forces the rows may exert (default: every DOF).
     #[serde(default)]
     pub force_space: ForceSpace,
+    /// A recorded field to apply open loop instead of the rows (default: none, the rows).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub replay: Option<Replay>,
+}
+
+impl ThigmoParameters {
+    /// The tail pull: `tail_pull_dyn` on the last body along its tangent.
+    fn actuate_pull(&self, context: &ControlContext<'_>, out: &mut Actuation) {
+        let tail = context.model.body_count() - 1;
+        let tangent = context.centreline.unit_tangent(tail as f64);
+        out.forces.push(PointForce {
+            body: tail,
+            point: context.centre(tail),
+            force: tangent.normalize_or(DVec3::X) * self.tail_pull_dyn,
+        });
+    }
 }
 
 /// Which end of a contact a thigmotaxis row drives.
@@ -70,17 +87,22 @@ pub struct ThigmoRequest {
 }
 
 impl ThigmoParameters {
+    /// This phase's actuation `since` seconds after it began: with a [`Replay`], the tail
+    /// pull and the replayed field at `since` as joint torques (no rows: no contact
+    /// feedback); otherwise [`ThigmoParameters::actuate`].
+    pub fn actuate_since(&self, since: f64, context: &ControlContext<'_>, out: &mut Actuation) {
+        let Some(replay) = &self.replay else { return self.actuate(context, out) };
+        self.actuate_pull(context, out);
+        if let Some(field) = &replay.field {
+            field.sample(since, &mut out.torques);
+        }
+    }
+
     /// Requests the four rows (two when first and last are the same contact) and the tail
     /// pull. Does nothing without self contacts.
     pub fn actuate(&self, context: &ControlContext<'_>, out: &mut Actuation) {
         let contacts = context.self_contacts;
-        let tail = context.model.body_count() - 1;
-        let tangent = context.centreline.unit_tangent(tail as f64);
-        out.forces.push(PointForce {
-            body: tail,
-            point: context.centre(tail),
-            force: tangent.normalize_or(DVec3::X) * self.tail_pull_dyn,
-        });
+        self.actuate_pull(context, out);
         let Some(last) = contacts.len().checked_sub(1) else { return };
         let mut request = |contact, targets: SlidingTargets| {
             for (strand, speed) in

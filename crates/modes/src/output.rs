@@ -1,5 +1,5 @@
 //! The decomposition of one selection and the files `hagfish modes` writes into
-//! `RUN_DIR/modes/`: `modes.csv`, `time_courses.csv`, `modes.json` and the plots.
+//! `RUN_DIR/modes/`: `modes.csv`, `time_courses.csv`, `modes.json`, `modes.npz` and the plots.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -76,7 +76,8 @@ impl Decomposition {
 
 /// Writes `decompositions` of the run at `directory` into `directory/modes/`: the shapes and
 /// time courses of the first `modes` modes of each (long format CSV), `modes.json` (every
-/// singular value, energies, the 90/95/99 % counts and the wave fits) and the plots (the
+/// singular value, energies, the 90/95/99 % counts and the wave fits), `modes.npz` (the same
+/// as NumPy arrays, [`Decomposition::arrays`]) and the plots (the
 /// energy spectrum of each selection, and the first four shapes of each one-kind selection,
 /// whose DOFs have distinct arc lengths). Returns the files written.
 pub fn write_outputs(
@@ -121,6 +122,7 @@ pub fn write_outputs(
         hagfish_run::replace_file(&path, bytes.as_bytes())?;
         files.push(path);
     }
+    files.push(crate::arrays::write_npz(directory, decompositions, modes)?);
     files.extend(write_scatters(&decompositions.iter().map(spectrum).collect::<Vec<_>>(), &out)?);
     let one_kind =
         decompositions.iter().filter(|d| d.field.arcs_cm.windows(2).all(|w| w[0] < w[1]));
@@ -146,7 +148,7 @@ fn spectrum(d: &Decomposition) -> Scatter {
 }
 
 /// The first four mode shapes against s/L.
-fn shape_plot(d: &Decomposition) -> (String, TimeSeries) {
+pub(crate) fn shape_plot(d: &Decomposition) -> (String, TimeSeries) {
     const COLOURS: [[u8; 3]; PLOTTED_MODES] =
         [[31, 119, 180], [214, 39, 40], [44, 160, 44], [148, 103, 189]];
     let energy = d.pod.energy_fractions();

@@ -2,7 +2,7 @@
 //! runs scenarios into run directories with the same code as `hagfish run`
 //! ([`hagfish::runner`]), with the GIL released while stepping, and reads what a run directory
 //! holds that Python cannot read as simply (the centreline as a frames × bodies × 3 array, the
-//! summary row). The Python layer (`hagfish/__init__.py` and its modules) turns these into
+//! summary row, the modes of the force field). The Python layer (`hagfish/__init__.py` and its modules) turns these into
 //! `Scenario`, `Body`, `Run` and `sweep`.
 //!
 //! Every error is raised as `hagfish.HagfishError(message, exit_code)` with the message the
@@ -16,7 +16,7 @@ use hagfish::CliError;
 use hagfish::runner::{Existing, RunRequest, Source, body_override, run_into_directory};
 use hagfish::study::RunRow;
 use hagfish::sweep::{Plan, RunResult};
-use hagfish_run::Progress;
+use hagfish_run::{NpyData, Progress};
 use hagfish_scenario::{LoadedScenario, Override, PARAMETERS};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::create_exception;
@@ -207,6 +207,47 @@ fn centreline<'py>(py: Python<'py>, directory: PathBuf) -> PyResult<Bound<'py, P
     Ok(array.into_any())
 }
 
+/// The proper orthogonal decomposition of the thigmotaxic force field of the run in
+/// `directory` on the frames of `phase` (every frame with force if `None`) and the DOFs of
+/// `kind` (`all`, `bend`, `bend-y`, `bend-z`, `twist`), as `hagfish modes` computes it: a
+/// dict of the arrays `modes.npz` holds per selection
+/// ([`hagfish_modes::Decomposition::arrays`]; the first `modes` shapes and time courses, all
+/// of them if `None`), float64 and int64 NumPy arrays, `axis` a list of str and `length_cm` a
+/// float.
+#[pyfunction]
+#[pyo3(signature = (directory, phase=None, kind="all", modes=None))]
+fn modes<'py>(
+    py: Python<'py>,
+    directory: PathBuf,
+    phase: Option<String>,
+    kind: &str,
+    modes: Option<usize>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let kind: hagfish_modes::KindSelection =
+        kind.parse().map_err(|e: String| pyo3::exceptions::PyValueError::new_err(e))?;
+    let fail = |e: hagfish_modes::ModesError| raise(&CliError::from(e));
+    let field = hagfish_modes::RunField::read(&directory).map_err(fail)?;
+    let decomposition =
+        hagfish_modes::Decomposition::of(&field, phase.as_deref(), kind).map_err(fail)?;
+    let result = PyDict::new(py);
+    for entry in decomposition.arrays(modes.unwrap_or(usize::MAX)) {
+        let name = entry.name.as_str();
+        match entry.data {
+            NpyData::F64(values) if entry.shape.is_empty() => {
+                result.set_item(name, values.first().copied().unwrap_or(f64::NAN))?;
+            }
+            NpyData::F64(values) => {
+                result.set_item(name, PyArray1::from_vec(py, values).reshape(entry.shape)?)?;
+            }
+            NpyData::I64(values) => {
+                result.set_item(name, PyArray1::from_vec(py, values).reshape(entry.shape)?)?;
+            }
+            NpyData::Text(values) => result.set_item(name, values)?,
+        }
+    }
+    Ok(result)
+}
+
 /// Writes the plan of a sweep of `scenario` with one run per list of overrides into
 /// `folder` (checked: a bad override raises naming the run); returns the run ids.
 #[pyfunction]
@@ -251,6 +292,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(summary, m)?)?;
     m.add_function(wrap_pyfunction!(centreline, m)?)?;
+    m.add_function(wrap_pyfunction!(modes, m)?)?;
     m.add_function(wrap_pyfunction!(sweep_plan, m)?)?;
     m.add_function(wrap_pyfunction!(sweep_run, m)?)?;
     m.add_function(wrap_pyfunction!(sweep_collect, m)?)?;

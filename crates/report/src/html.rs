@@ -12,6 +12,7 @@ use base64::engine::general_purpose::STANDARD;
 use crate::animation;
 use crate::plots::Plot;
 use crate::run_dir::RunDir;
+use crate::section::Section;
 use crate::summary;
 
 const TEMPLATE: &str = include_str!("../assets/report.html");
@@ -127,24 +128,16 @@ fn preformatted(text: Option<&String>, missing: &str) -> String {
     text.map_or_else(|| format!("<p>{missing}</p>"), |t| format!("<pre>{}</pre>", escape(t)))
 }
 
-/// The page for `run` with its drawn `plots` and `gif` animation.
-pub fn page(run: &RunDir, plots: &[Plot], gif: &[u8]) -> String {
+/// The page for `run` with its drawn `plots`, `gif` animation and the `sections` other crates
+/// made (after the plots).
+pub fn page(run: &RunDir, plots: &[Plot], gif: &[u8], sections: &[Section]) -> String {
     let mut table = String::from("<table>\n");
     for (key, value) in summary::rows(&run.metrics, run.tension.as_ref()) {
         let _ = writeln!(table, "<tr><th>{}</th><td>{}</td></tr>", escape(&key), escape(&value));
     }
     table.push_str("</table>");
-    let mut figures = String::new();
-    for plot in plots {
-        let _ = writeln!(
-            figures,
-            "<figure><img class=\"check\" alt=\"{0}\" src=\"data:image/png;base64,{1}\">\
-             <figcaption>{0} (plots/{2}.png, plots/{2}.svg)</figcaption></figure>",
-            escape(&plot.title),
-            STANDARD.encode(&plot.png),
-            escape(&plot.stem)
-        );
-    }
+    let figures: String =
+        plots.iter().map(|plot| crate::section::figure(plot, Some("plots/"))).collect();
     let files = format!(
         "<ul><li>Body radii: {}.</li><li>contacts.csv: {}.</li></ul>",
         escape(&run.radii.source),
@@ -174,6 +167,7 @@ pub fn page(run: &RunDir, plots: &[Plot], gif: &[u8]) -> String {
         ("animation", STANDARD.encode(gif)),
         ("animation_caption", escape(&caption)),
         ("plots", figures),
+        ("sections", sections.iter().map(Section::to_html).collect()),
         ("scenario", preformatted(run.scenario.as_ref(), "No scenario.ron in the run directory.")),
         ("manifest", preformatted(run.manifest.as_ref(), "No manifest.json in the run directory.")),
         ("files", files),
@@ -221,6 +215,7 @@ mod tests {
             "animation",
             "animation_caption",
             "plots",
+            "sections",
             "scenario",
             "manifest",
             "files",

@@ -61,6 +61,7 @@ mod plots;
 mod radii;
 mod raster;
 mod run_dir;
+mod section;
 mod summary;
 mod tension;
 #[cfg(test)]
@@ -73,6 +74,7 @@ pub use csv::{CsvFile, MAX_LINE_BYTES, Record, Rows};
 pub use error::ReportError;
 pub use forces::{AXES, ThigmoForces};
 pub use frame_selection::{BODY_FRAME_BUDGET, FrameSelection};
+pub use html::escape;
 pub use knot_run::{KnotRun, TABLE_HEADER, signed_percent};
 pub use loosen_tighten::LoosenTighten;
 pub use metrics::Metrics;
@@ -80,8 +82,11 @@ pub use outputs::{
     ANIMATION, GLB, PLOTS, REPORT, VTK, Written, own_files, own_subdirectory, render, report,
     write_all,
 };
-pub use plots::{Line, Scatter, TimeSeries, write_line_plots, write_scatters};
+pub use plots::{
+    Line, Plot, Scatter, TimeSeries, draw_line_plot, write_line_plots, write_scatters,
+};
 pub use radii::{DEFAULT_RADIUS_CM, Radii};
 pub use run_dir::RunDir;
+pub use section::Section;
 pub use tension::Tension;
 pub use wcon::{WCON_FILE, export_wcon, wcon};

@@ -6,6 +6,7 @@ use std::time::Instant;
 
 use crate::error::ReportError;
 use crate::run_dir::RunDir;
+use crate::section::Section;
 use crate::{animation, glb, html, plots, vtk};
 
 /// Name of the animated GIF in the run directory.
@@ -109,7 +110,7 @@ struct Parts {
     report: bool,
 }
 
-fn make(dir: &Path, parts: Parts) -> Result<Written, ReportError> {
+fn make(dir: &Path, parts: Parts, sections: &[Section]) -> Result<Written, ReportError> {
     let mut written = Written::default();
     let (plot_dir, vtk_dir) = (own_subdirectory(dir, PLOTS)?, own_subdirectory(dir, VTK)?);
     let run = written.time("read", || RunDir::read(dir))?;
@@ -133,7 +134,7 @@ fn make(dir: &Path, parts: Parts) -> Result<Written, ReportError> {
     }
     if parts.report {
         let path = dir.join(REPORT);
-        let page = written.time("report", || html::page(&run, &drawn, &gif));
+        let page = written.time("report", || html::page(&run, &drawn, &gif, sections));
         write_file(&path, page.as_bytes())?;
         written.files.push(path);
     }
@@ -143,17 +144,18 @@ fn make(dir: &Path, parts: Parts) -> Result<Written, ReportError> {
 /// `hagfish render DIR`: the plots (`plots/*.png`, `plots/*.svg`), `animation.gif`, the
 /// ParaView frames (`vtk/`) and `run.glb`.
 pub fn render(dir: &Path) -> Result<Written, ReportError> {
-    make(dir, Parts { pictures: true, exports: true, report: false })
+    make(dir, Parts { pictures: true, exports: true, report: false }, &[])
 }
 
-/// `hagfish report DIR`: `report.html` alone (its pictures drawn afresh, in memory).
-pub fn report(dir: &Path) -> Result<Written, ReportError> {
-    make(dir, Parts { pictures: false, exports: false, report: true })
+/// `hagfish report DIR`: `report.html` alone (its pictures drawn afresh, in memory), with
+/// `sections` made by other crates after the plots.
+pub fn report(dir: &Path, sections: &[Section]) -> Result<Written, ReportError> {
+    make(dir, Parts { pictures: false, exports: false, report: true }, sections)
 }
 
 /// Everything [`render`] and [`report`] write, reading and drawing once.
-pub fn write_all(dir: &Path) -> Result<Written, ReportError> {
-    make(dir, Parts { pictures: true, exports: true, report: true })
+pub fn write_all(dir: &Path, sections: &[Section]) -> Result<Written, ReportError> {
+    make(dir, Parts { pictures: true, exports: true, report: true }, sections)
 }
 
 #[cfg(test)]
@@ -176,9 +178,9 @@ mod tests {
         let names: Vec<&str> = rendered.timings.iter().map(|t| t.0).collect();
         assert_eq!(names, ["read", "plots", "animation", "vtk", "glb"]);
 
-        let reported = report(&dir).expect("report");
+        let reported = report(&dir, &[]).expect("report");
         assert_eq!(reported.files, vec![dir.join(REPORT)]);
-        let all = write_all(&dir).expect("write_all");
+        let all = write_all(&dir, &[]).expect("write_all");
         assert_eq!(all.files.len(), rendered.files.len() + 1);
         assert!(all.total_seconds() > 0.0);
     }
@@ -192,7 +194,7 @@ mod tests {
             std::fs::write(elsewhere.join("frame_0000.vtk"), "not the run's").expect("write");
             let _ = std::fs::remove_dir_all(dir.join(name));
             std::os::unix::fs::symlink(&elsewhere, dir.join(name)).expect("symlink");
-            let error = write_all(&dir).expect_err("a link").to_string();
+            let error = write_all(&dir, &[]).expect_err("a link").to_string();
             assert!(error.contains("is a symbolic link"), "{error}");
             assert!(own_files(&dir).is_err(), "{name}: listed through the link");
             let entries = std::fs::read_dir(&elsewhere).expect("read").count();

@@ -128,7 +128,7 @@ mod tests {
         assert_eq!(run.centreline.frame(1), RunDir::read(&dir).expect("reads").centreline.frame(2));
         assert_eq!((run.forces.frames(), run.metrics.frames()), (2, 3));
         assert_eq!(run.forces.values[1][2 + 1], 3.0, "frame 2, joint 1, Y");
-        let page = crate::html::page(&run, &[], &[]);
+        let page = crate::html::page(&run, &[], &[], &[]);
         assert!(page.contains("one frame in 2 of the run&#39;s 3 and its last"), "caption");
         assert!(page.contains(r#""states":["phase form, knot 0_1","phase form, knot 0_1"]"#));
     }

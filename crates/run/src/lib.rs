@@ -38,6 +38,7 @@ mod force_columns;
 mod force_field;
 mod knot_core;
 pub mod npy;
+mod npz;
 mod output_file;
 mod recorder;
 mod run;
@@ -48,6 +49,7 @@ pub use error::RunError;
 pub use force_field::{ForceFieldLog, ForceFieldStats};
 pub use hagfish_sim::dof_arc_lengths;
 pub use knot_core::KnotCore;
+pub use npz::{NpyData, NpzEntry, npz_bytes, write_npz};
 pub use output_file::replace_file;
 pub use recorder::{
     CENTRELINE_HEADER, CONTACTS_HEADER, FORCES_HEADER, Frame, FrameSink, METRICS_HEADER,

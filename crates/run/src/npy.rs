@@ -15,15 +15,25 @@ use crate::output_file::OutputFile;
 /// Length of the header (magic, version, header length and the padded dictionary).
 pub const HEADER_BYTES: usize = 128;
 
-/// The header of a little-endian f64 C-order array of `rows` × `columns`.
+/// The header of a little-endian f64 C-order array of `rows` × `columns` (the row count
+/// right-aligned in 20 characters, so that the header keeps its length as rows are added).
 fn header(rows: usize, columns: usize) -> Vec<u8> {
-    let dictionary =
-        format!("{{'descr': '<f8', 'fortran_order': False, 'shape': ({rows:>20}, {columns}), }}");
-    let mut out = Vec::with_capacity(HEADER_BYTES);
+    padded_header(&format!(
+        "'descr': '<f8', 'fortran_order': False, 'shape': ({rows:>20}, {columns}), "
+    ))
+}
+
+/// The NPY 1.0 header of the dictionary `entries` (`{entries}`, without the braces): magic,
+/// version, header length and the dictionary padded with spaces and a newline to a multiple
+/// of 64 bytes, as NumPy writes it.
+pub(crate) fn padded_header(entries: &str) -> Vec<u8> {
+    let dictionary = format!("{{{entries}}}");
+    let length = (10 + dictionary.len() + 1).div_ceil(64) * 64;
+    let mut out = Vec::with_capacity(length);
     out.extend_from_slice(b"\x93NUMPY\x01\x00");
-    out.extend_from_slice(&((HEADER_BYTES - 10) as u16).to_le_bytes());
+    out.extend_from_slice(&((length - 10) as u16).to_le_bytes());
     out.extend_from_slice(dictionary.as_bytes());
-    out.resize(HEADER_BYTES - 1, b' ');
+    out.resize(length - 1, b' ');
     out.push(b'\n');
     out
 }

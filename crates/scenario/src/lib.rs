@@ -31,6 +31,7 @@ mod modal_space;
 mod override_value;
 mod overrides;
 mod parameters;
+mod replay_file;
 mod scenario;
 mod scenario_check;
 

@@ -112,6 +112,9 @@ pub const PARAMETERS: &[Parameter] = &[
     p("Thigmotaxis.parameters.force_space.Modes.kind", "-", "required", "the selection whose shapes are read: all, bend, bend-y, bend-z or twist \
        (the DOFs of other kinds are zero in every mode)"),
     p("Thigmotaxis.parameters.force_space.Modes.modes", "-", "required", "k ≥ 1, at most the file's modes of that kind"),
+    p("Thigmotaxis.parameters.replay", "-", "None", "Some((file: FILE)): open-loop replay, the field of FILE (hagfish modes --replay) applied as \
+       joint torques at the time since the phase began, instead of the rows (the tail pull stays)"),
+    p("Thigmotaxis.parameters.replay.file", "-", "required", "a replay CSV of hagfish modes (time_s, one column per DOF), relative to the scenario file"),
     p("Thigmotaxis.until", "-", "required", "end conditions; the phase ends at the first that holds"),
     p("Thigmotaxis.until.seconds", "s", "required", "longest duration of the phase"),
     p("Thigmotaxis.until.hold_s", "s", "0", "a condition of when must hold this long without interruption to end the phase"),
@@ -137,7 +140,7 @@ mod tests {
 
     use hagfish_control::{
         Condition, Direction, ForceSpace, FormingScript, Handedness, KindSelection, LoadDirection,
-        LoadPhase, ModalSpace, Phase, Quantity, ScriptStep, SlidingTargets, TailGains,
+        LoadPhase, ModalSpace, Phase, Quantity, Replay, ScriptStep, SlidingTargets, TailGains,
         ThigmoParameters, ThigmoPhase, Threshold, TieKnot, TiePhase, Until, WaterDrag, Waypoint,
     };
 
@@ -199,6 +202,7 @@ mod tests {
                         tail_pull_dyn: 20.0,
                         max_force_dyn: 2000.0,
                         force_space: ForceSpace::BendingOnly,
+                        replay: None,
                     },
                     until: Until {
                         seconds: 1.0,
@@ -228,6 +232,7 @@ mod tests {
                             modes: 4,
                             basis: None,
                         }),
+                        replay: Some(Replay { file: "replay.csv".into(), field: None }),
                     },
                     until: Until { seconds: 1.0, ..Until::default() },
                 }),

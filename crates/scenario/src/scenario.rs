@@ -26,6 +26,7 @@ use crate::error::ScenarioError;
 use crate::initial_shape::InitialShape;
 use crate::modal_space::resolve_modal_spaces;
 use crate::overrides::{Override, apply_overrides};
+use crate::replay_file::resolve_replays;
 use crate::scenario_check::check_scenario;
 
 /// The content of a scenario file.
@@ -171,6 +172,7 @@ impl LoadedScenario {
             biometrics.skin = Some(skin);
         }
         let phases = resolve_modal_spaces(&file, directory, &model, loaded.length_cm())?;
+        let phases = resolve_replays(&file, directory, phases, model.dof_count())?;
         let bytes = read_data_file(&body).map_err(|source| ScenarioError::BodyFile {
             at: file.locate(&Field::whole("body")),
             source: Box::new(source),

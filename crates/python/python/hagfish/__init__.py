@@ -18,7 +18,7 @@ is one) and exit code of the command line.
 from ._native import HagfishError, __version__
 from .scenario import Body, Scenario, override_text, params
 from .runs import Run, open_run, run
-from . import runs, sweeps
+from . import modes, runs, sweeps
 from .sweeps import open_sweep, sweep
 
 __all__ = [
@@ -30,6 +30,7 @@ __all__ = [
     "open_run",
     "open_sweep",
     "override_text",
+    "modes",
     "params",
     "run",
     "runs",

@@ -36,6 +36,12 @@ def summary(directory: str) -> dict[str, Any]:
 def centreline(directory: str) -> npt.NDArray[np.float64]:
     """Body centres, frames × bodies × 3 (cm)."""
 
+def modes(
+    directory: str, phase: Optional[str] = None, kind: str = "all", modes: Optional[int] = None
+) -> dict[str, Any]:
+    """The arrays of one selection of ``modes.npz`` (float64/int64 arrays, ``axis`` a list of
+    str, ``length_cm`` a float)."""
+
 def sweep_plan(scenario: str, runs: list[list[str]], folder: str) -> list[str]:
     """Writes plan.json; returns the run ids."""
 

@@ -8,13 +8,16 @@ import tempfile
 import time
 from functools import cached_property
 from pathlib import Path
-from typing import Any, Callable, Optional, Union
+from typing import TYPE_CHECKING, Any, Callable, Optional, Union
 
 import numpy as np
 import pandas as pd
 
 from . import _native
 from .scenario import PathLike, Scenario
+
+if TYPE_CHECKING:
+    from .modes import Modes
 
 Progress = Callable[[float, float, int, str, Optional[str]], Any]
 
@@ -104,6 +107,21 @@ class Run:
     def thigmo_force(self) -> np.ndarray:
         """The thigmotaxic force field, frames × DOFs (dyn·cm), from ``thigmo_force.npy``."""
         return np.load(self.directory / "thigmo_force.npy")
+
+    def modes(
+        self, phase: Optional[str] = None, kind: str = "all", count: Optional[int] = None
+    ) -> "Modes":
+        """The proper orthogonal decomposition of the thigmotaxic force field on the frames of
+        ``phase`` (``metrics.csv``'s ``phase``, e.g. ``"slide"``; every frame with force if
+        ``None``) and the DOFs of ``kind`` (``all``, ``bend``, ``bend-y``, ``bend-z``,
+        ``twist``), as ``hagfish modes`` computes it: a :class:`hagfish.modes.Modes` of NumPy
+        arrays (energy fractions, shapes modes × DOFs, arc lengths in cm, time courses modes ×
+        frames, the travelling-wave fit). ``count`` keeps the first shapes and time courses
+        only. Raises :class:`hagfish.HagfishError` for a phase the run does not have or a zero
+        field, ``ValueError`` for an unknown kind."""
+        from .modes import modes
+
+        return modes(self.directory, phase, kind, count)
 
 
 def open_run(directory: PathLike) -> Run:

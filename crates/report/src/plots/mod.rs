@@ -158,6 +158,12 @@ pub fn write_line_plots(
     write_figures(plots.iter().map(|(stem, plot)| (stem.as_str(), plot)).collect(), directory)
 }
 
+/// Draws the line plot `plot` in memory, named `stem` and captioned by its title; `at` is
+/// the file it would be written to, named in errors.
+pub fn draw_line_plot(stem: &str, plot: &TimeSeries, at: &Path) -> Result<Plot, ReportError> {
+    figure::render(plot, stem, plot.title(), at)
+}
+
 /// Renders each `(stem, figure)` and writes it into `directory` ([`write`]).
 fn write_figures<F: figure::Figure + Titled>(
     figures: Vec<(&str, &F)>,

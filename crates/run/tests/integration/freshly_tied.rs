@@ -30,20 +30,26 @@ pub fn freshly_tied_knot() -> (LoadedScenario, World, State) {
     (loaded, world, knotted)
 }
 
-/// One step of thigmotaxis from `knotted` (both ends' targets 1 cm/s, no tail pull, a 10⁶ dyn
-/// cap) with its rows confined to `force_space`; returns the step's thigmotaxic generalized
-/// force `C_thᵀλ/h` (dyn·cm per DOF). The step's rows stay in `world.data()`.
-pub fn thigmo_step(world: &mut World, knotted: &State, force_space: ForceSpace) -> Vec<f64> {
-    world.set_state(knotted.clone()).expect("state restores");
+/// Thigmotaxis with both ends' targets 1 cm/s, no tail pull, a 10⁶ dyn cap and no replay,
+/// its rows confined to `force_space`.
+pub fn thigmo_parameters(force_space: ForceSpace) -> ThigmoParameters {
     let targets = SlidingTargets { v_a: 1.0, v_b: 1.0 };
-    let parameters = ThigmoParameters {
+    ThigmoParameters {
         head: targets,
         tail: targets,
         tail_pull_dyn: 0.0,
         max_force_dyn: 1e6,
         force_space,
-    };
-    world.step(&mut Thigmo(parameters)).expect("thigmo step");
+        replay: None,
+    }
+}
+
+/// One step of thigmotaxis from `knotted` (both ends' targets 1 cm/s, no tail pull, a 10⁶ dyn
+/// cap) with its rows confined to `force_space`; returns the step's thigmotaxic generalized
+/// force `C_thᵀλ/h` (dyn·cm per DOF). The step's rows stay in `world.data()`.
+pub fn thigmo_step(world: &mut World, knotted: &State, force_space: ForceSpace) -> Vec<f64> {
+    world.set_state(knotted.clone()).expect("state restores");
+    world.step(&mut Thigmo(thigmo_parameters(force_space))).expect("thigmo step");
     let mut force = vec![0.0; world.model().dof_count()];
     world.data().group_force(RowGroup::Thigmo, world.options().time_step, &mut force);
     force

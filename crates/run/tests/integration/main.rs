@@ -14,6 +14,7 @@ mod modal_space;
 mod no_allocation;
 mod recorded_loads;
 mod recording_rate;
+mod replay;
 mod self_contact;
 mod skin;
 mod sparse_backend;

@@ -286,6 +286,7 @@ fn thigmo_rows_reach_their_speeds_with_nonnegative_multipliers() {
             tail_pull_dyn: 0.0,
             max_force_dyn: 1e6,
             force_space: ForceSpace::Full,
+            replay: None,
         };
         let report = *world.step(&mut Thigmo(parameters)).expect("thigmo step");
         let data = world.data();
