@@ -95,8 +95,7 @@ impl ContactPredictor {
                 _ => continue,
             };
             let gap_after = self.gap_after(contact);
-            let thickness = skin.thickness_at(contact);
-            let core_gap = if thickness > 0.0 { contact.gap + thickness } else { contact.gap };
+            let core_gap = skin.core_gap(contact);
             let target = core_gap + time_step * unilateral_rhs(core_gap, time_step, push_out);
             if gap_after >= target - tolerance {
                 continue;

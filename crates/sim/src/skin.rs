@@ -57,12 +57,15 @@ impl SkinLayer {
         radii.iter().zip(&self.thickness).map(|(r, t)| r - t).collect()
     }
 
-    /// t_a + t_b at `contact` (cm; 0 where neither point has a skin).
-    pub fn thickness_at(&self, contact: &SelfContact) -> f64 {
+    /// The gap between the cores at `contact`, g + t_a + t_b (cm), or g itself, unchanged,
+    /// where neither point has a skin.
+    pub fn core_gap(&self, contact: &SelfContact) -> f64 {
         if !self.present {
-            return 0.0;
+            return contact.gap;
         }
-        blend(&self.thickness, &contact.weights_a) + blend(&self.thickness, &contact.weights_b)
+        let thickness =
+            blend(&self.thickness, &contact.weights_a) + blend(&self.thickness, &contact.weights_b);
+        if thickness > 0.0 { contact.gap + thickness } else { contact.gap }
     }
 
     /// The skin at `contact` on `centreline`, or `None` where neither point has one (the
