@@ -10,7 +10,8 @@
 //!   (both the defaults) and with clarabel on the dense backend (reference);
 //!   `step/knotted/ContactSpace/DenseReduced`, the same step on the dense reduced backend
 //!   (`StepOptions::backend`); and `step/knotted/ContactSpace/NoPrediction`, the default
-//!   without contact prediction (its cost).
+//!   without contact prediction (its cost); `step/knotted/ContactSpace/Skin`, the default on
+//!   the same body with a skin (φ 0.25, p 1000 dyn/cm²: a core and a skin row per contact).
 //!   Each iteration restores the state first (`World::set_state`, untimed).
 //! - `step/knotted_1000/SparseMaximal`: the same whole step in a long chain: ES103 at 1000
 //!   bodies on the sparse backend, `data/scenarios/tie.ron` at t = 19 s (a trefoil tied by
@@ -85,28 +86,50 @@ fn knotted(c: &mut Criterion) {
             contact_prediction,
             ..StepOptions::default()
         };
-        let mut bench_world = World::new(model, options, knotted.clone()).expect("world");
-        let mut drag = WaterDrag::default();
-        bench_world.step(&mut drag).expect("warm-up step");
-        println!(
-            "knotted state: {} self contacts, rows per group {:?}",
-            bench_world.data().report.self_contacts,
-            RowGroup::values(&bench_world.data().report.solve.rows_per_tag)
-        );
-        // Only the step is timed: `set_state` (which runs the kinematics once more) is set-up.
-        c.bench_function(&format!("step/knotted/{name}"), |b| {
-            b.iter_custom(|iterations| {
-                let mut elapsed = Duration::ZERO;
-                for _ in 0..iterations {
-                    bench_world.set_state(knotted.clone()).expect("state");
-                    let start = Instant::now();
-                    black_box(bench_world.step(&mut drag).expect("step").solve.iterations);
-                    elapsed += start.elapsed();
-                }
-                elapsed
-            })
-        });
+        bench_knotted_step(c, name, World::new(model, options, knotted.clone()).expect("world"));
     }
+    // The same body with a skin (docs/physics.md, "Skin"): a core row and a compliant skin row
+    // per contact.
+    let Ok(hagfish_anatomy::Body::Hagfish(mut biometrics)) =
+        hagfish_anatomy::Body::load(&form_scenario().scenario.body)
+    else {
+        panic!("form.ron's body is a hagfish");
+    };
+    biometrics.skin =
+        Some(hagfish_anatomy::BodySkin { thickness_fraction: 0.25, pressure_dyn_per_cm2: 1000.0 });
+    let skinned = biometrics.to_model().expect("the skinned model");
+    let options = StepOptions::default();
+    bench_knotted_step(
+        c,
+        "ContactSpace/Skin",
+        World::new(skinned, options, knotted).expect("world"),
+    );
+}
+
+/// Benchmarks one step of `world` from its current (knotted) state as `step/knotted/{name}`,
+/// under water drag; each iteration restores the state first (untimed: `set_state` runs the
+/// kinematics once more).
+fn bench_knotted_step(c: &mut Criterion, name: &str, mut world: World) {
+    let knotted = world.state().clone();
+    let mut drag = WaterDrag::default();
+    world.step(&mut drag).expect("warm-up step");
+    println!(
+        "knotted state ({name}): {} self contacts, rows per group {:?}",
+        world.data().report.self_contacts,
+        RowGroup::values(&world.data().report.solve.rows_per_tag)
+    );
+    c.bench_function(&format!("step/knotted/{name}"), |b| {
+        b.iter_custom(|iterations| {
+            let mut elapsed = Duration::ZERO;
+            for _ in 0..iterations {
+                world.set_state(knotted.clone()).expect("state");
+                let start = Instant::now();
+                black_box(world.step(&mut drag).expect("step").solve.iterations);
+                elapsed += start.elapsed();
+            }
+            elapsed
+        })
+    });
 }
 
 fn long_knotted(c: &mut Criterion) {

@@ -236,7 +236,10 @@ mod tests {
         assert_eq!(writer.rows_hash(), format!("{:016x}", rows_hash(&path, 3, 3, None)?));
         let changed = rows_hash(&path, 3, 2, Some("0123456789abcdef")).expect_err("changed");
         let message = changed.to_string();
-        assert!(message.contains("first 2 rows are not those the checkpoint recorded"), "{message}");
+        assert!(
+            message.contains("first 2 rows are not those the checkpoint recorded"),
+            "{message}"
+        );
         assert!(!message.contains("0123456789abcdef"), "the recorded hash is not shown: {message}");
         let read = read_npy(&path)?;
         assert_eq!((read.rows, read.columns), (3, 3));
