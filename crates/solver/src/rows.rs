@@ -17,7 +17,10 @@
 //! A compliant row is an implicit spring: with ε = 1/(k h²) and b = −g/h for a gap g, the
 //! impulse is λ = h·k·max(0, −(g + h cᵀq̇)), the force of a spring of stiffness k at the end of
 //! the step (backward Euler). In the primal it costs ½σᵢ²/εᵢ for a violation σᵢ = εᵢλᵢ; in the
-//! contact space it adds εᵢ to Wᵢᵢ, so it is never linearly dependent.
+//! contact space it adds εᵢ to Wᵢᵢ, so it is never linearly dependent. A nearly rigid one
+//! (εᵢ ≲ 1e-6·cᵢᵀM̃⁻¹cᵢ) on a row that depends on others has a pivot εᵢ that cancels against
+//! Wᵢᵢ and loses digits; the solve then reports `SolvedInexact` (a skin's ε is ≈ 0.3–3 times
+//! its row's mobility at h = 0.01 s).
 //!
 //! Storage: the coefficients sit in one column-major n × capacity matrix whose column i is
 //! cᵢ, i.e. the columns form Cᵀ. That is the layout the contact-space solve needs (it copies
