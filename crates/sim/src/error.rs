@@ -14,11 +14,12 @@ pub enum SimError {
     /// The sparse backend cannot take the model.
     #[error("sparse backend: {0}")]
     Sparse(#[from] hagfish_sparse::SparseError),
-    /// The step buffers of the body would not fit in the memory available
-    /// (`memory.rs` explains the estimate).
+    /// The step buffers of the body would not fit in the memory the process may still
+    /// allocate (`memory.rs` explains the estimate and the bounds).
     #[error(
-        "a body of {bodies} bodies ({dofs} DOFs) needs about {} MB for its step buffers, and \
-         {} MB are available: use fewer bodies (the buffers grow as the square of the DOFs)",
+        "a body of {bodies} bodies ({dofs} DOFs) needs about {} MB for its step buffers (the \
+         memory of every step), and {} MB may be allocated under {bound}: use fewer bodies \
+         (the buffers grow {growth}) or raise that limit",
         needed / 1_000_000,
         available / 1_000_000
     )]
@@ -31,6 +32,10 @@ pub enum SimError {
         needed: u64,
         /// Available memory (bytes).
         available: u64,
+        /// The bound that gives `available`.
+        bound: crate::memory::MemoryBound,
+        /// How the buffers grow with the body, on its backend.
+        growth: &'static str,
     },
     /// The controller could not return to a saved state (a retried step, a resume).
     #[error("controller: {0}")]
