@@ -37,6 +37,24 @@ pub enum SimError {
         /// How the buffers grow with the body, on its backend.
         growth: &'static str,
     },
+    /// A step buffer could not be allocated although the estimate fit (a limit it does not
+    /// see, or memory taken meanwhile): an error before the first step, not an abort.
+    #[error("allocating the step buffers of a body of {bodies} bodies: {source}")]
+    Allocation {
+        /// Bodies of the model.
+        bodies: usize,
+        /// The buffer that could not be allocated.
+        source: SolverError,
+    },
+    /// A stop was asked for ([`crate::StopRequest`]) while the step was being taken: it was
+    /// abandoned at a stage boundary and the state left at its start.
+    #[error("step {step} (t = {time} s): stopped on request before its end")]
+    Stopped {
+        /// Step index.
+        step: u64,
+        /// Simulation time at the step's start (s).
+        time: f64,
+    },
     /// The controller could not return to a saved state (a retried step, a resume).
     #[error("controller: {0}")]
     Controller(#[from] hagfish_control::ControlError),

@@ -54,6 +54,7 @@ mod retry;
 pub mod rows;
 pub mod skin;
 mod step_data;
+mod stop;
 mod world;
 
 pub use acceptance::{EndOfStep, Rejection, StepAcceptance};
@@ -73,4 +74,5 @@ pub use report::{Stage, StageTimings, StepReport};
 pub use retry::{Attempt, ContactResolution, RetryableController, StepOutcome, StepTally};
 pub use skin::{ContactSkin, SkinLayer};
 pub use step_data::StepData;
+pub use stop::StopRequest;
 pub use world::World;

@@ -10,7 +10,7 @@
 //! 3.6 MB, 1000 bodies 360 MB, 10 000 bodies 36 GB.
 //!
 //! **Sparse backend** (the default): nothing is n × n. The rows and contact-space matrices are
-//! n × m and m × m for the m rows present (reserved for [`crate::step_data::row_reserve`]
+//! n × m and m × m (W, its sorted copy, the active set's factor) for the m rows present (reserved for [`crate::step_data::row_reserve`]
 //! rows, growing when a step has more), and everything else is linear in the bodies.
 
 use hagfish_tree::Model;
@@ -35,8 +35,9 @@ pub fn step_memory_estimate(model: &Model, backend: DynamicsBackend) -> u64 {
         DynamicsBackend::DenseReduced => {
             n.saturating_mul(n).saturating_mul(DOUBLES_PER_DOF_SQUARED)
         }
-        // Rows, Y and its sorted copy (n × m); W and its sorted copy (m × m).
-        DynamicsBackend::SparseMaximal => 3 * n * m + 2 * m * m,
+        // Rows, Y and its sorted copy (n × m); W, its sorted copy and the active set's
+        // factor of the free rows (m × m).
+        DynamicsBackend::SparseMaximal => 3 * n * m + 3 * m * m,
     };
     let linear = (model.body_count() as u64).saturating_mul(BYTES_PER_BODY);
     matrices.saturating_mul(8).saturating_add(linear)

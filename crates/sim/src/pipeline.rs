@@ -31,6 +31,7 @@ use crate::rows::{
     add_thigmo_rows, add_wall_rows, overshoots_limit,
 };
 use crate::step_data::StepData;
+use crate::stop::StopRequest;
 
 /// Cap on the extra solves of one step (velocity-product refreshes and limit rows added for
 /// overshooting joints).
@@ -160,23 +161,26 @@ fn refresh_velocity_products(
 }
 
 /// Runs one whole step and advances `state` (see the module docs for the stages). On error the
-/// state is left as it was.
+/// state is left as it was; `stop` is polled between the stages, and once it is set the step
+/// ends with [`SimError::Stopped`] (the caller restores the state, as for any error).
 pub fn step(
     model: &Model,
     options: &StepOptions,
     state: &mut State,
-    step_index: u64,
+    (step_index, stop): (u64, StopRequest<'_>),
     data: &mut StepData,
     controller: &mut dyn Controller,
 ) -> Result<(), SimError> {
     let at = StepAt { step: step_index, time: state.t };
     state.validate(model).in_step(at)?;
+    stop.check(at)?;
     data.report = StepReport { step: step_index, time: state.t, ..StepReport::default() };
     let mut clock = StageClock::start();
     if data.take_over_carried() == Carried::Stale {
         kinematics(model, state, data);
         clock.lap(Stage::Kinematics);
         data.report.detection = detect_contacts(model, options, data).in_step(at)?;
+        stop.check(at)?;
     }
     measure_penetration(data);
     clock.lap(Stage::DetectContacts);
@@ -184,17 +188,21 @@ pub fn step(
     clock.lap(Stage::Control);
     dynamics(model, options, state, data);
     clock.lap(Stage::Dynamics);
+    stop.check(at)?;
     build_rows(model, options, state, data);
     clock.lap(Stage::BuildRows);
+    stop.check(at)?;
     solve_and_resolve(model, options, state, data).in_step(at)?;
     require_solved(data, at)?;
     clock.lap(Stage::Solve);
+    stop.check(at)?;
     if data.internal_forces_due {
         internal_forces(model, options, state, data);
     }
     clock.lap(Stage::InternalForces);
     hagfish_tree::integrate(state, data.solver.velocity(), options.time_step).in_step(at)?;
     clock.lap(Stage::Integrate);
+    stop.check(at)?;
     let end = check_result(model, options, state, data).in_step(at)?;
     clock.lap(Stage::Check);
     data.report.timings = clock.timings();

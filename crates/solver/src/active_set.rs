@@ -44,8 +44,9 @@ mod release;
 mod verification;
 
 use crate::contact_space::ContactSpace;
+use crate::error::SolverError;
 use crate::free_set::FreeSet;
-use crate::linalg::zeroed;
+use crate::linalg::{try_capacity, zeroed};
 use crate::rows::RowKind;
 
 /// A row counts as linearly dependent on F when its pivot is below this fraction of Wᵢᵢ
@@ -133,8 +134,8 @@ pub(crate) struct ActiveSet {
 
 impl ActiveSet {
     /// Reserves room for problems of up to `dofs` velocities and `rows` rows.
-    pub(crate) fn reserve(&mut self, dofs: usize, rows: usize) {
-        self.bound.reserve(rows);
+    pub(crate) fn try_reserve(&mut self, dofs: usize, rows: usize) -> Result<(), SolverError> {
+        try_capacity(&mut self.bound, rows, "the active set's bounds")?;
         for buffer in [
             &mut self.lower,
             &mut self.upper,
@@ -144,14 +145,17 @@ impl ActiveSet {
             &mut self.gradient,
             &mut self.magnitude,
         ] {
-            buffer.reserve(rows);
+            try_capacity(buffer, rows, "an active-set row vector")?;
         }
-        self.ray.reserve(dofs);
-        self.lift.reserve(dofs);
+        try_capacity(&mut self.ray, dofs, "the active set's ray")?;
+        try_capacity(&mut self.lift, dofs, "the active set's lift")?;
+        self.free.try_reserve(rows)?;
         self.free.reset(rows);
-        self.saved.reserve(rows + 1);
-        self.implied.reserve(rows);
-        self.warm.reserve(rows);
+        try_capacity(&mut self.saved, rows + 1, "the active set's saved multipliers")?;
+        for buffer in [&mut self.implied, &mut self.warm] {
+            try_capacity(buffer, rows, "an active-set index")?;
+        }
+        Ok(())
     }
 
     /// The free rows and their factor at the end of the last run (for refinement).

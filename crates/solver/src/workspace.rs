@@ -33,7 +33,7 @@ use crate::active_set::{ActiveSet, ActiveSetLimits, Termination};
 use crate::clarabel_reference;
 use crate::contact_space::ContactSpace;
 use crate::error::SolverError;
-use crate::linalg::{axpy, zeroed};
+use crate::linalg::{axpy, try_capacity, zeroed};
 use crate::mass_factor::MassFactor;
 use crate::mass_operator::{FactoredMass, Mass};
 use crate::options::{QpBackend, SolverOptions, WarmStart};
@@ -109,15 +109,19 @@ impl SolverWorkspace {
     /// Sizes every buffer for problems of up to `dofs` velocities and `rows` rows, so that
     /// contact-space solves within those sizes never allocate (larger ones still work and
     /// grow the buffers).
-    pub fn reserve(&mut self, dofs: usize, rows: usize) {
-        self.dual.reserve(dofs, rows);
-        self.active.reserve(dofs, rows);
-        self.refinement.reserve(dofs, rows);
+    ///
+    /// # Errors
+    /// [`SolverError::Allocation`] if a buffer cannot be allocated (the largest are the
+    /// contact-space matrices, `dofs` × `rows` and `rows` × `rows`).
+    pub fn try_reserve(&mut self, dofs: usize, rows: usize) -> Result<(), SolverError> {
+        self.dual.try_reserve(dofs, rows)?;
+        self.active.try_reserve(dofs, rows)?;
+        self.refinement.try_reserve(dofs, rows)?;
         for buffer in [&mut self.velocity, &mut self.residual, &mut self.work] {
-            buffer.reserve(dofs);
+            try_capacity(buffer, dofs, "a solver vector over the DOFs")?;
         }
-        self.multipliers.reserve(rows);
-        self.row_residuals.reserve(rows);
+        try_capacity(&mut self.multipliers, rows, "the multipliers")?;
+        try_capacity(&mut self.row_residuals, rows, "the row residuals")
     }
 
     /// The options in use.
@@ -266,7 +270,7 @@ impl SolverWorkspace {
             Mass::Operator(operator) => operator,
         };
         match reuse {
-            Reuse::Nothing => self.dual.build(factor, problem),
+            Reuse::Nothing => self.dual.build(factor, problem)?,
             Reuse::MassAndRows => self.dual.update_force(factor, problem),
         }
         let limits = ActiveSetLimits {

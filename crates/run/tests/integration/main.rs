@@ -17,4 +17,5 @@ mod recording_rate;
 mod self_contact;
 mod skin;
 mod sparse_backend;
+mod stop_request;
 mod thigmotaxis;
