@@ -136,3 +136,17 @@ pub fn everything(dir: &Path) -> Vec<(PathBuf, Option<Vec<u8>>)> {
     entries.sort();
     entries
 }
+
+/// Number of lines of a file (0 if it does not exist yet).
+pub fn line_count(path: &Path) -> usize {
+    std::fs::read_to_string(path).map_or(0, |t| t.lines().count())
+}
+
+/// Waits until the run in `dir` has recorded `frames` frames after frame 0 (at most 120 s).
+pub fn wait_for_frames(dir: &Path, frames: usize) {
+    let started = std::time::Instant::now();
+    while line_count(&dir.join("metrics.csv")) < 1 + frames {
+        assert!(started.elapsed() < std::time::Duration::from_secs(120), "no frames after 120 s");
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+}
