@@ -86,7 +86,8 @@ fn bench_contact_solve(
             for _ in 0..iterations {
                 run_to_rows(step, data, controller);
                 let start = Instant::now();
-                pipeline::solve_and_resolve(model, options, state, data).expect("solve");
+                pipeline::solve_and_resolve(model, options, state, data, Default::default())
+                    .expect("solve");
                 total += start.elapsed();
             }
             total

@@ -167,6 +167,9 @@ impl<T> InStep<T> for Result<T, GeometryError> {
 
 impl<T> InStep<T> for Result<T, SolverError> {
     fn in_step(self, StepAt { step, time }: StepAt) -> Result<T, SimError> {
-        self.map_err(|source| SimError::Solver { step, time, source })
+        self.map_err(|source| match source {
+            SolverError::Stopped => SimError::Stopped { step, time },
+            source => SimError::Solver { step, time, source },
+        })
     }
 }

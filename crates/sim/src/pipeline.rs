@@ -192,7 +192,7 @@ pub fn step(
     build_rows(model, options, state, data);
     clock.lap(Stage::BuildRows);
     stop.check(at)?;
-    solve_and_resolve(model, options, state, data).in_step(at)?;
+    solve_and_resolve(model, options, state, data, stop).in_step(at)?;
     require_solved(data, at)?;
     clock.lap(Stage::Solve);
     stop.check(at)?;
@@ -267,17 +267,19 @@ fn max_or_nan(values: impl Iterator<Item = f64>) -> f64 {
 /// factor of M̃ and the contact-space matrices (one [`hagfish_solver::Factored`] handle);
 /// limit rows added for overshooting joints start a new one. If raised contact bounds leave
 /// the last solve without a solution, the step is solved once more with the first-order
-/// bounds (the rows' own right-hand sides, which the prediction never changes).
+/// bounds (the rows' own right-hand sides, which the prediction never changes). Every solve
+/// polls `stop` ([`hagfish_solver::SolverError::Stopped`] once it is set).
 pub fn solve_and_resolve(
     model: &Model,
     options: &StepOptions,
     state: &State,
     data: &mut StepData,
+    stop: StopRequest<'_>,
 ) -> Result<(), hagfish_solver::SolverError> {
     // M̃ leaves the tree's data while a factor borrows it, so that the velocity-product
     // refresh can write the rest of that data between solves (two buffer swaps, no copy).
     std::mem::swap(&mut data.tree.effective_mass, &mut data.effective_mass);
-    let solved = solve_with_resolves(model, options, state, data);
+    let solved = solve_with_resolves(model, options, state, data, stop);
     std::mem::swap(&mut data.tree.effective_mass, &mut data.effective_mass);
     solved
 }
@@ -288,6 +290,7 @@ fn solve_with_resolves(
     options: &StepOptions,
     state: &State,
     data: &mut StepData,
+    stop: StopRequest<'_>,
 ) -> Result<(), hagfish_solver::SolverError> {
     let StepData {
         tree,
@@ -309,7 +312,7 @@ fn solve_with_resolves(
     let mut round = 0;
     loop {
         let mass = backend::mass(effective_mass, tree_factor)?;
-        let mut factored = solver.factor(mass, rows)?;
+        let mut factored = solver.factor(mass, rows)?.stop_when(stop.flag());
         report.solve = *factored.solve(&tree.effective_momentum, bounds)?;
         let mut overshooting = false;
         while round < MAX_RESOLVES {
@@ -354,7 +357,8 @@ fn solve_with_resolves(
         // The raised bounds left no solution: solve with the first-order bounds instead.
         report.predicted_contact_rows = 0;
         let mass = backend::mass(effective_mass, tree_factor)?;
-        report.solve = *solver.factor(mass, rows)?.solve(&tree.effective_momentum, rows.rhs())?;
+        let mut factored = solver.factor(mass, rows)?.stop_when(stop.flag());
+        report.solve = *factored.solve(&tree.effective_momentum, rows.rhs())?;
     }
     Ok(())
 }

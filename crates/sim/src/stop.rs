@@ -17,6 +17,12 @@ impl<'a> StopRequest<'a> {
         Self(flag)
     }
 
+    /// The flag, for the solver to poll within a solve
+    /// ([`hagfish_solver::Factored::stop_when`]).
+    pub fn flag(self) -> Option<&'a AtomicBool> {
+        self.0
+    }
+
     /// Whether the stop was asked for.
     pub fn requested(self) -> bool {
         self.0.is_some_and(|flag| flag.load(Ordering::Relaxed))

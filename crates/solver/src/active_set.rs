@@ -38,6 +38,8 @@
 //! the equalities contradict each other. Warm start: any λ inside the box is a valid start; the
 //! previous step's λ (clamped) puts the previous contacts straight into F.
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use faer::MatRef;
 
 mod release;
@@ -79,11 +81,13 @@ enum Join {
 
 /// Limits of one active-set run.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct ActiveSetLimits {
+pub(crate) struct ActiveSetLimits<'a> {
     /// Maximum number of subproblem solves.
     pub(crate) max_iterations: usize,
     /// Relative release threshold τ.
     pub(crate) release_tolerance: f64,
+    /// Once set, the run ends before its next iteration ([`Termination::Stopped`]).
+    pub(crate) stop: Option<&'a AtomicBool>,
 }
 
 /// Why an active-set run stopped.
@@ -95,6 +99,8 @@ pub(crate) enum Termination {
     MaxIterations,
     /// A Farkas ray: the hard rows are infeasible.
     Infeasible,
+    /// The stop flag of [`ActiveSetLimits`] was set; λ is the last iterate.
+    Stopped,
 }
 
 /// How an active-set run ended and after how many subproblem solves.
@@ -170,7 +176,7 @@ impl ActiveSet {
         dual: &ContactSpace,
         kinds: &[RowKind],
         lambda: &mut [f64],
-        limits: ActiveSetLimits,
+        limits: ActiveSetLimits<'_>,
     ) -> ActiveSetOutcome {
         let end = |iterations, termination| ActiveSetOutcome { iterations, termination };
         self.start(dual, kinds, lambda);
@@ -185,11 +191,14 @@ impl ActiveSet {
         &mut self,
         dual: &ContactSpace,
         lambda: &mut [f64],
-        limits: ActiveSetLimits,
+        limits: ActiveSetLimits<'_>,
     ) -> ActiveSetOutcome {
         let end = |iterations, termination| ActiveSetOutcome { iterations, termination };
         let mut released = None;
         for iteration in 1..=limits.max_iterations {
+            if limits.stop.is_some_and(|flag| flag.load(Ordering::Relaxed)) {
+                return end(iteration - 1, Termination::Stopped);
+            }
             self.solve_subproblem(dual);
             if let Some((row, alpha)) = self.step_to_subproblem_minimum(lambda) {
                 // A row released and blocked again without moving made no progress.

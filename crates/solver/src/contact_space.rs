@@ -128,7 +128,9 @@ impl ContactSpace {
         for (k, &i) in self.order.iter().enumerate() {
             self.sorted.col_as_slice_mut(k).copy_from_slice(rows.row(i));
         }
+        problem.check_stop()?;
         factor.solve_lower_supported(self.sorted.as_mut(), &self.sorted_support);
+        problem.check_stop()?;
         self.y.resize_with(n, m, |_, _| 0.0);
         for (k, &i) in self.order.iter().enumerate() {
             self.y.col_as_slice_mut(i).copy_from_slice(self.sorted.col_as_slice(k));
@@ -139,6 +141,7 @@ impl ContactSpace {
         self.w.resize_with(m, m, |_, _| 0.0);
         self.sorted_w.resize_with(m, m, |_, _| 0.0);
         for a in (0..m).step_by(W_BLOCK) {
+            problem.check_stop()?;
             let b = (a + W_BLOCK).min(m);
             let rows_used = self.sorted_support[a];
             let left = self.sorted.as_ref().submatrix(0, 0, rows_used, b);

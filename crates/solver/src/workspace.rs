@@ -27,6 +27,8 @@
 //! All buffers live here and only grow, so repeated solves of the same size do not allocate
 //! (the clarabel backend excepted).
 
+use std::sync::atomic::AtomicBool;
+
 use faer::Mat;
 
 use crate::active_set::{ActiveSet, ActiveSetLimits, Termination};
@@ -217,6 +219,7 @@ impl SolverWorkspace {
             residuals: evaluation.residuals,
             slack: evaluation.slack,
         };
+        problem.check_stop()?;
         self.collect_impulses(problem);
         Ok(&self.report)
     }
@@ -276,12 +279,14 @@ impl SolverWorkspace {
         let limits = ActiveSetLimits {
             max_iterations: self.options.max_iterations,
             release_tolerance: self.options.release_tolerance,
+            stop: problem.stop(),
         };
         let mut outcome =
             self.active.solve(&self.dual, problem.rows().kinds(), &mut self.multipliers, limits);
         let mut iterations = outcome.iterations;
         let mut refined = Refined { steps: 0, stationarity: None };
         for pass in 0..=VERIFICATION_PASSES {
+            problem.check_stop()?;
             self.dual.recover(factor, &self.multipliers, &mut self.velocity);
             let system = FactoredSystem {
                 problem,
@@ -320,6 +325,7 @@ impl SolverWorkspace {
             Termination::Optimal => SolveStatus::Solved,
             Termination::MaxIterations => SolveStatus::MaxIterations,
             Termination::Infeasible => SolveStatus::Infeasible,
+            Termination::Stopped => return Err(SolverError::Stopped),
         };
         Ok((status, iterations, refined))
     }
@@ -400,7 +406,16 @@ pub struct Factored<'a> {
     solved: bool,
 }
 
-impl Factored<'_> {
+impl<'a> Factored<'a> {
+    /// Ends every solve of this handle with [`SolverError::Stopped`] once `flag` is set (polled
+    /// between the blocks of W = YᵀY and the active set's iterations): a stop asked for by a
+    /// signal does not wait for a solve of a huge body.
+    #[must_use]
+    pub fn stop_when(mut self, flag: Option<&'a AtomicBool>) -> Self {
+        self.problem = self.problem.stopping_when(flag);
+        self
+    }
+
     /// Solves with f̃ = `force` (length n) and b = `rhs` (one per row, in row order); errors
     /// on a size mismatch or a non-finite value, or when M̃ is not positive definite.
     pub fn solve(&mut self, force: &[f64], rhs: &[f64]) -> Result<&SolveReport, SolverError> {
