@@ -150,3 +150,14 @@ pub fn wait_for_frames(dir: &Path, frames: usize) {
         std::thread::sleep(std::time::Duration::from_millis(5));
     }
 }
+
+/// Asserts that `output` is of a run stopped by SIGTERM (exit 130, the message) whose
+/// directory `dir` says `interrupted`; returns its frames.
+pub fn stopped_by_sigterm(output: &Output, dir: &Path) -> u64 {
+    let (code, stderr) = code_and_stderr(output);
+    assert_eq!(code, Some(130), "{stderr}");
+    assert!(stderr.contains("interrupted by a signal after"), "{stderr}");
+    let stopped = manifest(dir);
+    assert_eq!(stopped["status"], "interrupted");
+    stopped["frames"].as_u64().expect("frames")
+}

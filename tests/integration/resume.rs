@@ -14,7 +14,7 @@ use std::sync::OnceLock;
 
 use crate::common::{
     ROOT, code_and_stderr, complete_rows, csv_rows, frames_of, fresh_dir, hagfish, manifest,
-    run_hagfish, terminate, wait_for_frames,
+    run_hagfish, stopped_by_sigterm, terminate, wait_for_frames,
 };
 
 const OUTPUTS: [&str; 7] = [
@@ -198,12 +198,7 @@ fn sigterm_stops_after_a_frame_with_a_resumable_run() {
     wait_for_frames(&dir, 100);
     terminate(&child);
     let output = child.wait_with_output().expect("the run ends");
-    let (code, stderr) = code_and_stderr(&output);
-    assert_eq!(code, Some(130), "{stderr}");
-    assert!(stderr.contains("interrupted by a signal after"), "{stderr}");
-    let stopped = manifest(&dir);
-    assert_eq!(stopped["status"], "interrupted");
-    let frames = stopped["frames"].as_u64().expect("frames");
+    let frames = stopped_by_sigterm(&output, &dir);
     // 100 frames were on disk when the signal was sent; the run finishes the frame it is in
     // (or none, if the signal arrived between a frame's rows and the check after it) and
     // stops before the last of its 301.
