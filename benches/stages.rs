@@ -86,7 +86,8 @@ fn bench_contact_solve(
             for _ in 0..iterations {
                 run_to_rows(step, data, controller);
                 let start = Instant::now();
-                pipeline::solve_and_resolve(model, options, state, data).expect("solve");
+                pipeline::solve_and_resolve(model, options, state, data, Default::default())
+                    .expect("solve");
                 total += start.elapsed();
             }
             total
@@ -126,7 +127,8 @@ fn stages(c: &mut Criterion) {
     });
     bench_contact_solve(&mut group, step, &mut data, &mut drag);
     run_to_rows(step, &mut data, &mut drag);
-    pipeline::solve_and_resolve(model, options, &state, &mut data).expect("solve");
+    pipeline::solve_and_resolve(model, options, &state, &mut data, Default::default())
+        .expect("solve");
     group.bench_function("internal_forces", |b| {
         b.iter(|| pipeline::internal_forces(model, options, &state, &mut data))
     });

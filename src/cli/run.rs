@@ -61,9 +61,10 @@ pub struct RunArgs {
 
 /// Runs or resumes, then prints the summary. A diverged run is an error (exit code 3) after
 /// its outputs, checkpoint and manifest are written; so is a run stopped by SIGINT or SIGTERM
-/// (exit code 130): while stepping it stops after the step being taken, resumable from its
-/// last frame; while the pictures and report are written it exits at once (the run itself is
-/// complete and recorded; `hagfish render` and `hagfish report` write them again).
+/// (exit code 130): while stepping it stops at the next stage boundary of the step being taken
+/// (abandoning that step: `hagfish_sim::StopRequest`), resumable from its last frame; while
+/// the pictures and report are written it exits at once (the run itself is complete and
+/// recorded; `hagfish render` and `hagfish report` write them again).
 pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let overrides = overrides(args)?;
     let (source, directory, existing) = match (&args.resume, &args.scenario, &args.out) {

@@ -136,3 +136,28 @@ pub fn everything(dir: &Path) -> Vec<(PathBuf, Option<Vec<u8>>)> {
     entries.sort();
     entries
 }
+
+/// Number of lines of a file (0 if it does not exist yet).
+pub fn line_count(path: &Path) -> usize {
+    std::fs::read_to_string(path).map_or(0, |t| t.lines().count())
+}
+
+/// Waits until the run in `dir` has recorded `frames` frames after frame 0 (at most 120 s).
+pub fn wait_for_frames(dir: &Path, frames: usize) {
+    let started = std::time::Instant::now();
+    while line_count(&dir.join("metrics.csv")) < 1 + frames {
+        assert!(started.elapsed() < std::time::Duration::from_secs(120), "no frames after 120 s");
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+}
+
+/// Asserts that `output` is of a run stopped by SIGTERM (exit 130, the message) whose
+/// directory `dir` says `interrupted`; returns its frames.
+pub fn stopped_by_sigterm(output: &Output, dir: &Path) -> u64 {
+    let (code, stderr) = code_and_stderr(output);
+    assert_eq!(code, Some(130), "{stderr}");
+    assert!(stderr.contains("interrupted by a signal after"), "{stderr}");
+    let stopped = manifest(dir);
+    assert_eq!(stopped["status"], "interrupted");
+    stopped["frames"].as_u64().expect("frames")
+}

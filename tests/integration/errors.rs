@@ -50,7 +50,7 @@ macro_rules! user_error {
 
 user_error!(syntax_error, "duration_s: 1.5," => "duration_s: 1.5", "8:5", "Expected comma");
 user_error!(unknown_field, "record_every_s" => "record_evry_s", "8:5",
-    "unknown field `record_evry_s`, expected one of: name, body, time_step_s, duration_s, end_after_phases, record_every_s, observe_every_s, drag, initial_shape, skin, phases");
+    "unknown field `record_evry_s`, expected one of: name, body, time_step_s, duration_s, end_after_phases, record_every_s, observe_every_s, drag, initial_shape, skin, phases, backend, acceptance");
 user_error!(wrong_type, "time_step_s: 0.01" => "time_step_s: \"fast\"", "6:17", "Expected float");
 user_error!(negative_time_step, "time_step_s: 0.01" => "time_step_s: -0.01", "6:18",
     "time_step_s = -0.01 is out of range: expected finite and ≥ 1e-6");

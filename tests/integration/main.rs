@@ -10,6 +10,7 @@ mod commands;
 mod errors;
 mod export_command;
 mod hostile_inputs;
+mod huge_bodies;
 mod knot_core;
 mod knot_size;
 mod modes_command;

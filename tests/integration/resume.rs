@@ -11,11 +11,10 @@
 
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
-use std::time::{Duration, Instant};
 
 use crate::common::{
     ROOT, code_and_stderr, complete_rows, csv_rows, frames_of, fresh_dir, hagfish, manifest,
-    run_hagfish, terminate,
+    run_hagfish, stopped_by_sigterm, terminate, wait_for_frames,
 };
 
 const OUTPUTS: [&str; 7] = [
@@ -120,11 +119,6 @@ fn assert_frame_major(frames: &[usize], per_frame: usize, file: &str) {
     assert_eq!(frames, expected, "{file}: whole frames in order, the last possibly cut");
 }
 
-/// Number of lines of a file (0 if it does not exist yet).
-fn line_count(path: &Path) -> usize {
-    std::fs::read_to_string(path).map_or(0, |t| t.lines().count())
-}
-
 #[test]
 fn a_killed_run_keeps_whole_frames_and_resumes_bit_for_bit() {
     let dir = fresh_dir("resume_killed");
@@ -204,12 +198,7 @@ fn sigterm_stops_after_a_frame_with_a_resumable_run() {
     wait_for_frames(&dir, 100);
     terminate(&child);
     let output = child.wait_with_output().expect("the run ends");
-    let (code, stderr) = code_and_stderr(&output);
-    assert_eq!(code, Some(130), "{stderr}");
-    assert!(stderr.contains("interrupted by a signal after"), "{stderr}");
-    let stopped = manifest(&dir);
-    assert_eq!(stopped["status"], "interrupted");
-    let frames = stopped["frames"].as_u64().expect("frames");
+    let frames = stopped_by_sigterm(&output, &dir);
     // 100 frames were on disk when the signal was sent; the run finishes the frame it is in
     // (or none, if the signal arrived between a frame's rows and the check after it) and
     // stops before the last of its 301.
@@ -218,13 +207,4 @@ fn sigterm_stops_after_a_frame_with_a_resumable_run() {
 
     resume(&dir);
     assert_same_as_straight(&dir);
-}
-
-/// Waits until the run in `dir` has recorded `frames` frames after frame 0 (at most 120 s).
-fn wait_for_frames(dir: &Path, frames: usize) {
-    let started = Instant::now();
-    while line_count(&dir.join("metrics.csv")) < 1 + frames {
-        assert!(started.elapsed() < Duration::from_secs(120), "no frames after 120 s");
-        std::thread::sleep(Duration::from_millis(5));
-    }
 }

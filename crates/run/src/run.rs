@@ -11,7 +11,7 @@ use hagfish_knots::{KnotAnalyser, KnotOptions, KnotReport};
 use hagfish_scenario::{LoadedScenario, Scenario};
 use hagfish_sim::rows::RowGroup;
 use hagfish_sim::{
-    DofLabel, IntervalMaxima, SimError, StageTimings, StepOutcome, StepTally, World,
+    DofLabel, IntervalMaxima, SimError, StageTimings, StepOutcome, StepTally, StopRequest, World,
     dof_arc_lengths, dof_labels,
 };
 use hagfish_tree::State;
@@ -91,8 +91,10 @@ pub struct RunOptions<'a> {
     pub resume: Option<&'a Checkpoint>,
     /// Stop once the frame with this index has been recorded (before the scenario's end).
     pub stop_after_frame: Option<usize>,
-    /// Stop once this flag is set (by a signal handler): checked after every step, so a run
-    /// stops within one step; the checkpoint is that of the last recorded frame.
+    /// Stop once this flag is set (by a signal handler): polled between the stages of every
+    /// step ([`StopRequest`]), so a run stops within one stage, abandoning the step being taken
+    /// (its state stays at the step's start); the checkpoint is that of the last recorded
+    /// frame.
     pub stop: Option<&'a AtomicBool>,
     /// The most steps the run may take (`None`: [`DEFAULT_MAX_STEPS`]); a scenario that needs
     /// more is refused before it starts.
@@ -288,13 +290,17 @@ fn stepping(
                 || next.is_multiple_of(record_every)
                 || next.is_multiple_of(observe_every),
         );
-        match world.advance(&mut controller, &mut recording.tally) {
+        let stop = StopRequest::new(options.stop);
+        match world.advance(&mut controller, &mut recording.tally, stop) {
             StepOutcome::Accepted => {}
             StepOutcome::ResolvedContacts => summary.resolved_steps += 1,
             StepOutcome::Substeps { divisions } => {
                 summary.substepped_steps += 1;
                 summary.max_substeps = summary.max_substeps.max(divisions);
             }
+            // Abandoned at a stage boundary: the state is the step's start, the checkpoint
+            // that of the last frame.
+            StepOutcome::Stopped => break RunEnd::Interrupted,
             StepOutcome::Failed(error) => {
                 let at = Box::new(recording.checkpoint(&world, &controller, &summary));
                 break RunEnd::Diverged { error, at };

@@ -14,11 +14,12 @@ pub enum SimError {
     /// The sparse backend cannot take the model.
     #[error("sparse backend: {0}")]
     Sparse(#[from] hagfish_sparse::SparseError),
-    /// The step buffers of the body would not fit in the memory available
-    /// (`memory.rs` explains the estimate).
+    /// The step buffers of the body would not fit in the memory the process may still
+    /// allocate (`memory.rs` explains the estimate and the bounds).
     #[error(
-        "a body of {bodies} bodies ({dofs} DOFs) needs about {} MB for its step buffers, and \
-         {} MB are available: use fewer bodies (the buffers grow as the square of the DOFs)",
+        "a body of {bodies} bodies ({dofs} DOFs) needs about {} MB for its step buffers (the \
+         memory of every step), and {} MB may be allocated under {bound}: use fewer bodies \
+         (the buffers grow {growth}) or raise that limit",
         needed / 1_000_000,
         available / 1_000_000
     )]
@@ -31,6 +32,28 @@ pub enum SimError {
         needed: u64,
         /// Available memory (bytes).
         available: u64,
+        /// The bound that gives `available`.
+        bound: crate::memory::MemoryBound,
+        /// How the buffers grow with the body, on its backend.
+        growth: &'static str,
+    },
+    /// A step buffer could not be allocated although the estimate fit (a limit it does not
+    /// see, or memory taken meanwhile): an error before the first step, not an abort.
+    #[error("allocating the step buffers of a body of {bodies} bodies: {source}")]
+    Allocation {
+        /// Bodies of the model.
+        bodies: usize,
+        /// The buffer that could not be allocated.
+        source: SolverError,
+    },
+    /// A stop was asked for ([`crate::StopRequest`]) while the step was being taken: it was
+    /// abandoned at a stage boundary and the state left at its start.
+    #[error("step {step} (t = {time} s): stopped on request before its end")]
+    Stopped {
+        /// Step index.
+        step: u64,
+        /// Simulation time at the step's start (s).
+        time: f64,
     },
     /// The controller could not return to a saved state (a retried step, a resume).
     #[error("controller: {0}")]
@@ -144,6 +167,9 @@ impl<T> InStep<T> for Result<T, GeometryError> {
 
 impl<T> InStep<T> for Result<T, SolverError> {
     fn in_step(self, StepAt { step, time }: StepAt) -> Result<T, SimError> {
-        self.map_err(|source| SimError::Solver { step, time, source })
+        self.map_err(|source| match source {
+            SolverError::Stopped => SimError::Stopped { step, time },
+            source => SimError::Solver { step, time, source },
+        })
     }
 }

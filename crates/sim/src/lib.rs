@@ -54,6 +54,7 @@ mod retry;
 pub mod rows;
 pub mod skin;
 mod step_data;
+mod stop;
 mod world;
 
 pub use acceptance::{EndOfStep, Rejection, StepAcceptance};
@@ -65,10 +66,13 @@ pub use forces::{
 pub use hash::{fnv1a64, state_hash};
 pub use internal_forces::{InternalForces, JointLoad};
 pub use maxima::IntervalMaxima;
-pub use memory::{available_memory, check_memory, step_memory_estimate};
+pub use memory::{
+    MemoryBound, MemoryHeadroom, available_memory, check_memory, step_memory_estimate,
+};
 pub use options::{FINEST_RESOLVED_CHAIN, RESOLVED_CLUSTER_BODIES, StepOptions};
 pub use report::{Stage, StageTimings, StepReport};
 pub use retry::{Attempt, ContactResolution, RetryableController, StepOutcome, StepTally};
 pub use skin::{ContactSkin, SkinLayer};
 pub use step_data::StepData;
+pub use stop::StopRequest;
 pub use world::World;

@@ -31,6 +31,7 @@ use crate::rows::{
     add_thigmo_rows, add_wall_rows, overshoots_limit,
 };
 use crate::step_data::StepData;
+use crate::stop::StopRequest;
 
 /// Cap on the extra solves of one step (velocity-product refreshes and limit rows added for
 /// overshooting joints).
@@ -160,23 +161,26 @@ fn refresh_velocity_products(
 }
 
 /// Runs one whole step and advances `state` (see the module docs for the stages). On error the
-/// state is left as it was.
+/// state is left as it was; `stop` is polled between the stages, and once it is set the step
+/// ends with [`SimError::Stopped`] (the caller restores the state, as for any error).
 pub fn step(
     model: &Model,
     options: &StepOptions,
     state: &mut State,
-    step_index: u64,
+    (step_index, stop): (u64, StopRequest<'_>),
     data: &mut StepData,
     controller: &mut dyn Controller,
 ) -> Result<(), SimError> {
     let at = StepAt { step: step_index, time: state.t };
     state.validate(model).in_step(at)?;
+    stop.check(at)?;
     data.report = StepReport { step: step_index, time: state.t, ..StepReport::default() };
     let mut clock = StageClock::start();
     if data.take_over_carried() == Carried::Stale {
         kinematics(model, state, data);
         clock.lap(Stage::Kinematics);
         data.report.detection = detect_contacts(model, options, data).in_step(at)?;
+        stop.check(at)?;
     }
     measure_penetration(data);
     clock.lap(Stage::DetectContacts);
@@ -184,17 +188,21 @@ pub fn step(
     clock.lap(Stage::Control);
     dynamics(model, options, state, data);
     clock.lap(Stage::Dynamics);
+    stop.check(at)?;
     build_rows(model, options, state, data);
     clock.lap(Stage::BuildRows);
-    solve_and_resolve(model, options, state, data).in_step(at)?;
+    stop.check(at)?;
+    solve_and_resolve(model, options, state, data, stop).in_step(at)?;
     require_solved(data, at)?;
     clock.lap(Stage::Solve);
+    stop.check(at)?;
     if data.internal_forces_due {
         internal_forces(model, options, state, data);
     }
     clock.lap(Stage::InternalForces);
     hagfish_tree::integrate(state, data.solver.velocity(), options.time_step).in_step(at)?;
     clock.lap(Stage::Integrate);
+    stop.check(at)?;
     let end = check_result(model, options, state, data).in_step(at)?;
     clock.lap(Stage::Check);
     data.report.timings = clock.timings();
@@ -259,17 +267,19 @@ fn max_or_nan(values: impl Iterator<Item = f64>) -> f64 {
 /// factor of M̃ and the contact-space matrices (one [`hagfish_solver::Factored`] handle);
 /// limit rows added for overshooting joints start a new one. If raised contact bounds leave
 /// the last solve without a solution, the step is solved once more with the first-order
-/// bounds (the rows' own right-hand sides, which the prediction never changes).
+/// bounds (the rows' own right-hand sides, which the prediction never changes). Every solve
+/// polls `stop` ([`hagfish_solver::SolverError::Stopped`] once it is set).
 pub fn solve_and_resolve(
     model: &Model,
     options: &StepOptions,
     state: &State,
     data: &mut StepData,
+    stop: StopRequest<'_>,
 ) -> Result<(), hagfish_solver::SolverError> {
     // M̃ leaves the tree's data while a factor borrows it, so that the velocity-product
     // refresh can write the rest of that data between solves (two buffer swaps, no copy).
     std::mem::swap(&mut data.tree.effective_mass, &mut data.effective_mass);
-    let solved = solve_with_resolves(model, options, state, data);
+    let solved = solve_with_resolves(model, options, state, data, stop);
     std::mem::swap(&mut data.tree.effective_mass, &mut data.effective_mass);
     solved
 }
@@ -280,6 +290,7 @@ fn solve_with_resolves(
     options: &StepOptions,
     state: &State,
     data: &mut StepData,
+    stop: StopRequest<'_>,
 ) -> Result<(), hagfish_solver::SolverError> {
     let StepData {
         tree,
@@ -301,7 +312,7 @@ fn solve_with_resolves(
     let mut round = 0;
     loop {
         let mass = backend::mass(effective_mass, tree_factor)?;
-        let mut factored = solver.factor(mass, rows)?;
+        let mut factored = solver.factor(mass, rows)?.stop_when(stop.flag());
         report.solve = *factored.solve(&tree.effective_momentum, bounds)?;
         let mut overshooting = false;
         while round < MAX_RESOLVES {
@@ -346,7 +357,8 @@ fn solve_with_resolves(
         // The raised bounds left no solution: solve with the first-order bounds instead.
         report.predicted_contact_rows = 0;
         let mass = backend::mass(effective_mass, tree_factor)?;
-        report.solve = *solver.factor(mass, rows)?.solve(&tree.effective_momentum, rows.rhs())?;
+        let mut factored = solver.factor(mass, rows)?.stop_when(stop.flag());
+        report.solve = *factored.solve(&tree.effective_momentum, rows.rhs())?;
     }
     Ok(())
 }

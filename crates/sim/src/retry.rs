@@ -24,6 +24,7 @@ use crate::error::SimError;
 use crate::forces::GroupForces;
 use crate::maxima::IntervalMaxima;
 use crate::report::{StageTimings, StepReport};
+use crate::stop::StopRequest;
 use crate::world::World;
 
 /// How a step of h was taken, or why it could not be.
@@ -43,6 +44,10 @@ pub enum StepOutcome {
     /// error is the whole step's, with the last division's when substeps were tried
     /// ([`SimError::StepFailedWithSubsteps`]).
     Failed(SimError),
+    /// Not taken: the stop asked for by [`World::advance`]'s [`StopRequest`] ended it at a
+    /// stage boundary (of the whole step or of a retry). The state and the controller are
+    /// the step's start.
+    Stopped,
 }
 
 /// One attempt at (part of) a step: its length and the resolution of its self contacts.
@@ -109,18 +114,32 @@ pub struct StepTally {
 impl World {
     /// Takes one step of h, retrying it as the module docs draw, and adds it to `tally` once
     /// taken. Every attempt after the first starts from the step's start (state and
-    /// `controller`); a failed step leaves both there.
+    /// `controller`); a failed step leaves both there, and so does a step that `stop` ends
+    /// (polled between the stages of every attempt: [`StepOutcome::Stopped`]).
     pub fn advance<C: RetryableController>(
         &mut self,
         controller: &mut C,
         tally: &mut StepTally,
+        stop: StopRequest<'_>,
     ) -> StepOutcome {
         let saved = controller.snapshot();
-        let first = match self.whole_step(controller, ContactResolution::BodyRelative, tally) {
+        let first = match self.whole_step(controller, ContactResolution::BodyRelative, tally, stop)
+        {
             Ok(()) => return StepOutcome::Accepted,
             Err(error) => error,
         };
-        let outcome = self.retry(controller, &saved, first, tally);
+        let outcome = match first {
+            SimError::Stopped { .. } => StepOutcome::Stopped,
+            first => self.retry(controller, &saved, first, (tally, stop)),
+        };
+        let outcome = match outcome {
+            // The controller ran in the abandoned attempt: back to the step's start.
+            StepOutcome::Stopped => match controller.restore(&saved) {
+                Ok(()) => StepOutcome::Stopped,
+                Err(error) => StepOutcome::Failed(error.into()),
+            },
+            outcome => outcome,
+        };
         match self.set_contact_resolution(ContactResolution::BodyRelative) {
             Ok(_) => outcome,
             Err(error) => StepOutcome::Failed(error),
@@ -134,7 +153,7 @@ impl World {
         controller: &mut C,
         saved: &C::Snapshot,
         first: SimError,
-        tally: &mut StepTally,
+        (tally, stop): (&mut StepTally, StopRequest<'_>),
     ) -> StepOutcome {
         let resolved = if self.options().acceptance.resolve_contacts {
             match self.set_contact_resolution(ContactResolution::Chain) {
@@ -150,12 +169,15 @@ impl World {
             if let Err(error) = controller.restore(saved) {
                 return StepOutcome::Failed(error.into());
             }
-            if self.whole_step(controller, contacts, tally).is_ok() {
-                return StepOutcome::ResolvedContacts;
+            match self.whole_step(controller, contacts, tally, stop) {
+                Ok(()) => return StepOutcome::ResolvedContacts,
+                Err(SimError::Stopped { .. }) => return StepOutcome::Stopped,
+                Err(_) => {}
             }
         }
-        match self.subdivide(controller, saved, contacts, first, tally) {
+        match self.subdivide(controller, saved, (contacts, first), tally, stop) {
             Ok(divisions) => StepOutcome::Substeps { divisions },
+            Err(SimError::Stopped { .. }) => StepOutcome::Stopped,
             Err(error) => StepOutcome::Failed(error),
         }
     }
@@ -166,9 +188,10 @@ impl World {
         controller: &mut C,
         contacts: ContactResolution,
         tally: &mut StepTally,
+        stop: StopRequest<'_>,
     ) -> Result<(), SimError> {
         let attempt = Attempt { time_step: self.options().time_step, contacts };
-        let report = *self.attempt(controller, attempt)?;
+        let report = *self.attempt_until(controller, attempt, stop)?;
         self.count_step();
         tally.last_report = report;
         tally.forces.add_step(self.data(), self.model().dof_count());
@@ -179,14 +202,15 @@ impl World {
 
     /// The step as 2, 4, … 2^k substeps (k = `acceptance.max_halvings`) from the same start
     /// (state, and controller `saved`), the first division whose substeps are all accepted;
-    /// `first` is the whole step's error, reported if none is. Returns the divisions.
+    /// `first` is the whole step's error, reported if none is. Returns the divisions; a stop
+    /// (`stop`) ends it with [`SimError::Stopped`] and the state at the step's start.
     fn subdivide<C: RetryableController>(
         &mut self,
         controller: &mut C,
         saved: &C::Snapshot,
-        contacts: ContactResolution,
-        first: SimError,
+        (contacts, first): (ContactResolution, SimError),
         tally: &mut StepTally,
+        stop: StopRequest<'_>,
     ) -> Result<u32, SimError> {
         let dofs = self.model().dof_count();
         let h = self.options().time_step;
@@ -198,7 +222,7 @@ impl World {
             tally.division_forces.clear();
             tally.division_maxima = IntervalMaxima::default();
             let attempt = Attempt { time_step: h / f64::from(divisions), contacts };
-            match self.substeps(controller, attempt, divisions, tally) {
+            match self.substeps(controller, attempt, divisions, (tally, stop)) {
                 Ok(()) => {
                     self.count_step();
                     tally.division_forces.count_as_one_step();
@@ -208,6 +232,9 @@ impl World {
                 }
                 Err(error) => {
                     self.set_state(start.clone())?;
+                    if let SimError::Stopped { .. } = error {
+                        return Err(error);
+                    }
                     last = Some((divisions, error));
                 }
             }
@@ -231,11 +258,11 @@ impl World {
         controller: &mut C,
         attempt: Attempt,
         divisions: u32,
-        tally: &mut StepTally,
+        (tally, stop): (&mut StepTally, StopRequest<'_>),
     ) -> Result<(), SimError> {
         let dofs = self.model().dof_count();
         for _ in 0..divisions {
-            let report = *self.attempt(controller, attempt)?;
+            let report = *self.attempt_until(controller, attempt, stop)?;
             tally.last_report = report;
             tally.division_forces.add_impulses(self.data(), dofs);
             tally.division_maxima.include(&report, self.max_limit_excess());

@@ -7,7 +7,7 @@ use hagfish_geometry::{
     Centreline, ContactDetector, DetectionReport, PAIRS_PER_BODY, SelfContact, Wall, WallContact,
     WallOptions,
 };
-use hagfish_solver::{Rows, SolverWorkspace};
+use hagfish_solver::{Rows, SolverError, SolverWorkspace};
 use hagfish_sparse::TreeFactor;
 use hagfish_tree::{Data, Model, State, position_kinematics};
 
@@ -38,6 +38,16 @@ pub(crate) fn row_reserve(model: &Model, backend: DynamicsBackend) -> usize {
         DynamicsBackend::DenseReduced => ROWS_PER_DOF * model.dof_count(),
         DynamicsBackend::SparseMaximal => SPARSE_ROW_RESERVE.min(ROWS_PER_DOF * model.dof_count()),
     }
+}
+
+/// An empty vector with room for `capacity` values, or the error naming `what`.
+fn try_vec<T>(capacity: usize, what: &str) -> Result<Vec<T>, SolverError> {
+    let mut buffer = Vec::new();
+    buffer.try_reserve_exact(capacity).map_err(|_| SolverError::Allocation {
+        what: format!("{what} ({capacity} × {} bytes)", size_of::<T>()),
+        bytes: (capacity as u64).saturating_mul(size_of::<T>() as u64),
+    })?;
+    Ok(buffer)
 }
 
 /// The per-step data of a [`crate::World`]: tree quantities, contact geometry, rows, solver
@@ -127,16 +137,22 @@ impl StepData {
             .map(|(point, normal)| wall_for(point, normal, options, &centres, &radii))
             .transpose()
             .map_err(geometry)?;
+        // The largest buffers (the rows, the contact-space matrices, the contact lists) are
+        // allocated fallibly: a limit the estimate missed is an error, not an abort.
+        let bodies = model.body_count();
+        let allocation = |source| SimError::Allocation { bodies, source };
         let mut solver = SolverWorkspace::new(options.solver);
         let reserve = row_reserve(model, options.backend);
-        solver.reserve(model.dof_count(), reserve);
+        solver.try_reserve(model.dof_count(), reserve).map_err(allocation)?;
+        let rows = Rows::try_with_capacity(model.dof_count(), reserve).map_err(allocation)?;
         let skin = SkinLayer::new(model);
         let predictor = ContactPredictor::new(model, &centreline, &skin);
-        let pairs = PAIRS_PER_BODY * model.body_count();
+        let pairs = PAIRS_PER_BODY * bodies;
+        let contacts = || try_vec(pairs, "the self contacts").map_err(allocation);
         let carried = CarriedContacts {
             centres: centres.clone(),
             centreline: centreline.clone(),
-            self_contacts: Vec::with_capacity(pairs),
+            self_contacts: contacts()?,
             wall_contacts: Vec::new(),
             detection: DetectionReport::default(),
             status: Carried::Stale,
@@ -144,10 +160,10 @@ impl StepData {
         Ok(Self {
             tree,
             centreline,
-            self_contacts: Vec::with_capacity(pairs),
+            self_contacts: contacts()?,
             wall_contacts: Vec::new(),
             actuation: Actuation::default(),
-            rows: Rows::with_capacity(model.dof_count(), reserve),
+            rows,
             solver,
             report: StepReport::default(),
             tree_factor: match options.backend {
@@ -165,7 +181,7 @@ impl StepData {
             modal_scratch: vec![0.0; model.dof_count()],
             velocity_guess: vec![0.0; model.dof_count()],
             effective_mass: Mat::zeros(0, 0),
-            bounds: Vec::with_capacity(reserve),
+            bounds: try_vec(reserve, "the rows' bounds").map_err(allocation)?,
             predictor,
             skin,
             carried,

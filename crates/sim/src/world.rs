@@ -9,6 +9,7 @@ use crate::pipeline;
 use crate::report::StepReport;
 use crate::retry::{Attempt, ContactResolution};
 use crate::step_data::StepData;
+use crate::stop::StopRequest;
 
 /// A simulated body with everything needed to step it. The model and options never change
 /// after construction; [`World::step`] advances the state and refills the data.
@@ -143,6 +144,17 @@ impl World {
         controller: &mut dyn Controller,
         attempt: Attempt,
     ) -> Result<&StepReport, SimError> {
+        self.attempt_until(controller, attempt, StopRequest::default())
+    }
+
+    /// [`World::attempt`], abandoned with [`SimError::Stopped`] (the state left as it was) at
+    /// the first stage boundary after `stop` is set.
+    pub(crate) fn attempt_until(
+        &mut self,
+        controller: &mut dyn Controller,
+        attempt: Attempt,
+        stop: StopRequest<'_>,
+    ) -> Result<&StepReport, SimError> {
         self.set_contact_resolution(attempt.contacts)?;
         // Field by field: the derived `State::clone_from` would allocate new vectors.
         self.start.t = self.state.t;
@@ -150,7 +162,8 @@ impl World {
         self.start.qdot.clone_from(&self.state.qdot);
         let result = if attempt.time_step == self.options.time_step {
             let (model, options) = (&self.model, &self.options);
-            pipeline::step(model, options, &mut self.state, self.steps, &mut self.data, controller)
+            let at = (self.steps, stop);
+            pipeline::step(model, options, &mut self.state, at, &mut self.data, controller)
         } else {
             // A substep corrects a penetration or a head error at the speed the whole step
             // would (β·d/h, not β·d/h_sub): pushed out over h_sub, a 2 % penetration left by the
@@ -164,7 +177,8 @@ impl World {
                 ..self.options.clone()
             };
             let model = &self.model;
-            pipeline::step(model, &options, &mut self.state, self.steps, &mut self.data, controller)
+            let at = (self.steps, stop);
+            pipeline::step(model, &options, &mut self.state, at, &mut self.data, controller)
         };
         if let Err(error) = result {
             std::mem::swap(&mut self.state, &mut self.start);

@@ -56,7 +56,7 @@ fn hagfish_step() -> (Mat<f64>, Vec<f64>, Rows) {
     let force: Vec<f64> =
         (0..DOFS).map(|i| (0..DOFS).map(|j| mass[(i, j)] * free[j]).sum()).collect();
     let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
-    let mut rows = Rows::with_capacity(DOFS, INEQUALITIES + 1);
+    let mut rows = Rows::try_with_capacity(DOFS, INEQUALITIES + 1).expect("room for the rows");
     rows.push_zeroed(RowKind::Equality, RowSource::new(RowTag::new(0), 0), target[0])[0] = 1.0;
     for k in 0..INEQUALITIES {
         let mut row = random_row(&mut rng, DOFS);

@@ -38,14 +38,17 @@
 //! the equalities contradict each other. Warm start: any λ inside the box is a valid start; the
 //! previous step's λ (clamped) puts the previous contacts straight into F.
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use faer::MatRef;
 
 mod release;
 mod verification;
 
 use crate::contact_space::ContactSpace;
+use crate::error::SolverError;
 use crate::free_set::FreeSet;
-use crate::linalg::zeroed;
+use crate::linalg::{try_capacity, zeroed};
 use crate::rows::RowKind;
 
 /// A row counts as linearly dependent on F when its pivot is below this fraction of Wᵢᵢ
@@ -78,11 +81,13 @@ enum Join {
 
 /// Limits of one active-set run.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct ActiveSetLimits {
+pub(crate) struct ActiveSetLimits<'a> {
     /// Maximum number of subproblem solves.
     pub(crate) max_iterations: usize,
     /// Relative release threshold τ.
     pub(crate) release_tolerance: f64,
+    /// Once set, the run ends before its next iteration ([`Termination::Stopped`]).
+    pub(crate) stop: Option<&'a AtomicBool>,
 }
 
 /// Why an active-set run stopped.
@@ -94,6 +99,8 @@ pub(crate) enum Termination {
     MaxIterations,
     /// A Farkas ray: the hard rows are infeasible.
     Infeasible,
+    /// The stop flag of [`ActiveSetLimits`] was set; λ is the last iterate.
+    Stopped,
 }
 
 /// How an active-set run ended and after how many subproblem solves.
@@ -133,8 +140,8 @@ pub(crate) struct ActiveSet {
 
 impl ActiveSet {
     /// Reserves room for problems of up to `dofs` velocities and `rows` rows.
-    pub(crate) fn reserve(&mut self, dofs: usize, rows: usize) {
-        self.bound.reserve(rows);
+    pub(crate) fn try_reserve(&mut self, dofs: usize, rows: usize) -> Result<(), SolverError> {
+        try_capacity(&mut self.bound, rows, "the active set's bounds")?;
         for buffer in [
             &mut self.lower,
             &mut self.upper,
@@ -144,14 +151,17 @@ impl ActiveSet {
             &mut self.gradient,
             &mut self.magnitude,
         ] {
-            buffer.reserve(rows);
+            try_capacity(buffer, rows, "an active-set row vector")?;
         }
-        self.ray.reserve(dofs);
-        self.lift.reserve(dofs);
+        try_capacity(&mut self.ray, dofs, "the active set's ray")?;
+        try_capacity(&mut self.lift, dofs, "the active set's lift")?;
+        self.free.try_reserve(rows)?;
         self.free.reset(rows);
-        self.saved.reserve(rows + 1);
-        self.implied.reserve(rows);
-        self.warm.reserve(rows);
+        try_capacity(&mut self.saved, rows + 1, "the active set's saved multipliers")?;
+        for buffer in [&mut self.implied, &mut self.warm] {
+            try_capacity(buffer, rows, "an active-set index")?;
+        }
+        Ok(())
     }
 
     /// The free rows and their factor at the end of the last run (for refinement).
@@ -166,7 +176,7 @@ impl ActiveSet {
         dual: &ContactSpace,
         kinds: &[RowKind],
         lambda: &mut [f64],
-        limits: ActiveSetLimits,
+        limits: ActiveSetLimits<'_>,
     ) -> ActiveSetOutcome {
         let end = |iterations, termination| ActiveSetOutcome { iterations, termination };
         self.start(dual, kinds, lambda);
@@ -181,11 +191,14 @@ impl ActiveSet {
         &mut self,
         dual: &ContactSpace,
         lambda: &mut [f64],
-        limits: ActiveSetLimits,
+        limits: ActiveSetLimits<'_>,
     ) -> ActiveSetOutcome {
         let end = |iterations, termination| ActiveSetOutcome { iterations, termination };
         let mut released = None;
         for iteration in 1..=limits.max_iterations {
+            if limits.stop.is_some_and(|flag| flag.load(Ordering::Relaxed)) {
+                return end(iteration - 1, Termination::Stopped);
+            }
             self.solve_subproblem(dual);
             if let Some((row, alpha)) = self.step_to_subproblem_minimum(lambda) {
                 // A row released and blocked again without moving made no progress.

@@ -29,7 +29,8 @@
 use faer::linalg::matmul::matmul;
 use faer::{Accum, Mat, MatRef, Par};
 
-use crate::linalg::{column, column_mut};
+use crate::error::SolverError;
+use crate::linalg::{column, column_mut, try_capacity, try_matrix_capacity};
 use crate::mass_operator::FactoredMass;
 use crate::problem::Problem;
 
@@ -73,26 +74,43 @@ impl ContactSpace {
     }
 
     /// Reserves room for problems of up to `dofs` velocities and `rows` rows.
-    pub(crate) fn reserve(&mut self, dofs: usize, rows: usize) {
-        self.y.reserve(dofs, rows);
-        self.support.reserve(rows);
-        self.order.reserve(rows);
-        self.sorted_support.reserve(rows);
-        self.sorted.reserve(dofs, rows);
-        self.sorted_w.reserve(rows, rows);
-        self.w.reserve(rows, rows);
-        self.compliance.reserve(rows);
-        self.z.reserve(dofs);
-        self.r.reserve(rows);
-        self.b.reserve(rows);
+    ///
+    /// # Errors
+    /// [`SolverError::Allocation`] if a buffer cannot be allocated.
+    pub(crate) fn try_reserve(&mut self, dofs: usize, rows: usize) -> Result<(), SolverError> {
+        self.try_reserve_matrices(dofs, rows)?;
+        for buffer in [&mut self.support, &mut self.order, &mut self.sorted_support] {
+            try_capacity(buffer, rows, "a contact-space index")?;
+        }
+        for buffer in [&mut self.compliance, &mut self.r, &mut self.b] {
+            try_capacity(buffer, rows, "a contact-space row vector")?;
+        }
+        try_capacity(&mut self.z, dofs, "z = L⁻¹f̃")
+    }
+
+    /// Room for Y and its sorted copy (`dofs` × `rows`), W and its sorted copy (`rows` ×
+    /// `rows`); nothing is allocated when they are that large already.
+    fn try_reserve_matrices(&mut self, dofs: usize, rows: usize) -> Result<(), SolverError> {
+        try_matrix_capacity(&mut self.y, dofs, rows, "Y = L⁻¹Cᵀ")?;
+        try_matrix_capacity(&mut self.sorted, dofs, rows, "Y's sorted copy")?;
+        try_matrix_capacity(&mut self.w, rows, rows, "W = YᵀY + E")?;
+        try_matrix_capacity(&mut self.sorted_w, rows, rows, "W's sorted copy")
     }
 
     /// Forms Y = L⁻¹Cᵀ, W = YᵀY + E, z = L⁻¹f̃ and r = b − Yᵀz for `problem`, with `factor`
     /// holding a factor of its M̃ (M̃ = L Lᵀ); skips the rows' trailing zeros when the factor
     /// keeps them (module docs).
-    pub(crate) fn build(&mut self, factor: &dyn FactoredMass, problem: &Problem<'_>) {
+    ///
+    /// # Errors
+    /// [`SolverError::Allocation`] if the matrices must grow and cannot (nothing is changed).
+    pub(crate) fn build(
+        &mut self,
+        factor: &dyn FactoredMass,
+        problem: &Problem<'_>,
+    ) -> Result<(), SolverError> {
         let rows = problem.rows();
         let (n, m) = (problem.dofs(), rows.len());
+        self.try_reserve_matrices(n, m)?;
         self.support.clear();
         self.support.extend((0..m).map(|i| {
             let end = rows.row(i).iter().rposition(|&c| c != 0.0).map_or(0, |last| last + 1);
@@ -110,7 +128,9 @@ impl ContactSpace {
         for (k, &i) in self.order.iter().enumerate() {
             self.sorted.col_as_slice_mut(k).copy_from_slice(rows.row(i));
         }
+        problem.check_stop()?;
         factor.solve_lower_supported(self.sorted.as_mut(), &self.sorted_support);
+        problem.check_stop()?;
         self.y.resize_with(n, m, |_, _| 0.0);
         for (k, &i) in self.order.iter().enumerate() {
             self.y.col_as_slice_mut(i).copy_from_slice(self.sorted.col_as_slice(k));
@@ -121,6 +141,7 @@ impl ContactSpace {
         self.w.resize_with(m, m, |_, _| 0.0);
         self.sorted_w.resize_with(m, m, |_, _| 0.0);
         for a in (0..m).step_by(W_BLOCK) {
+            problem.check_stop()?;
             let b = (a + W_BLOCK).min(m);
             let rows_used = self.sorted_support[a];
             let left = self.sorted.as_ref().submatrix(0, 0, rows_used, b);
@@ -144,6 +165,7 @@ impl ContactSpace {
         }
 
         self.update_force(factor, problem);
+        Ok(())
     }
 
     /// Recomputes z = L⁻¹f̃ and r = b − Yᵀz for a new f̃ and new right-hand sides b, keeping Y
@@ -267,8 +289,8 @@ mod tests {
         reverse.factor(mass.as_ref()).map_err(|e| e.to_string())?;
         let lower = LowerFactor(mass.llt(Side::Lower).map_err(|e| format!("{e:?}"))?);
         let (mut tailed, mut filled) = (ContactSpace::new(), ContactSpace::new());
-        tailed.build(&reverse, &problem);
-        filled.build(&lower, &problem);
+        tailed.build(&reverse, &problem).expect("room for Y and W");
+        filled.build(&lower, &problem).expect("room for Y and W");
         let gap = relative_gap(tailed.w(), filled.w());
         let symmetric = (0..m).all(|i| (0..m).all(|j| tailed.w()[(i, j)] == tailed.w()[(j, i)]));
         let r_gap = relative_gap(column(tailed.r()), column(filled.r()));

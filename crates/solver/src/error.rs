@@ -68,4 +68,17 @@ pub enum SolverError {
         /// The compliance given.
         compliance: f64,
     },
+    /// The problem's stop flag ([`Problem::stopping_when`](crate::Problem::stopping_when)) was
+    /// set during the solve: it was abandoned, its answer is not usable.
+    #[error("stopped on request during the solve")]
+    Stopped,
+    /// A buffer could not be allocated: the memory the process may use (the machine's, or a
+    /// limit such as `ulimit -v`) does not hold it. Nothing was changed.
+    #[error("cannot allocate {what} ({} MB): not enough memory for a problem this size", bytes / 1_000_000)]
+    Allocation {
+        /// Which buffer, with its shape, e.g. "the rows' coefficients (30000 × 1621)".
+        what: String,
+        /// Its size in bytes.
+        bytes: u64,
+    },
 }

@@ -16,6 +16,9 @@
 
 use faer::MatRef;
 
+use crate::error::SolverError;
+use crate::linalg::try_capacity;
+
 /// Free rows in factor order and the lower-triangular factor (column-major, leading
 /// dimension `stride` ≥ number of rows m).
 #[derive(Debug, Default)]
@@ -26,6 +29,13 @@ pub(crate) struct FreeSet {
 }
 
 impl FreeSet {
+    /// Room for a factor of `rows` rows (`rows`², the largest buffer of the active set), so
+    /// that [`FreeSet::reset`] to at most `rows` does not allocate.
+    pub(crate) fn try_reserve(&mut self, rows: usize) -> Result<(), SolverError> {
+        try_capacity(&mut self.indices, rows, "the free rows")?;
+        try_capacity(&mut self.factor, rows.saturating_mul(rows), "the free rows' factor")
+    }
+
     /// Empties F for a problem with `rows` rows (reallocates only when `rows` grows).
     pub(crate) fn reset(&mut self, rows: usize) {
         self.indices.clear();

@@ -3,7 +3,38 @@
 //! Vectors in the workspaces are plain `Vec<f64>` (grow-only, no allocation once sized);
 //! these helpers let faer's blocked kernels act on them as n × 1 matrices.
 
-use faer::{MatMut, MatRef};
+use faer::{Mat, MatMut, MatRef};
+
+use crate::error::SolverError;
+
+/// Makes room in `buffer` for `capacity` elements in all, or says that `what` could not be
+/// allocated (never aborts on a failed allocation).
+pub(crate) fn try_capacity<T>(
+    buffer: &mut Vec<T>,
+    capacity: usize,
+    what: &'static str,
+) -> Result<(), SolverError> {
+    buffer
+        .try_reserve(capacity.saturating_sub(buffer.len()))
+        .map_err(|_| allocation(what, capacity, 1, size_of::<T>()))
+}
+
+/// Makes room in `matrix` for `rows` × `cols` entries, or says that `what` could not be
+/// allocated (never aborts on a failed allocation).
+pub(crate) fn try_matrix_capacity(
+    matrix: &mut Mat<f64>,
+    rows: usize,
+    cols: usize,
+    what: &'static str,
+) -> Result<(), SolverError> {
+    matrix.try_reserve(rows, cols).map_err(|_| allocation(what, rows, cols, size_of::<f64>()))
+}
+
+/// The error of a failed allocation of `what`, `rows` × `cols` values of `size` bytes.
+fn allocation(what: &str, rows: usize, cols: usize, size: usize) -> SolverError {
+    let bytes = (rows as u64).saturating_mul(cols as u64).saturating_mul(size as u64);
+    SolverError::Allocation { what: format!("{what} ({rows} × {cols})"), bytes }
+}
 
 /// `x` as an n × 1 faer view.
 pub(crate) fn column(x: &[f64]) -> MatRef<'_, f64> {

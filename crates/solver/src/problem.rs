@@ -17,6 +17,8 @@ use faer::{Accum, MatRef, Par};
 use crate::error::SolverError;
 use crate::linalg::{column, column_mut};
 use crate::mass_operator::{Mass, MassOperator};
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use crate::rows::{RowKind, Rows};
 
 /// Relative tolerance of the symmetry check: |M̃ᵢⱼ − M̃ⱼᵢ| ≤ tol·(|M̃ᵢⱼ| + |M̃ⱼᵢ|) + tol·max|M̃ₖₖ|.
@@ -30,6 +32,9 @@ pub struct Problem<'a> {
     force: &'a [f64],
     rows: &'a Rows,
     rhs: &'a [f64],
+    /// A flag that, once set, ends the solve with [`SolverError::Stopped`] (polled between the
+    /// blocks of W and the active set's iterations).
+    stop: Option<&'a AtomicBool>,
 }
 
 impl<'a> Problem<'a> {
@@ -68,7 +73,7 @@ impl<'a> Problem<'a> {
             Mass::Operator(operator) => check_size("mass operator", n, operator.dofs())?,
         }
         check_rows(rows)?;
-        Ok(Self { mass, force: &[], rows, rhs: &[] })
+        Ok(Self { mass, force: &[], rows, rhs: &[], stop: None })
     }
 
     /// The same M̃ and rows with f̃ = `force` (length n) and b = `rhs` (one per row), both
@@ -89,7 +94,25 @@ impl<'a> Problem<'a> {
         for (i, &value) in rhs.iter().enumerate() {
             check_finite("row rhs", i, 0, value)?;
         }
-        Ok(Problem { mass: self.mass, force, rows: self.rows, rhs })
+        Ok(Problem { mass: self.mass, force, rows: self.rows, rhs, stop: self.stop })
+    }
+
+    /// The same problem, its solve ended with [`SolverError::Stopped`] once `flag` is set.
+    pub fn stopping_when(self, flag: Option<&'a AtomicBool>) -> Self {
+        Self { stop: flag, ..self }
+    }
+
+    /// [`SolverError::Stopped`] if the stop flag is set.
+    pub(crate) fn check_stop(&self) -> Result<(), SolverError> {
+        match self.stop {
+            Some(flag) if flag.load(Ordering::Relaxed) => Err(SolverError::Stopped),
+            _ => Ok(()),
+        }
+    }
+
+    /// The stop flag, if any.
+    pub(crate) fn stop(&self) -> Option<&'a AtomicBool> {
+        self.stop
     }
 
     /// M̃: a dense matrix or an operator.

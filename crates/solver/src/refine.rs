@@ -18,8 +18,9 @@
 //! is classic refinement of M̃q̇ = f̃.
 
 use crate::contact_space::ContactSpace;
+use crate::error::SolverError;
 use crate::free_set::FreeSet;
-use crate::linalg::{axpy, column_mut, dot, zeroed};
+use crate::linalg::{axpy, column_mut, dot, try_capacity, zeroed};
 use crate::mass_operator::FactoredMass;
 use crate::problem::Problem;
 use crate::residuals::{Stationarity, row_residual};
@@ -55,10 +56,10 @@ pub(crate) struct Refinement {
 
 impl Refinement {
     /// Reserves room for problems of up to `dofs` velocities and `rows` rows.
-    pub(crate) fn reserve(&mut self, dofs: usize, rows: usize) {
-        self.residual.reserve(dofs);
-        self.work.reserve(dofs);
-        self.compact.reserve(rows);
+    pub(crate) fn try_reserve(&mut self, dofs: usize, rows: usize) -> Result<(), SolverError> {
+        try_capacity(&mut self.residual, dofs, "the refinement's residual")?;
+        try_capacity(&mut self.work, dofs, "the refinement's scratch")?;
+        try_capacity(&mut self.compact, rows, "the refinement's free rows")
     }
 
     /// Refines (q̇, λ) in place for at most `max_steps` corrections.

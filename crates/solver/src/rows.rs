@@ -31,6 +31,7 @@
 use faer::{Mat, MatRef};
 
 use crate::error::SolverError;
+use crate::linalg::{try_capacity, try_matrix_capacity};
 
 /// How a row constrains q̇ (see the module table). Soft rows carry their penalty weight.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -151,17 +152,27 @@ pub struct Rows {
 impl Rows {
     /// An empty container for rows over `dofs` velocities.
     pub fn new(dofs: usize) -> Self {
-        Self::with_capacity(dofs, 0)
+        Self {
+            coefficients: Mat::zeros(dofs, 0),
+            rhs: Vec::new(),
+            kinds: Vec::new(),
+            sources: Vec::new(),
+        }
     }
 
     /// An empty container with room for `capacity` rows before it reallocates.
-    pub fn with_capacity(dofs: usize, capacity: usize) -> Self {
-        Self {
-            coefficients: Mat::zeros(dofs, capacity),
-            rhs: Vec::with_capacity(capacity),
-            kinds: Vec::with_capacity(capacity),
-            sources: Vec::with_capacity(capacity),
-        }
+    ///
+    /// # Errors
+    /// [`SolverError::Allocation`] if the room cannot be allocated (`dofs` × `capacity`
+    /// coefficients: the largest buffer of a step).
+    pub fn try_with_capacity(dofs: usize, capacity: usize) -> Result<Self, SolverError> {
+        let mut rows = Self::new(dofs);
+        try_matrix_capacity(&mut rows.coefficients, dofs, capacity, "the rows' coefficients")?;
+        rows.coefficients.resize_with(dofs, capacity, |_, _| 0.0);
+        try_capacity(&mut rows.rhs, capacity, "the rows' right-hand sides")?;
+        try_capacity(&mut rows.kinds, capacity, "the rows' kinds")?;
+        try_capacity(&mut rows.sources, capacity, "the rows' sources")?;
+        Ok(rows)
     }
 
     /// Number of DOFs n (length of every coefficient vector).
@@ -290,6 +301,24 @@ mod tests {
 
     const FIXED: RowTag = RowTag::new(0);
     const BOUND: RowTag = RowTag::new(1);
+
+    #[test]
+    fn room_that_cannot_be_allocated_is_an_error_not_an_abort() {
+        let rows = Rows::try_with_capacity(3, 4).expect("a small room");
+        assert_eq!((rows.dofs(), rows.len()), (3, 0));
+        // 2⁶⁰ coefficients of 8 bytes overflow the address space: refused, nothing aborts.
+        match Rows::try_with_capacity(1 << 40, 1 << 20) {
+            Err(SolverError::Allocation { what, bytes }) => {
+                assert!(what.starts_with("the rows' coefficients (1099511627776 × 1048576)"));
+                assert_eq!(bytes, 1 << 63);
+            }
+            other => panic!("expected an allocation error, got {other:?}"),
+        }
+        let mut workspace = crate::SolverWorkspace::new(crate::SolverOptions::default());
+        workspace.try_reserve(10, 20).expect("a small workspace");
+        let error = workspace.try_reserve(1 << 31, 1 << 31).expect_err("2⁶² values");
+        assert!(error.to_string().starts_with("cannot allocate Y = L⁻¹Cᵀ"), "{error}");
+    }
 
     #[test]
     fn push_stores_rows_as_columns_of_c_transpose() -> Result<(), SolverError> {

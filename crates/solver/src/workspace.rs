@@ -27,13 +27,15 @@
 //! All buffers live here and only grow, so repeated solves of the same size do not allocate
 //! (the clarabel backend excepted).
 
+use std::sync::atomic::AtomicBool;
+
 use faer::Mat;
 
 use crate::active_set::{ActiveSet, ActiveSetLimits, Termination};
 use crate::clarabel_reference;
 use crate::contact_space::ContactSpace;
 use crate::error::SolverError;
-use crate::linalg::{axpy, zeroed};
+use crate::linalg::{axpy, try_capacity, zeroed};
 use crate::mass_factor::MassFactor;
 use crate::mass_operator::{FactoredMass, Mass};
 use crate::options::{QpBackend, SolverOptions, WarmStart};
@@ -109,15 +111,19 @@ impl SolverWorkspace {
     /// Sizes every buffer for problems of up to `dofs` velocities and `rows` rows, so that
     /// contact-space solves within those sizes never allocate (larger ones still work and
     /// grow the buffers).
-    pub fn reserve(&mut self, dofs: usize, rows: usize) {
-        self.dual.reserve(dofs, rows);
-        self.active.reserve(dofs, rows);
-        self.refinement.reserve(dofs, rows);
+    ///
+    /// # Errors
+    /// [`SolverError::Allocation`] if a buffer cannot be allocated (the largest are the
+    /// contact-space matrices, `dofs` × `rows` and `rows` × `rows`).
+    pub fn try_reserve(&mut self, dofs: usize, rows: usize) -> Result<(), SolverError> {
+        self.dual.try_reserve(dofs, rows)?;
+        self.active.try_reserve(dofs, rows)?;
+        self.refinement.try_reserve(dofs, rows)?;
         for buffer in [&mut self.velocity, &mut self.residual, &mut self.work] {
-            buffer.reserve(dofs);
+            try_capacity(buffer, dofs, "a solver vector over the DOFs")?;
         }
-        self.multipliers.reserve(rows);
-        self.row_residuals.reserve(rows);
+        try_capacity(&mut self.multipliers, rows, "the multipliers")?;
+        try_capacity(&mut self.row_residuals, rows, "the row residuals")
     }
 
     /// The options in use.
@@ -213,6 +219,7 @@ impl SolverWorkspace {
             residuals: evaluation.residuals,
             slack: evaluation.slack,
         };
+        problem.check_stop()?;
         self.collect_impulses(problem);
         Ok(&self.report)
     }
@@ -266,18 +273,20 @@ impl SolverWorkspace {
             Mass::Operator(operator) => operator,
         };
         match reuse {
-            Reuse::Nothing => self.dual.build(factor, problem),
+            Reuse::Nothing => self.dual.build(factor, problem)?,
             Reuse::MassAndRows => self.dual.update_force(factor, problem),
         }
         let limits = ActiveSetLimits {
             max_iterations: self.options.max_iterations,
             release_tolerance: self.options.release_tolerance,
+            stop: problem.stop(),
         };
         let mut outcome =
             self.active.solve(&self.dual, problem.rows().kinds(), &mut self.multipliers, limits);
         let mut iterations = outcome.iterations;
         let mut refined = Refined { steps: 0, stationarity: None };
         for pass in 0..=VERIFICATION_PASSES {
+            problem.check_stop()?;
             self.dual.recover(factor, &self.multipliers, &mut self.velocity);
             let system = FactoredSystem {
                 problem,
@@ -316,6 +325,7 @@ impl SolverWorkspace {
             Termination::Optimal => SolveStatus::Solved,
             Termination::MaxIterations => SolveStatus::MaxIterations,
             Termination::Infeasible => SolveStatus::Infeasible,
+            Termination::Stopped => return Err(SolverError::Stopped),
         };
         Ok((status, iterations, refined))
     }
@@ -396,7 +406,16 @@ pub struct Factored<'a> {
     solved: bool,
 }
 
-impl Factored<'_> {
+impl<'a> Factored<'a> {
+    /// Ends every solve of this handle with [`SolverError::Stopped`] once `flag` is set (polled
+    /// between the blocks of W = YᵀY and the active set's iterations): a stop asked for by a
+    /// signal does not wait for a solve of a huge body.
+    #[must_use]
+    pub fn stop_when(mut self, flag: Option<&'a AtomicBool>) -> Self {
+        self.problem = self.problem.stopping_when(flag);
+        self
+    }
+
     /// Solves with f̃ = `force` (length n) and b = `rhs` (one per row, in row order); errors
     /// on a size mismatch or a non-finite value, or when M̃ is not positive definite.
     pub fn solve(&mut self, force: &[f64], rhs: &[f64]) -> Result<&SolveReport, SolverError> {

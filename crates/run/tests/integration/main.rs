@@ -18,4 +18,5 @@ mod replay;
 mod self_contact;
 mod skin;
 mod sparse_backend;
+mod stop_request;
 mod thigmotaxis;

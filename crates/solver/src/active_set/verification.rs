@@ -20,7 +20,7 @@ impl ActiveSet {
         &mut self,
         dual: &ContactSpace,
         lambda: &mut [f64],
-        limits: ActiveSetLimits,
+        limits: ActiveSetLimits<'_>,
         row: usize,
     ) -> ActiveSetOutcome {
         if !self.release(dual, lambda, row) {
