@@ -144,29 +144,37 @@ fn nearly_rigid_rows_are_reported_honestly(shape: Shape, compliant: usize, seed:
     Ok(())
 }
 
+/// Shapes up to n = 60 with up to 40 inequalities, 2 soft rows and 12 compliant rows: the shape,
+/// the number of compliant rows and the seed (drawn in the order the tests' arguments were).
+fn shapes() -> impl Strategy<Value = (Shape, usize, u64)> {
+    (1usize..=60, 0usize..=40, 0usize..=2, 1usize..=12, any::<u64>()).prop_map(
+        |(dofs, inequalities, soft, compliant, seed)| {
+            let tight = (0.5 * dofs as f64 / inequalities.max(1) as f64).min(0.5);
+            let equalities = dofs.min(2);
+            (
+                Shape { dofs, equalities, inequalities, soft, duplicates: 0.1, tight },
+                compliant,
+                seed,
+            )
+        },
+    )
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(64))]
 
     /// The contact-space answer with compliant rows satisfies the KKT conditions (the
     /// compliant rows' `Cq̇ + ελ − b ≥ 0 ⟂ λ ≥ 0`) and agrees with clarabel.
     #[test]
-    fn compliant_rows_satisfy_kkt_and_match_clarabel(
-        dofs in 1usize..=60, inequalities in 0usize..=40, soft in 0usize..=2,
-        compliant in 1usize..=12, seed in any::<u64>()
-    ) {
-        let tight = (0.5 * dofs as f64 / inequalities.max(1) as f64).min(0.5);
-        let shape = Shape { dofs, equalities: dofs.min(2), inequalities, soft, duplicates: 0.1, tight };
+    fn compliant_rows_satisfy_kkt_and_match_clarabel((shape, compliant, seed) in shapes()) {
         compliant_problem_matches_clarabel(shape, compliant, seed)?;
     }
 
     /// See [`nearly_rigid_rows_are_reported_honestly`].
     #[test]
     fn nearly_rigid_compliant_rows_are_solved_or_reported_inexact(
-        dofs in 1usize..=60, inequalities in 0usize..=40, soft in 0usize..=2,
-        compliant in 1usize..=12, seed in any::<u64>()
+        (shape, compliant, seed) in shapes()
     ) {
-        let tight = (0.5 * dofs as f64 / inequalities.max(1) as f64).min(0.5);
-        let shape = Shape { dofs, equalities: dofs.min(2), inequalities, soft, duplicates: 0.1, tight };
         nearly_rigid_rows_are_reported_honestly(shape, compliant, seed)?;
     }
 }
