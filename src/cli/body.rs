@@ -1,6 +1,7 @@
 //! `hagfish body FILE`: loads a body file (hagfish biometrics or a rod) and prints the derived
 //! chain (D5–D8): a header with the totals and the joint springs (derived from a rod's
-//! stiffnesses, or a hagfish's scaled to its body count, D16) and one
+//! stiffnesses, or a hagfish's scaled to its body count, D16), the skin if the body has one, and
+//! one
 //! row per body (index, s/L of its centre, radius, mass, joint type, limits per DOF in
 //! degrees).
 
@@ -60,6 +61,14 @@ pub fn run(args: &BodyArgs, out: &mut impl Write) -> Result<(), CliError> {
         "density   {:.6} g/cm3 (volume {:.4} cm3)",
         table.density_g_per_cm3, table.volume_cm3
     )?;
+    if let Body::Hagfish(hagfish_anatomy::Biometrics { skin: Some(skin), .. }) = &body {
+        writeln!(
+            out,
+            "skin      {:.1} % of the radius over the core, pressure {} dyn/cm2 (docs/physics.md, Skin)",
+            100.0 * skin.thickness_fraction,
+            skin.pressure_dyn_per_cm2
+        )?;
+    }
     writeln!(out, "bodies    {}", model.body_count())?;
     writeln!(out, "DOFs      {}", model.dof_count())?;
     writeln!(out)?;

@@ -160,3 +160,20 @@ fn bad_rod_values_are_exit_2_at_their_line_and_column() {
         assert_fails_at(&hagfish_body(&path), &path, line, column, words);
     }
 }
+
+/// A body file with a skin shows it in the header; ES103 (without one) does not.
+#[test]
+fn a_skin_is_shown_in_the_header() {
+    let (path, _, _) = broken_copy(
+        "skinned.ron",
+        "tail_taper: None,",
+        "tail_taper: None,\n    skin: Some((thickness_fraction: 0.25, pressure_dyn_per_cm2: 1000.0)),",
+        "skin",
+    );
+    let output = hagfish_body(&path);
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert_eq!(output.status.code(), Some(0), "{}", String::from_utf8_lossy(&output.stderr));
+    assert_eq!(header(&stdout, "skin"), "25.0");
+    let plain = hagfish_body(Path::new(ES103));
+    assert!(!String::from_utf8_lossy(&plain.stdout).lines().any(|l| l.starts_with("skin")));
+}
