@@ -24,3 +24,4 @@ mod run_directory;
 mod step_acceptance;
 mod sweep_command;
 mod tie_family;
+mod user_names;

@@ -170,9 +170,10 @@ impl Record<'_> {
         self.line
     }
 
-    /// The field in column `index` as text (surrounding white space removed).
+    /// The field in column `index` as text, exactly as written (a phase name may begin or end
+    /// with white space, or be one newline).
     pub fn text(&self, index: usize) -> &str {
-        self.fields.get(index).unwrap_or_default().trim()
+        self.fields.get(index).unwrap_or_default()
     }
 
     /// The field in column `index` as a finite number.
@@ -182,7 +183,7 @@ impl Record<'_> {
 
     /// The field in column `index` as a finite number, or `None` if it is empty.
     pub fn optional(&self, index: usize) -> Result<Option<f64>, ReportError> {
-        let field = self.text(index);
+        let field = self.text(index).trim();
         if field.is_empty() {
             return Ok(None);
         }
@@ -194,7 +195,8 @@ impl Record<'_> {
 
     /// The field in column `index` as a non-negative integer.
     pub fn index(&self, index: usize) -> Result<usize, ReportError> {
-        self.text(index).parse().map_err(|_| self.error(index, "is not a non-negative integer"))
+        let field = self.text(index).trim();
+        field.parse().map_err(|_| self.error(index, "is not a non-negative integer"))
     }
 
     /// An error about column `index` of this row: its name, its text and `what`.

@@ -37,7 +37,7 @@ impl MetricsCsv {
 
 /// Field `k` of `row` as a number (NaN if empty or not a number).
 pub(crate) fn number(row: &[String], k: usize) -> f64 {
-    row[k].parse().unwrap_or(f64::NAN)
+    row[k].trim().parse().unwrap_or(f64::NAN)
 }
 
 /// The first row after the tie phase (the frame the knot is tied in), if any.
