@@ -103,12 +103,30 @@ pub fn apply_overrides(
             Some(kind) if PHASE_KINDS.contains(kind) => &segments[1..],
             _ => &segments[..],
         };
+        let mut absent = None;
         for target in targets {
-            set(target, leaf, value.clone()).map_err(|reason| given.error(reason))?;
+            absent = set(target, leaf, value.clone()).map_err(|reason| given.error(reason))?;
         }
         let overridden = serde_json::from_value::<Scenario>(tree.clone()).map_err(|e| {
-            given.error(format!("wrong value for {}: {}", given.path, explain(&e, &given.value)))
+            match &absent {
+                // The leaf was added to the tree and names no field after all.
+                Some(unknown) if e.to_string().starts_with("unknown field") => {
+                    given.error(unknown.clone())
+                }
+                _ => given.error(format!(
+                    "wrong value for {}: {}",
+                    given.path,
+                    explain(&e, &given.value)
+                )),
+            }
         })?;
+        if let Some(unknown) = absent
+            && !value.is_null()
+            && !holds_a_value_at(&overridden, &segments)
+        {
+            // Read without complaint but not kept: no field of that name.
+            return Err(given.error(unknown));
+        }
         if is_list(&given.value) {
             refuse_list_for_struct(&overridden, &segments).map_err(|reason| given.error(reason))?;
         }
@@ -170,6 +188,19 @@ fn refuse_list_for_struct(overridden: &Scenario, segments: &[&str]) -> Result<()
     Ok(())
 }
 
+/// Whether `overridden`, written back as a tree, has a value at `segments` (kind-wide or from
+/// the top, as an override's path): an added field that the scenario kept.
+fn holds_a_value_at(overridden: &Scenario, segments: &[&str]) -> bool {
+    let Ok(mut back) = serde_json::to_value(overridden) else { return false };
+    let (targets, leaf) = match segments.first() {
+        Some(kind) if PHASE_KINDS.contains(kind) => {
+            (phases_of_kind(&mut back, kind), &segments[1..])
+        }
+        _ => (vec![&mut back], segments),
+    };
+    targets.into_iter().any(|target| get(target, leaf).is_some())
+}
+
 /// The value at `path` (as [`set`] reads it) under `node`, if there is one.
 fn get<'a>(node: &'a Value, path: &[&str]) -> Option<&'a Value> {
     let Some((first, rest)) = path.split_first() else {
@@ -192,17 +223,24 @@ fn phases_of_kind<'a>(tree: &'a mut Value, kind: &str) -> Vec<&'a mut Value> {
     }
 }
 
-/// Sets the leaf at `path` (field names, each optionally with `[index]`) under `node`.
-fn set(node: &mut Value, path: &[&str], value: Value) -> Result<(), String> {
+/// Sets the leaf at `path` (field names, each optionally with `[index]`) under `node`. A leaf
+/// field absent from the tree is added: an optional field left out of the scenario's text
+/// while `None` (`Thigmotaxis.parameters.replay`); the returned message is the one to give if
+/// the scenario then has no such field after all (a misspelt name).
+fn set(node: &mut Value, path: &[&str], value: Value) -> Result<Option<String>, String> {
     let Some((first, rest)) = path.split_first() else {
         *node = value;
-        return Ok(());
+        return Ok(None);
     };
     let (name, index) = split_index(first)?;
     let Value::Object(fields) = node else {
         return Err(format!("`{name}`: the value above it has no fields (it is {node})"));
     };
     let known = unknown_field(name, fields);
+    if rest.is_empty() && index.is_none() && !fields.contains_key(name) {
+        fields.insert(name.to_owned(), value);
+        return Ok(Some(known));
+    }
     let child = fields.get_mut(name).ok_or(known)?;
     let child = match index {
         None => child,
@@ -269,6 +307,21 @@ mod tests {
         let drag = "drag=Some((linear_dyn_s_per_cm3: 0.1, quadratic_g_per_cm3: 0.2))";
         assert!(set_one(drag).is_ok());
         assert!(!is_list("(0.1, 0.2)") && is_list(" Some( [1]) ") && !is_list("Some(x)"));
+    }
+
+    /// An optional field left out of the scenario's text while `None` can be set; a misspelt
+    /// one is still refused by name.
+    #[test]
+    fn an_optional_field_left_out_while_none_can_be_set() {
+        let set = set_one("phases[2].Thigmotaxis.parameters.replay=Some((file: \"field.csv\"))")
+            .expect("applies");
+        let replayed = format!("{:?}", set.phases[2]);
+        assert!(replayed.contains("field.csv"), "{replayed}");
+        assert_eq!(set_one("Thigmotaxis.parameters.replay=None").expect("applies"), scenario());
+        let misspelt = set_one("Thigmotaxis.parameters.replayy=Some((file: \"f.csv\"))")
+            .expect_err("no such field")
+            .to_string();
+        assert!(misspelt.contains("no field `replayy` here"), "{misspelt}");
     }
 
     #[test]
