@@ -1,8 +1,9 @@
-//! A user-named field that reaches the outputs — a thigmotaxis phase's name — as arbitrary
-//! text (commas, quotes, newlines, `<!--<script>`, U+2028, any Unicode): the run completes and
-//! every output that carries the name reads it back unchanged: `metrics.csv` through the
-//! `csv` crate, the report's embedded run data through `serde_json`, with no `<` left in the
-//! script element to close or open another.
+//! The user-named fields that reach the outputs — the scenario's name and a thigmotaxis phase's
+//! — as arbitrary text (commas, quotes, newlines, `<!--<script>`, U+2028, any Unicode): the run
+//! completes and every output that carries a name reads it back unchanged: `metrics.csv`
+//! through the `csv` crate, the report's embedded run data and `manifest.json` through
+//! `serde_json` (with no `<` left in the report's script element to close or open another),
+//! and the run's `scenario.ron` by loading it again.
 
 use std::path::Path;
 
@@ -11,10 +12,12 @@ use proptest::prelude::*;
 
 use crate::common::{ROOT, fresh_dir, run_into};
 
-/// `tests/data/form.ron` with one thigmotaxis phase named `name` (0.1 s, on the straight body:
-/// its name is what is tested, not its forces), written by `ron` (which escapes the name).
+/// `tests/data/form.ron` named `name` with one thigmotaxis phase named `name` too (0.1 s, on
+/// the straight body: its name is what is tested, not its forces), written by `ron` (which
+/// escapes the names).
 fn scenario_named(dir: &Path, name: &str) -> std::path::PathBuf {
-    let base = LoadedScenario::load(format!("{ROOT}/tests/data/form.ron")).expect("form.ron");
+    let mut base = LoadedScenario::load(format!("{ROOT}/tests/data/form.ron")).expect("form.ron");
+    base.scenario.name = name.to_owned();
     let mut text = ron::to_string(&base.scenario).expect("a scenario serialises");
     let phase = format!(
         "[Thigmotaxis((name: {}, parameters: (head: (v_a: 0.0, v_b: 0.0), tail: (v_a: 0.0, \
@@ -52,6 +55,11 @@ fn name_round_trips(name: &str) -> Result<(), TestCaseError> {
     let states = value["states"].as_array().expect("states");
     let wanted = format!("phase {name}, knot");
     prop_assert!(states.iter().filter_map(|s| s.as_str()).any(|s| s.starts_with(&wanted)));
+    let manifest = std::fs::read_to_string(out.join("manifest.json")).expect("manifest.json");
+    let manifest: serde_json::Value = serde_json::from_str(&manifest).expect("JSON");
+    prop_assert_eq!(manifest["scenario_name"].as_str(), Some(name));
+    let again = LoadedScenario::load(out.join("scenario.ron")).expect("the run's scenario.ron");
+    prop_assert_eq!(again.scenario.name.as_str(), name);
     Ok(())
 }
 
@@ -61,7 +69,7 @@ proptest! {
     /// Arbitrary names of 1–40 characters, with the characters that broke outputs before
     /// (`,`, `"`, newline, `<!--`, U+2028) mixed in.
     #[test]
-    fn a_phase_name_reaches_every_output_unchanged(
+    fn a_scenario_and_a_phase_name_reach_every_output_unchanged(
         name in "[,\"\n<>&!\u{2028}a-z]{1,8}[\\PC]{0,32}"
     ) {
         name_round_trips(&name)?;
