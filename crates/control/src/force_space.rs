@@ -14,8 +14,8 @@ use crate::modal_basis::ModalBasis;
 /// thigmotaxis row `c` is replaced by its projection `c̃ = P c` onto the space (`P` an
 /// orthogonal projector), so that its force `c̃λ` lies in the space; the row then asks the
 /// sliding speed of the projected velocity, `c̃ᵀq̇ = cᵀ(P q̇) ≥ v` (docs/physics.md,
-/// "Confined thigmotaxis"). Not `Copy` since [`ForceSpace::Modes`] holds its basis behind an
-/// `Arc`: cloning a request clones the `Arc`, which does not allocate.
+/// "Confined thigmotaxis"). This is the spec a scenario writes; the rows of each step carry its
+/// [`Confinement`], which a request clones without allocating.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub enum ForceSpace {
     /// Every DOF: `P = I`, the rows as the thesis builds them.
@@ -61,18 +61,56 @@ impl PartialEq for ModalSpace {
 }
 
 impl ForceSpace {
+    /// The space as the rows use it: the spec without its file name, the basis shared.
+    pub fn confinement(&self) -> Confinement {
+        match self {
+            ForceSpace::Full => Confinement::Full,
+            ForceSpace::BendingOnly => Confinement::BendingOnly,
+            ForceSpace::Modes(space) => Confinement::Modes(space.basis.clone()),
+        }
+    }
+}
+
+/// A [`ForceSpace`] as a thigmotaxis request carries it each step: cloning one clones at most an
+/// `Arc` of the basis, which does not allocate (a [`ModalSpace`] would clone its file name).
+#[derive(Clone, Debug, Default)]
+pub enum Confinement {
+    /// Every DOF.
+    #[default]
+    Full,
+    /// The bending DOFs only.
+    BendingOnly,
+    /// The span of a modal basis; `None`, a basis never resolved, is the zero space.
+    Modes(Option<Arc<ModalBasis>>),
+}
+
+impl PartialEq for Confinement {
+    /// Equal kinds, and for modes the same basis (the same shared matrix, or both unresolved).
+    fn eq(&self, other: &Self) -> bool {
+        match (self, other) {
+            (Confinement::Full, Confinement::Full) => true,
+            (Confinement::BendingOnly, Confinement::BendingOnly) => true,
+            (Confinement::Modes(a), Confinement::Modes(b)) => match (a, b) {
+                (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+                (None, None) => true,
+                _ => false,
+            },
+            _ => false,
+        }
+    }
+}
+
+impl Confinement {
     /// Projects the row `c` onto the space, `c ← P c`; `twist_dofs` are the indices of the
     /// twist DOFs (for `BendingOnly`), `scratch` holds at least k values (for `Modes`: `Bᵀc`).
     /// A `Modes` space whose basis was never resolved (made by hand rather than loaded with a
     /// scenario) is the zero space: its rows exert nothing. Allocates nothing.
     pub fn confine(&self, twist_dofs: &[usize], scratch: &mut [f64], row: &mut [f64]) {
         match self {
-            ForceSpace::Full => {}
-            ForceSpace::BendingOnly => twist_dofs.iter().for_each(|&k| row[k] = 0.0),
-            ForceSpace::Modes(space) => match &space.basis {
-                Some(basis) => basis.project(row, scratch),
-                None => row.fill(0.0),
-            },
+            Confinement::Full => {}
+            Confinement::BendingOnly => twist_dofs.iter().for_each(|&k| row[k] = 0.0),
+            Confinement::Modes(Some(basis)) => basis.project(row, scratch),
+            Confinement::Modes(None) => row.fill(0.0),
         }
     }
 }

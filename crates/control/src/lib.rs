@@ -76,7 +76,7 @@ pub use crossings::{Layer, tail_crossings};
 pub use dof_kind::{DofKind, KindSelection};
 pub use drag::WaterDrag;
 pub use error::ControlError;
-pub use force_space::{ForceSpace, ModalSpace};
+pub use force_space::{Confinement, ForceSpace, ModalSpace};
 pub use forming::{FormingController, FormingScript, ScriptProgress, ScriptStep, Waypoint};
 pub use knot_span::KnotSpan;
 pub use load::{LoadDirection, LoadPhase};

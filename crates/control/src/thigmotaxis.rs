@@ -17,7 +17,7 @@ use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
 use crate::controller::{Actuation, ControlContext, PointForce};
-use crate::force_space::ForceSpace;
+use crate::force_space::{Confinement, ForceSpace};
 use crate::replay::Replay;
 
 /// Target sliding speeds (cm/s) at one contact: anterior strand a, posterior strand b.
@@ -83,7 +83,7 @@ pub struct ThigmoRequest {
     /// Largest force of the row (dyn).
     pub max_force: f64,
     /// The generalized forces the row may exert: the pipeline confines the row to it.
-    pub force_space: ForceSpace,
+    pub confinement: Confinement,
 }
 
 impl ThigmoParameters {
@@ -104,6 +104,7 @@ impl ThigmoParameters {
         let contacts = context.self_contacts;
         self.actuate_pull(context, out);
         let Some(last) = contacts.len().checked_sub(1) else { return };
+        let confinement = self.force_space.confinement();
         let mut request = |contact, targets: SlidingTargets| {
             for (strand, speed) in
                 [(Strand::Anterior, targets.v_a), (Strand::Posterior, targets.v_b)]
@@ -113,7 +114,7 @@ impl ThigmoParameters {
                     strand,
                     speed,
                     max_force: self.max_force_dyn,
-                    force_space: self.force_space.clone(),
+                    confinement: confinement.clone(),
                 });
             }
         };

@@ -3,7 +3,8 @@
 //! `t_aᵀ(P(u_a) − P(u_b)) q̇ ≥ v_a` or `t_bᵀ(P(u_b) − P(u_a)) q̇ ≥ v_b`. No stabilisation term.
 //! Soft: the slack penalty is the row's largest impulse, `max_force · h`.
 //!
-//! A row is confined to its request's [`ForceSpace`] ([`ForceSpace::confine`]): with
+//! A row is confined to its request's force space ([`Confinement::confine`], the scenario's
+//! [`ForceSpace`] as the step carries it): with
 //! `BendingOnly` its twist entries are zero, so its force `cλ` has no twist torque and the row
 //! asks the sliding speed of the bending velocities alone; with `Modes` it is `B(Bᵀc)`, in the
 //! span of the basis B.
@@ -14,7 +15,7 @@
 
 use glam::DVec3;
 #[cfg(doc)]
-use hagfish_control::ForceSpace;
+use hagfish_control::{Confinement, ForceSpace};
 use hagfish_control::{Strand, ThigmoRequest};
 use hagfish_geometry::{SelfContact, SplineWeights};
 use hagfish_solver::{RowKind, Rows};
@@ -49,7 +50,7 @@ pub fn add_thigmo_rows(
         let (this, other, tangent) = thigmo_strands(request, contact);
         add_spline_point_row(model, data, this, tangent, 1.0, row);
         add_spline_point_row(model, data, other, tangent, -1.0, row);
-        request.force_space.confine(twist_dofs, scratch, row);
+        request.confinement.confine(twist_dofs, scratch, row);
     }
 }
 
