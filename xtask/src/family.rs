@@ -18,9 +18,10 @@ use std::sync::Mutex;
 
 use hagfish_bench_support::{Variant, family};
 use hagfish_control::Phase;
-use hagfish_report::{KnotRun, LoosenTighten, TABLE_HEADER, signed_percent};
+use hagfish_report::{KnotRun, LoosenTighten, SlideBounds, TABLE_HEADER, signed_percent};
 use hagfish_scenario::LoadedScenario;
 
+use crate::family_cases::{Case, cases};
 use crate::python::target_directory;
 use crate::test_all::cargo;
 
@@ -38,6 +39,9 @@ pub struct Request<'a> {
     pub only: &'a [String],
     /// What to measure.
     pub measure: Measure,
+    /// Runs per member (`family_cases.rs`): the member as written and `rounding − 1`
+    /// rounding perturbations of its time step.
+    pub rounding: usize,
 }
 
 /// What a table measures of each member.
@@ -100,28 +104,52 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
             return crate::family_modes::run(&runner, &members, modes, loaded.scenario.time_step_s);
         }
     };
-    let rows = in_parallel(&members, request.jobs, |variant| {
-        let row = match controls {
-            None => runner.slide_row(variant),
-            Some(controls) => runner.loosen_tighten_row(variant, controls),
-        };
-        eprintln!("{row}");
+    if let Some(controls) = controls {
+        let rows = in_parallel(&members, request.jobs, |variant| {
+            let row = runner.loosen_tighten_row(variant, controls);
+            eprintln!("{row}");
+            row
+        })?;
+        print_command(request, rows.len(), measure);
+        println!("{header}");
+        rows.iter().for_each(|row| println!("{row}"));
+        return Ok(());
+    }
+    let bodies: Vec<Result<PathBuf, String>> = members.iter().map(|v| runner.body(v)).collect();
+    let cases = cases(&members, &bodies, request.rounding);
+    let rows = in_parallel(&cases, request.jobs, |case| {
+        let row = runner.slide_row(case, loaded.scenario.time_step_s);
+        eprintln!("{}", row.0);
         row
     })?;
     print_command(request, rows.len(), measure);
     println!("{header}");
-    for row in rows {
-        println!("{row}");
-    }
+    rows.iter().for_each(|(row, _)| println!("{row}"));
+    let failed: Vec<(String, &String)> = cases
+        .iter()
+        .zip(&rows)
+        .filter_map(|(c, (_, f))| f.as_ref().map(|f| (c.label(), f)))
+        .collect();
+    println!(
+        "\n{} of {} runs pass the trefoil's slide bounds (held ≥ 99 %, tied ≥ 0.35 L, travel \
+         ≥ 0.25 L, to ≤ 0.05 L, 2 cm/s ± 30 %, penetration < 2 %, limit excess < 0.5°){}",
+        rows.len() - failed.len(),
+        rows.len(),
+        if failed.is_empty() { "." } else { "; the others:" }
+    );
+    failed.iter().for_each(|(label, why)| println!("- {label}: {why}"));
     Ok(())
 }
 
 /// Prints the command that makes the table and the number of members.
 fn print_command(request: &Request<'_>, members: usize, measure: &str) {
-    let extra = match &request.measure {
+    let mut extra = match &request.measure {
         Measure::Modes(modes) => modes.arguments(),
         _ => String::new(),
     };
+    if request.rounding > 1 {
+        extra += &format!(" --rounding {}", request.rounding);
+    }
     println!(
         "`cargo xtask family --scenario {} --knot {} --measure {measure}{extra}{}{}` ({members} \
          members):\n",
@@ -216,17 +244,21 @@ impl Runner<'_> {
         Err(format!("exit {}: {last}", output.status.code().unwrap_or(-1)))
     }
 
-    /// The slide table's row of `variant`.
-    fn slide_row(&self, variant: &Variant) -> String {
+    /// The slide table's row of `case` and, when it misses [`SlideBounds::TREFOIL`], how;
+    /// `scenario_step` as in [`Case::run`].
+    fn slide_row(&self, case: &Case<'_>, scenario_step: f64) -> (String, Option<String>) {
         let knot = self.request.knot;
-        let sign = (knot == "3_1").then_some(if variant.right_handed { 1.0 } else { -1.0 });
-        let measured = self
-            .body(variant)
-            .and_then(|body| self.run(variant, &body, "", &[]))
+        let sign = (knot == "3_1").then_some(if case.variant.right_handed { 1.0 } else { -1.0 });
+        let measured = case
+            .run(self, scenario_step, &[])
             .and_then(|out| KnotRun::read(&out).map_err(|e| e.to_string()));
         match measured {
-            Ok(run) => run.table_row(variant.name, knot, sign),
-            Err(why) => format!("| {} | — ({why}) | | | | | | | | |", variant.name),
+            Ok(run) => {
+                let failures = run.failures(&SlideBounds::TREFOIL, knot, sign);
+                let row = run.table_row(&case.label(), knot, sign);
+                (row, (!failures.is_empty()).then(|| failures.join("; ")))
+            }
+            Err(why) => (format!("| {} | — ({why}) | | | | | | | | | |", case.label()), Some(why)),
         }
     }
 

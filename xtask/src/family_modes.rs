@@ -1,6 +1,5 @@
 //! `cargo xtask family --measure modes [--phase NAME] [--kind K]… [--rounding N]`: runs the
-//! scenario on each member (and, with `--rounding N`, at N − 1 rounding perturbations of its
-//! time step, h(1 + j·10⁻¹²), j = 1 … N − 1), decomposes the phase's force field
+//! scenario on each member (and its rounding perturbations, `family_cases.rs`), decomposes the phase's force field
 //! (`hagfish_modes`) and prints two tables per DOF kind:
 //! - the modes: energy of modes 1–4, the modes for 90/95/99 %, the travelling-wave fit of
 //!   modes 1–2 (k, ω, c = ω/k with their R²) and the knot's speed;
@@ -16,9 +15,7 @@ use hagfish_bench_support::Variant;
 use hagfish_modes::{Comparison, Decomposition, KindSelection, RunField};
 
 use crate::family::{Runner, in_parallel};
-
-/// The relative step of the rounding perturbations of the time step.
-const ROUNDING_STEP: f64 = 1e-12;
+use crate::family_cases::{Case, cases};
 
 /// The modes whose spans' principal angles are tabulated.
 const ANGLE_MODES: usize = 4;
@@ -36,33 +33,13 @@ pub struct ModesMeasure {
     pub phase: String,
     /// The DOF kinds, one table pair each (one kind: bend-y, bend-z, twist).
     pub kinds: Vec<KindSelection>,
-    /// Runs per member: the unperturbed one and `rounding − 1` rounding perturbations.
-    pub rounding: usize,
 }
 
 impl ModesMeasure {
     /// The command-line arguments that ask for this measure's options.
     pub fn arguments(&self) -> String {
         let kinds: String = self.kinds.iter().map(|k| format!(" --kind {k}")).collect();
-        format!(" --phase {}{kinds} --rounding {}", self.phase, self.rounding)
-    }
-}
-
-/// One run: a member at one rounding perturbation `j` of its time step, with its body file
-/// (written once per member, before any of its runs reads it).
-struct Case<'a> {
-    variant: &'a Variant,
-    body: &'a Result<PathBuf, String>,
-    j: usize,
-}
-
-impl Case<'_> {
-    /// The row label: the member's name, and δh/h when perturbed.
-    fn label(&self) -> String {
-        match self.j {
-            0 => self.variant.name.into(),
-            j => format!("{} δh/h {j}e-12", self.variant.name),
-        }
+        format!(" --phase {}{kinds}", self.phase)
     }
 }
 
@@ -116,15 +93,11 @@ pub fn run(
         return Err(format!("the modes measure compares with {REFERENCE}: include it (--only)"));
     }
     let bodies: Vec<Result<PathBuf, String>> = members.iter().map(|v| runner.body(v)).collect();
-    let cases: Vec<Case<'_>> = members
-        .iter()
-        .zip(&bodies)
-        .flat_map(|(variant, body)| {
-            (0..measure.rounding.max(1)).map(move |j| Case { variant, body, j })
-        })
-        .collect();
+    let cases = cases(members, &bodies, runner.request.rounding);
     let fields = in_parallel(&cases, runner.request.jobs, |case| {
-        let field = run_case(runner, case, scenario_step);
+        let field = case
+            .run(runner, scenario_step, &[])
+            .and_then(|dir| RunField::read(&dir).map_err(|e| e.to_string()));
         eprintln!(
             "{}: {}",
             case.label(),
@@ -158,31 +131,6 @@ pub fn run(
         print_table(&BASIS_COLUMNS, &cases, &basis.collect::<Vec<_>>());
     }
     Ok(())
-}
-
-/// Runs `case` into `<work>/<name>` (`<name>_dh<j>` when perturbed) and reads its field.
-fn run_case(runner: &Runner<'_>, case: &Case<'_>, scenario_step: f64) -> Result<RunField, String> {
-    let body = case.body.as_ref().map_err(Clone::clone)?;
-    let (suffix, extra) = match case.j {
-        0 => (String::new(), vec![]),
-        j => {
-            let step = member_step(case.variant, runner.request.sets, scenario_step)?;
-            let perturbed = step * (1.0 + j as f64 * ROUNDING_STEP);
-            (format!("_dh{j}"), vec![format!("time_step_s={perturbed}")])
-        }
-    };
-    let directory: PathBuf = runner.run(case.variant, body, &suffix, &extra)?;
-    RunField::read(&directory).map_err(|e| e.to_string())
-}
-
-/// The time step of `variant`'s runs: the last `time_step_s=` of its own and the request's
-/// overrides, else the scenario's.
-fn member_step(variant: &Variant, sets: &[String], scenario_step: f64) -> Result<f64, String> {
-    let set = variant.sets.iter().copied().chain(sets.iter().map(String::as_str));
-    match set.filter_map(|s| s.strip_prefix("time_step_s=")).next_back() {
-        Some(value) => value.trim().parse().map_err(|e| format!("time_step_s={value}: {e}")),
-        None => Ok(scenario_step),
-    }
 }
 
 /// The modes table's numbers of `d`.

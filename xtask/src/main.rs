@@ -13,6 +13,7 @@
 //!   the table of `docs/validation.md`; fails if a check is outside its tolerance.
 
 mod family;
+mod family_cases;
 mod family_modes;
 mod golden;
 mod knotted;
@@ -109,8 +110,9 @@ enum Task {
         /// all three when none is given.
         #[arg(long, value_name = "KIND", value_parser = str::parse::<KindSelection>)]
         kind: Vec<KindSelection>,
-        /// `--measure modes`: runs per member, the unperturbed one and N − 1 rounding
-        /// perturbations of its time step, h(1 + j·1e-12), with the spread over them.
+        /// `--measure slide` or `modes`: runs per member, the unperturbed one and N − 1
+        /// rounding perturbations of its time step, h(1 + j·1e-12) (the modes with the spread
+        /// over them).
         #[arg(long, value_name = "N", default_value_t = 1)]
         rounding: usize,
     },
@@ -149,8 +151,12 @@ fn main() -> ExitCode {
             // A relative path that is not there from here is taken from the workspace root.
             let scenario =
                 if scenario.exists() { scenario } else { workspace_root().join(scenario) };
-            if measure != "modes" && (rounding != 1 || !kind.is_empty() || phase != "slide") {
-                eprintln!("error: --phase, --kind and --rounding are options of --measure modes");
+            if measure != "modes" && (!kind.is_empty() || phase != "slide") {
+                eprintln!("error: --phase and --kind are options of --measure modes");
+                return ExitCode::from(2);
+            }
+            if measure == "loosen-tighten" && rounding != 1 {
+                eprintln!("error: --rounding is an option of --measure slide and modes");
                 return ExitCode::from(2);
             }
             let measure = match measure.as_str() {
@@ -161,7 +167,7 @@ fn main() -> ExitCode {
                     } else {
                         kind
                     };
-                    family::Measure::Modes(family_modes::ModesMeasure { phase, kinds, rounding })
+                    family::Measure::Modes(family_modes::ModesMeasure { phase, kinds })
                 }
                 _ => family::Measure::Slide,
             };
@@ -172,6 +178,7 @@ fn main() -> ExitCode {
                 jobs,
                 only: &only,
                 measure,
+                rounding,
             };
             family::run(&workspace_root(), &request).map(|()| true)
         }

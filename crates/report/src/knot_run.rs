@@ -52,6 +52,41 @@ pub const TABLE_HEADER: &str = "| variant | tied at (s) | held | core start when
      slide (s) | travel (L) | nearest core end (L) | core length change | speed (cm/s) | \
      max penetration (% r) | max skin compression (%) |\n|---|---|---|---|---|---|---|---|---|---|---|";
 
+/// The bounds a tie → tighten → slide run is judged by (fractions of the body length L): the
+/// trefoil's of the family table and of issue #37's k-mode slides.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SlideBounds {
+    /// Least share of the frames after tying that show the knot (of its handedness).
+    pub held: f64,
+    /// Least head-ward end of the core when tied.
+    pub tied_core_start: f64,
+    /// Least travel of the core's midpoint toward the head.
+    pub travel: f64,
+    /// Largest nearest head-ward end of the core in the slide.
+    pub nearest: f64,
+    /// The speed asked (cm/s) and the relative band around it, `|v/v₀ − 1| ≤ band`; `None`
+    /// judges no speed.
+    pub speed: Option<(f64, f64)>,
+    /// Largest self penetration (fraction of the local radius, of the cores with a skin).
+    pub penetration: f64,
+    /// Largest joint-limit excess (deg).
+    pub limit_excess_deg: f64,
+}
+
+impl SlideBounds {
+    /// The trefoil's bounds: held ≥ 99 %, tied ≥ 0.35 L from the head, travel ≥ 0.25 L, to
+    /// ≤ 0.05 L of the head, 2 cm/s ± 30 %, penetration < 2 % of r, limit excess < 0.5°.
+    pub const TREFOIL: Self = Self {
+        held: 0.99,
+        tied_core_start: 0.35,
+        travel: 0.25,
+        nearest: 0.05,
+        speed: Some((2.0, 0.3)),
+        penetration: 0.02,
+        limit_excess_deg: 0.5,
+    };
+}
+
 impl KnotRun {
     /// Reads the run in `dir`, or says why it has no such measures (no file, not tied, too
     /// short a slide).
@@ -113,6 +148,46 @@ impl KnotRun {
             name == knot && writhe_sign.is_none_or(|sign| sign * writhe > 0.5)
         });
         shown.count() as f64 / self.after_tying.len() as f64
+    }
+
+    /// The bounds of `bounds` this run misses, each said with its measure (empty: it passes);
+    /// `knot` and `writhe_sign` as in [`KnotRun::held`].
+    pub fn failures(
+        &self,
+        bounds: &SlideBounds,
+        knot: &str,
+        writhe_sign: Option<f64>,
+    ) -> Vec<String> {
+        let held = self.held(knot, writhe_sign);
+        let speed_ok = bounds.speed.is_none_or(|(v, band)| (self.speed / v - 1.0).abs() <= band);
+        let checks = [
+            (
+                held >= bounds.held,
+                format!("held on {:.1} % of the frames after tying", 100.0 * held),
+            ),
+            (
+                self.tied_core_start >= bounds.tied_core_start,
+                format!("core's head-ward end at {:.3} L when tied", self.tied_core_start),
+            ),
+            (
+                self.travel >= bounds.travel,
+                format!("the core's midpoint moved {:.3} L", self.travel),
+            ),
+            (
+                self.nearest <= bounds.nearest,
+                format!("the core's head-ward end came to {:.3} L", self.nearest),
+            ),
+            (speed_ok, format!("{:.2} cm/s", self.speed)),
+            (
+                self.penetration < bounds.penetration,
+                format!("self penetration {:.2} % of r", 100.0 * self.penetration),
+            ),
+            (
+                self.limit_excess_deg < bounds.limit_excess_deg,
+                format!("limit excess {:.2}°", self.limit_excess_deg),
+            ),
+        ];
+        checks.into_iter().filter(|(ok, _)| !ok).map(|(_, why)| why).collect()
     }
 
     /// This run as a row of the table under [`TABLE_HEADER`], `held` as in [`KnotRun::held`].
@@ -205,6 +280,23 @@ mod tests {
             row,
             "| test | 1.0 | 100 % | 0.500 | 2.0–4.0 | 0.200 | 0.300 | 0 % | 1.00 | 1.00 | 50 |"
         );
+        let failures = run.failures(&SlideBounds::TREFOIL, "3_1", Some(1.0));
+        assert_eq!(
+            failures,
+            [
+                "the core's midpoint moved 0.200 L",
+                "the core's head-ward end came to 0.300 L",
+                "1.00 cm/s"
+            ]
+        );
+        let lenient = SlideBounds {
+            travel: 0.19,
+            nearest: 0.31,
+            speed: Some((1.0, 0.01)),
+            ..SlideBounds::TREFOIL
+        };
+        assert_eq!(run.failures(&lenient, "3_1", Some(1.0)), Vec::<String>::new());
+        assert_eq!(run.failures(&lenient, "3_1", Some(-1.0)).len(), 1, "the mirror image");
         let signed = [0.26, -0.04, -0.004, f64::NAN].map(signed_percent);
         assert_eq!(signed, ["+26 %", "−4 %", "0 %", "—"].map(String::from));
     }

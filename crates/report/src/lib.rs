@@ -75,7 +75,7 @@ pub use error::ReportError;
 pub use forces::{AXES, ThigmoForces};
 pub use frame_selection::{BODY_FRAME_BUDGET, FrameSelection};
 pub use html::escape;
-pub use knot_run::{KnotRun, TABLE_HEADER, signed_percent};
+pub use knot_run::{KnotRun, SlideBounds, TABLE_HEADER, signed_percent};
 pub use loosen_tighten::LoosenTighten;
 pub use metrics::Metrics;
 pub use outputs::{
