@@ -12,6 +12,7 @@ mod export_command;
 mod hostile_inputs;
 mod huge_bodies;
 mod knot_core;
+mod knot_plans;
 mod knot_size;
 mod modes_command;
 mod overrides;

@@ -143,7 +143,8 @@ mod tests {
         let script = &restored.forming.as_ref().expect("a tie forms").script;
         assert_eq!(*script, tie.script_for(2));
         assert_ne!(*script, tie.script_for(1), "the attempts move at different speeds");
-        let checks: Vec<_> = tie.plan_for(2).checks().collect();
+        let plan = tie.plan_for(2);
+        let checks: Vec<_> = plan.checks().map(|(k, c)| (k, c.clone())).collect();
         assert_eq!(restored.tie_checks, checks);
     }
 }

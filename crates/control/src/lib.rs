@@ -57,6 +57,7 @@ mod drag;
 mod error;
 mod force_space;
 mod forming;
+mod knot_plan;
 mod knot_span;
 mod load;
 mod loops;
@@ -78,6 +79,9 @@ pub use drag::WaterDrag;
 pub use error::ControlError;
 pub use force_space::{Confinement, ForceSpace, ModalSpace};
 pub use forming::{FormingController, FormingScript, ScriptProgress, ScriptStep, Waypoint};
+pub use knot_plan::{
+    FIGURE_EIGHT, KnotPlan, KnotPlanStep, OVERHAND, PlanAction, PlanCheck, PlanTarget,
+};
 pub use knot_span::KnotSpan;
 pub use load::{LoadDirection, LoadPhase};
 pub use loops::{ProjectedLoop, largest_projected_loop};
@@ -90,8 +94,8 @@ pub use replay::{Replay, ReplayField};
 pub use tail_pd::TailGains;
 pub use thigmotaxis::{SlidingTargets, Strand, ThigmoParameters, ThigmoRequest};
 pub use tie::{
-    CrossingCheck, CrossingMiss, Handedness, LayerCode, MIN_AGREEMENT, TieKnot, TiePhase,
-    TieProgress,
+    CrossingCheck, CrossingMiss, Handedness, LayerCode, MIN_AGREEMENT, PlannedKnot, TieKnot,
+    TiePhase, TieProgress,
 };
 pub use tie_plan::{PlanStep, TiePlan};
 pub use tube_length::{diameters_tail_ward, fraction_leaving};

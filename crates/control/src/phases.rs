@@ -181,7 +181,9 @@ impl PhasedController {
     pub(crate) fn refresh_tie_checks(&mut self) {
         self.tie_checks.clear();
         if let Some(Phase::Tie(phase)) = self.phases.get(self.progress.phase) {
-            self.tie_checks.extend(phase.plan_for(self.tie.attempt.max(1)).checks());
+            let plan = phase.plan_for(self.tie.attempt.max(1));
+            let checks = plan.steps.into_iter().enumerate();
+            self.tie_checks.extend(checks.filter_map(|(k, step)| step.check.map(|c| (k, c))));
         }
     }
 
@@ -230,23 +232,22 @@ impl PhasedController {
         self.observe_crossings(&found);
     }
 
-    /// The tie phase and its next crossing check, if the plan step carrying it has ended.
-    fn crossing_check_due(&self) -> Option<(&TiePhase, CrossingCheck)> {
-        let Some(Phase::Tie(phase)) = self.phases.get(self.progress.phase) else {
+    /// The tie phase's next crossing check, if the plan step carrying it has ended.
+    fn crossing_check_due(&self) -> Option<&CrossingCheck> {
+        let Some(Phase::Tie(_)) = self.phases.get(self.progress.phase) else {
             return None;
         };
         let step = self.forming.as_ref()?.progress().step;
-        let &(after_step, check) = self.tie_checks.get(self.tie.checks_done as usize)?;
-        (step > after_step && !self.tie.failed).then_some((phase, check))
+        let (after_step, check) = self.tie_checks.get(self.tie.checks_done as usize)?;
+        (step > *after_step && !self.tie.failed).then_some(check)
     }
 
     /// Runs the due crossing checks on the crossings `found`. A failed check is recorded
     /// ([`TieProgress::last_miss`]) and ends the checking of this attempt; the attempt itself
     /// ends as before, on the knot analysis: a check is a diagnosis, the analysis the judge.
     pub(crate) fn observe_crossings(&mut self, found: &[Layer]) {
-        while let Some((phase, check)) = self.crossing_check_due() {
-            let checks = self.tie_checks.len() as u32;
-            if phase.passes(&check, found) || self.tie.shown_since.is_some() {
+        while let Some(check) = self.crossing_check_due() {
+            if check.is_met_by(found) || self.tie.shown_since.is_some() {
                 self.tie.checks_done += 1;
                 continue;
             }
@@ -255,7 +256,7 @@ impl PhasedController {
                 check: self.tie.checks_done,
                 found: LayerCode::of(found),
             });
-            self.tie.checks_done = checks;
+            self.tie.checks_done = self.tie_checks.len() as u32;
         }
     }
 
@@ -263,7 +264,7 @@ impl PhasedController {
     pub fn tie_failure(&self) -> Option<TieFailure> {
         match self.phases.get(self.progress.phase) {
             Some(Phase::Tie(phase)) if self.tie.failed => Some(TieFailure {
-                knot: phase.knot,
+                knot: phase.knot.clone(),
                 attempts: self.tie.attempt,
                 last_miss: self.tie.last_miss.map(|miss| Self::describe(phase, miss)),
             }),
@@ -273,9 +274,10 @@ impl PhasedController {
 
     /// A crossing miss in words, with the check's name and what the plan makes.
     fn describe(phase: &TiePhase, miss: CrossingMiss) -> String {
-        let check = phase.plan_for(miss.attempt).checks().nth(miss.check as usize);
+        let plan = phase.plan_for(miss.attempt);
+        let check = plan.checks().nth(miss.check as usize);
         let (name, expected) = check.map_or(("a check", String::new()), |(_, c)| {
-            (c.name, phase.expected_code(&c).to_string())
+            (c.name.as_str(), LayerCode::of(&c.expected).to_string())
         });
         format!(
             "attempt {}: after {name} the tail's crossings seen from above were {}; the plan makes {expected}",

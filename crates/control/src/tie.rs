@@ -20,15 +20,18 @@
 //! once lost a figure-eight that ties when left to go on: `docs/physics.md`).
 //!
 //! The plan leaves the knot loose (the tail is not pulled tight): tightening is thigmotaxis'
-//! job. The trefoil (either handedness) and the figure-eight are planned; the Miller
-//! Institute knot is not (`docs/physics.md`).
+//! job. The trefoil (either handedness) and the figure-eight are built in; any other knot is
+//! a plan file ([`TieKnot::Planned`], docs/knot-plans.md).
 
 use std::fmt;
+use std::path::PathBuf;
+use std::sync::Arc;
 
 use hagfish_tree::Body;
 use serde::{Deserialize, Serialize};
 
 use crate::crossings::Layer;
+use crate::knot_plan::{FIGURE_EIGHT, KnotPlan, OVERHAND};
 use crate::tail_pd::TailGains;
 use crate::tube_length::fraction_leaving;
 
@@ -41,32 +44,104 @@ pub enum Handedness {
     Left,
 }
 
-/// A knot the tie controller plans.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub enum TieKnot {
-    /// The overhand knot, 3₁, of the given handedness.
-    Trefoil(Handedness),
-    /// The figure-eight knot, 4₁ (achiral).
-    FigureEight,
+impl Handedness {
+    /// The other one (the mirror image's).
+    pub fn mirrored(self) -> Self {
+        match self {
+            Handedness::Right => Handedness::Left,
+            Handedness::Left => Handedness::Right,
+        }
+    }
 }
 
+/// A knot the tie controller plans: built in, or planned by a file.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum TieKnot {
+    /// The overhand knot, 3₁, of the given handedness (`data/knots/overhand.ron`).
+    Trefoil(Handedness),
+    /// The figure-eight knot, 4₁, achiral (`data/knots/figure_eight.ron`).
+    FigureEight,
+    /// The knot of a plan file ([`KnotPlan`], docs/knot-plans.md).
+    Planned(PlannedKnot),
+}
+
+/// A knot planned by a file: `Planned((file: "../knots/miller_institute.ron", mirror: false))`
+/// in a scenario.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlannedKnot {
+    /// The plan file, relative to the scenario file's directory.
+    pub file: PathBuf,
+    /// Tie the mirror image: every height of the plan negated, every checked crossing and
+    /// the handedness flipped.
+    #[serde(default)]
+    pub mirror: bool,
+    /// The plan read from `file`; `None` until the scenario is loaded (an empty plan then).
+    #[serde(skip)]
+    pub plan: Option<Arc<KnotPlan>>,
+}
+
+impl PartialEq for PlannedKnot {
+    /// The same file, mirrored the same way.
+    fn eq(&self, other: &Self) -> bool {
+        self.file == other.file && self.mirror == other.mirror
+    }
+}
+
+impl Eq for PlannedKnot {}
+
 impl TieKnot {
-    /// Its Rolfsen name.
-    pub fn name(self) -> &'static str {
+    /// Its Rolfsen name (a planned knot's from its plan; "?" before the plan is read).
+    pub fn name(&self) -> &str {
         match self {
             TieKnot::Trefoil(_) => "3_1",
             TieKnot::FigureEight => "4_1",
+            TieKnot::Planned(planned) => planned.plan.as_ref().map_or("?", |p| p.knot.as_str()),
+        }
+    }
+
+    /// Whether the plan is tied as its mirror image: the left-handed trefoil, a planned
+    /// knot with `mirror`.
+    pub fn mirrored(&self) -> bool {
+        match self {
+            TieKnot::Trefoil(handedness) => *handedness == Handedness::Left,
+            TieKnot::FigureEight => false,
+            TieKnot::Planned(planned) => planned.mirror,
+        }
+    }
+
+    /// The handedness the tie must show, if it checks one.
+    pub fn handedness(&self) -> Option<Handedness> {
+        match self {
+            TieKnot::Trefoil(handedness) => Some(*handedness),
+            TieKnot::FigureEight => None,
+            TieKnot::Planned(planned) => {
+                let written = planned.plan.as_ref().and_then(|p| p.handedness);
+                written.map(|h| if planned.mirror { h.mirrored() } else { h })
+            }
+        }
+    }
+
+    /// The plan, as written (before mirroring): a built-in knot's parsed from its file's
+    /// text, a planned knot's as read at load. `None` for a planned knot not yet read (or a
+    /// built-in text that does not parse, which a test rules out).
+    pub fn plan(&self) -> Option<Arc<KnotPlan>> {
+        let builtin = |text| KnotPlan::parse(text).ok().map(Arc::new);
+        match self {
+            TieKnot::Trefoil(_) => builtin(OVERHAND),
+            TieKnot::FigureEight => builtin(FIGURE_EIGHT),
+            TieKnot::Planned(planned) => planned.plan.clone(),
         }
     }
 
     /// Whether a knot analysis of the body (its Rolfsen name, agreement over closure
     /// directions and the core's handedness if known) shows this knot: the type with
-    /// agreement ≥ [`MIN_AGREEMENT`], and for a chiral knot the right handedness.
-    pub fn is_shown_by(self, name: &str, agreement: f64, right_handed: Option<bool>) -> bool {
-        let chirality = match self {
-            TieKnot::Trefoil(Handedness::Right) => right_handed == Some(true),
-            TieKnot::Trefoil(Handedness::Left) => right_handed == Some(false),
-            TieKnot::FigureEight => true,
+    /// agreement ≥ [`MIN_AGREEMENT`], and where the tie checks one, the right handedness.
+    pub fn is_shown_by(&self, name: &str, agreement: f64, right_handed: Option<bool>) -> bool {
+        let chirality = match self.handedness() {
+            Some(Handedness::Right) => right_handed == Some(true),
+            Some(Handedness::Left) => right_handed == Some(false),
+            None => true,
         };
         name == self.name() && agreement >= MIN_AGREEMENT && chirality
     }
@@ -77,14 +152,20 @@ pub const MIN_AGREEMENT: f64 = 0.9;
 
 /// A check of the crossings made so far, run once the plan step that carries it has ended
 /// ([`PlanStep::check`](crate::PlanStep::check)): the tail's crossings seen from above, from
-/// the crossover on, must begin with `expected` (as planned for the right-handed trefoil and
-/// the figure-eight; mirrored for the left-handed trefoil).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// the crossover on, must begin with `expected` (mirrored already for a mirror image).
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct CrossingCheck {
     /// What the check is of, for messages ("the crossover").
-    pub name: &'static str,
+    pub name: String,
     /// How the crossings begin, walking from the crossover to the tail.
-    pub expected: &'static [Layer],
+    pub expected: Vec<Layer>,
+}
+
+impl CrossingCheck {
+    /// Whether the crossings `found` begin as this check expects.
+    pub fn is_met_by(&self, found: &[Layer]) -> bool {
+        found.starts_with(&self.expected)
+    }
 }
 
 /// A crossing check that failed: in which attempt, which check, and the crossings found.
@@ -217,23 +298,6 @@ impl TiePhase {
             None => self.at,
         };
         TiePhase { at, ..self.clone() }
-    }
-
-    /// The crossings `check` expects of this knot: as listed, or every layer flipped for the
-    /// left-handed trefoil (the mirror image).
-    fn expected<'c>(&self, check: &'c CrossingCheck) -> impl Iterator<Item = Layer> + 'c {
-        let mirrored = self.knot == TieKnot::Trefoil(Handedness::Left);
-        check.expected.iter().map(move |&l| if mirrored { l.flipped() } else { l })
-    }
-
-    /// Whether the crossings `found` begin as `check` expects of this knot.
-    pub fn passes(&self, check: &CrossingCheck, found: &[Layer]) -> bool {
-        found.len() >= check.expected.len() && self.expected(check).zip(found).all(|(e, &f)| e == f)
-    }
-
-    /// The expected crossings of `check` for this knot, as a [`LayerCode`] for messages.
-    pub fn expected_code(&self, check: &CrossingCheck) -> LayerCode {
-        LayerCode::of(&self.expected(check).collect::<Vec<_>>())
     }
 }
 

@@ -33,6 +33,15 @@ pub enum ScenarioError {
         /// What is wrong.
         reason: String,
     },
+    /// A tie phase's plan file could not be read, or is not a plan (the position is the
+    /// knot's `file` in the scenario; the reason names the plan file).
+    #[error("{at}: the knot's plan: {reason}")]
+    KnotPlanFile {
+        /// Where the scenario names the plan file.
+        at: hagfish_anatomy::Origin,
+        /// What is wrong.
+        reason: String,
+    },
     /// The body's model could not be built.
     #[error("building the model: {0}")]
     Model(#[from] hagfish_tree::TreeError),
