@@ -419,28 +419,13 @@ pub fn collect(folder: &Path) -> Result<Vec<Vec<String>>, CliError> {
             };
         rows.push([vec![run.id.clone()], plan.values(run), values].concat());
     }
-    let mut text = csv_line(&header);
+    let mut text = hagfish_run::csv_record(&header);
     for row in &rows {
-        text.push_str(&csv_line(row));
+        text.push_str(&hagfish_run::csv_record(row));
     }
     hagfish_run::replace_file(&folder.join(SUMMARY_FILE), text.as_bytes())?;
     hagfish_report::write_scatters(&scatters(&plan, &header, &rows), &folder.join("plots"))?;
     Ok(rows)
-}
-
-/// One CSV line; a field with a comma, quote or newline is quoted.
-fn csv_line(fields: &[String]) -> String {
-    let quoted: Vec<String> = fields
-        .iter()
-        .map(|f| {
-            if f.contains([',', '"', '\n']) {
-                format!("\"{}\"", f.replace('"', "\"\""))
-            } else {
-                f.clone()
-            }
-        })
-        .collect();
-    quoted.join(",") + "\n"
 }
 
 /// Each numeric summary column against each swept parameter whose values are all numbers and
@@ -489,11 +474,5 @@ mod tests {
         for bad in ["4/4", "1", "a/2", "-1/2"] {
             assert!(Shard::parse(bad).is_err(), "{bad}");
         }
-    }
-
-    #[test]
-    fn csv_fields_with_commas_are_quoted() {
-        let line = csv_line(&["a".into(), "(1.0, 2.0)".into(), "say \"x\"".into()]);
-        assert_eq!(line, "a,\"(1.0, 2.0)\",\"say \"\"x\"\"\"\n");
     }
 }

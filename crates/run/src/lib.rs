@@ -45,6 +45,7 @@ mod run;
 mod scientific;
 
 pub use checkpoint::{CHECKPOINT_FILE, CHECKPOINT_FORMAT, Checkpoint, ExactF64s};
+pub use csv_text::csv_record;
 pub use error::RunError;
 pub use force_field::{ForceFieldLog, ForceFieldStats};
 pub use hagfish_sim::dof_arc_lengths;
