@@ -2,22 +2,22 @@
 //! plan's file ties exactly what the built-in knot ties, as written and mirrored, and a plan
 //! that is not one is refused at load with the plan file's position.
 
+use std::path::Path;
+
 use crate::common::{code_and_stderr, fresh_dir, run_hagfish};
 
-/// `tie.ron` (a right-handed trefoil tied by control) with its tie phase's knot set to
-/// `knot`, into `dir/name`: the bytes of its metrics.csv.
-fn tie_metrics(dir: &std::path::Path, name: &str, knot: &str) -> Vec<u8> {
-    let out = dir.join(name);
+/// `hagfish run data/scenarios/tie.ron --quiet --out OUT --set phases[0].Tie.knot=KNOT`
+/// (`tie.ron` ties a right-handed trefoil by control).
+fn run_tie_with(out: &Path, knot: &str) -> std::process::Output {
+    let out = out.to_str().expect("a UTF-8 path");
     let set = format!("phases[0].Tie.knot={knot}");
-    let output = run_hagfish([
-        "run",
-        "data/scenarios/tie.ron",
-        "--out",
-        out.to_str().expect("a UTF-8 path"),
-        "--quiet",
-        "--set",
-        &set,
-    ]);
+    run_hagfish(["run", "data/scenarios/tie.ron", "--quiet", "--out", out, "--set", &set])
+}
+
+/// [`run_tie_with`] into `dir/name`: the bytes of its metrics.csv.
+fn tie_metrics(dir: &Path, name: &str, knot: &str) -> Vec<u8> {
+    let out = dir.join(name);
+    let output = run_tie_with(&out, knot);
     assert!(output.status.success(), "{name}: {}", code_and_stderr(&output).1);
     std::fs::read(out.join("metrics.csv")).expect("metrics.csv")
 }
@@ -52,15 +52,8 @@ fn a_plan_that_is_not_one_is_refused_before_the_run_with_its_position() {
     for (text, said) in cases {
         std::fs::write(&plan, text).expect("write the plan");
         let out = dir.join("run");
-        let set = format!("phases[0].Tie.knot=Planned((file: {:?}))", plan.display().to_string());
-        let output = run_hagfish([
-            "run",
-            "data/scenarios/tie.ron",
-            "--out",
-            out.to_str().expect("a UTF-8 path"),
-            "--set",
-            &set,
-        ]);
+        let output =
+            run_tie_with(&out, &format!("Planned((file: {:?}))", plan.display().to_string()));
         let (code, stderr) = code_and_stderr(&output);
         assert_eq!(code, Some(2), "{text}: {stderr}");
         assert!(stderr.contains("the knot's plan") && stderr.contains(said), "{text}: {stderr}");
