@@ -3,10 +3,13 @@
 # docs/outputs.md states: a finding is a crash, an input that runs over 5 s, or an
 # allocation over 1 GB. Seeds: the shipped scenario, body and knot plan files, and
 # fuzz/seeds/ (--set values, a centreline). Findings go to fuzz/artifacts/TARGET/.
-# Usage (from the workspace root): fuzz/run_all.sh [MINUTES] [WORK_DIR]
+# Usage (from the workspace root): fuzz/run_all.sh [MINUTES] [WORK_DIR] [TARGET…]
+# (every target when none is named).
 set -eu
 minutes=${1:-10}
 work=${2:-target/fuzz-corpus}
+shift $(( $# < 2 ? $# : 2 ))
+targets=${*:-scenario body set plan centreline}
 mkdir -p "$work/seeds/plan"
 printf '\000(scenario: "../scenarios/thesis.ron", grid: [("time_step_s", ["0.01", "0.005"])])' \
     > "$work/seeds/plan/grid"
@@ -28,6 +31,24 @@ run() {
         echo "$target: FINDING, see $work/$target.log and fuzz/artifacts/$target"
     fi
 }
-run scenario data/scenarios tests/data & run body data/hagfish data/rods & wait
-run set fuzz/seeds/set & run plan "$work/seeds/plan" & wait
-run centreline fuzz/seeds/centreline
+seeds() {
+    case $1 in
+        scenario) echo data/scenarios tests/data ;;
+        body) echo data/hagfish data/rods ;;
+        plan) echo "$work/seeds/plan" ;;
+        *) echo "fuzz/seeds/$1" ;;
+    esac
+}
+# Two at a time.
+set -- $targets
+while [ $# -gt 0 ]; do
+    first=$1
+    shift
+    if [ $# -gt 0 ]; then
+        second=$1
+        shift
+        run "$first" $(seeds "$first") & run "$second" $(seeds "$second") & wait
+    else
+        run "$first" $(seeds "$first")
+    fi
+done

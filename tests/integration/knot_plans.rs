@@ -60,3 +60,58 @@ fn a_plan_that_is_not_one_is_refused_before_the_run_with_its_position() {
         assert!(!out.exists(), "{text}: refused before the run directory is made");
     }
 }
+
+/// The frames of `dir`'s thigmo_force.npy field that are not all zero, among the frames of
+/// metrics.csv's `phase` = `tie`.
+fn tie_frames_with_force(dir: &Path) -> (usize, usize) {
+    let (columns, rows) = crate::common::metrics_table(dir);
+    let phase = columns["phase"];
+    let forces = crate::common::csv_rows(&dir.join("forces.csv"));
+    let tie_frames: Vec<&String> =
+        rows.iter().filter(|r| r[phase] == "tie").map(|r| &r[0]).collect();
+    let pushed = tie_frames
+        .iter()
+        .filter(|frame| {
+            forces.iter().any(|f| {
+                f[0].as_str() == frame.as_str()
+                    && f[4] == "thigmo"
+                    && f[5].parse::<f64>() != Ok(0.0)
+            })
+        })
+        .count();
+    (pushed, tie_frames.len())
+}
+
+/// `figure_eight.ron` with its tie holding the crossings it has made
+/// (`hold_crossings_dyn`): hold rows push during the tie (the `thigmo` group of forces.csv),
+/// where the same tie without holds pushes nothing; and a run stopped after the first hold
+/// resumes bit for bit (the held crossings are in the checkpoint).
+#[test]
+fn a_tie_that_holds_its_crossings_pushes_on_them_and_resumes_bit_for_bit() {
+    let dir = fresh_dir("knot_plans_hold");
+    let scenario = "data/scenarios/figure_eight.ron";
+    let hold = "phases[0].Tie.hold_crossings_dyn=Some(1000.0)";
+    let run = |name: &str, extra: &[&str]| {
+        let out = dir.join(name);
+        let mut args = vec!["run", scenario, "--quiet", "--out", out.to_str().expect("UTF-8")];
+        args.extend_from_slice(&["--set", "end_after_phases=false", "--set", "duration_s=21.0"]);
+        args.extend_from_slice(extra);
+        let output = run_hagfish(args);
+        assert!(output.status.success(), "{name}: {}", code_and_stderr(&output).1);
+        out
+    };
+    let held = run("held", &["--set", hold]);
+    let free = run("free", &[]);
+    let (pushed, frames) = tie_frames_with_force(&held);
+    assert!(pushed >= 5, "hold rows pushed on {pushed} of {frames} tie frames");
+    assert_eq!(tie_frames_with_force(&free).0, 0, "no hold, no thigmotaxis in a tie");
+
+    // Frame 180 (18 s): the holds push from 17.1 s on (measured on this run).
+    let stopped = run("stopped", &["--set", hold, "--stop-after-frames", "180"]);
+    let resumed = run_hagfish(["run", "--resume", stopped.to_str().expect("UTF-8"), "--quiet"]);
+    assert!(resumed.status.success(), "{}", code_and_stderr(&resumed).1);
+    for file in ["q.npy", "qdot.npy", "metrics.csv", "forces.csv"] {
+        let (a, b) = (std::fs::read(held.join(file)), std::fs::read(stopped.join(file)));
+        assert!(a.expect(file) == b.expect(file), "{file} differs after the resume");
+    }
+}

@@ -31,14 +31,32 @@ impl Layer {
     }
 }
 
+/// One crossing of the tail's strand with the body, seen along a view: where it lies on each
+/// strand (the centreline polyline's parameter, body index plus fraction — the spline
+/// parameter of a [`hagfish_geometry::SelfContact`]) and which strand is on top.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Crossing {
+    /// Where it lies on the tail-ward strand.
+    pub tail_u: f64,
+    /// Where it lies on the head-ward strand.
+    pub other_u: f64,
+    /// Whether the tail-ward strand is over or under.
+    pub layer: Layer,
+}
+
 /// The crossings of the strand from body `from` to the tail with the whole centreline, seen
 /// along `view`, in order from `from` toward the tail: whether the tail-ward strand of each is
 /// over or under.
 pub fn tail_crossings(centres: &[DVec3], from: usize, view: DVec3) -> Vec<Layer> {
+    crossings_of_tail(centres, from, view).into_iter().map(|c| c.layer).collect()
+}
+
+/// [`tail_crossings`] with where each crossing lies on its two strands.
+pub fn crossings_of_tail(centres: &[DVec3], from: usize, view: DVec3) -> Vec<Crossing> {
     let view = view.normalize();
     let (u, v) = view.any_orthonormal_pair();
     let project = |p: DVec3| DVec2::new(p.dot(u), p.dot(v));
-    let mut found: Vec<(f64, Layer)> = Vec::new();
+    let mut found: Vec<Crossing> = Vec::new();
     for i in from..centres.len().saturating_sub(1) {
         let (a0, a1) = (centres[i], centres[i + 1]);
         for j in 0..i.saturating_sub(1) {
@@ -50,11 +68,11 @@ pub fn tail_crossings(centres: &[DVec3], from: usize, view: DVec3) -> Vec<Layer>
             let tail_height = a0.lerp(a1, s).dot(view);
             let head_height = b0.lerp(b1, t).dot(view);
             let layer = if tail_height > head_height { Layer::Over } else { Layer::Under };
-            found.push((i as f64 + s, layer));
+            found.push(Crossing { tail_u: i as f64 + s, other_u: j as f64 + t, layer });
         }
     }
-    found.sort_by(|a, b| a.0.total_cmp(&b.0));
-    found.into_iter().map(|(_, layer)| layer).collect()
+    found.sort_by(|a, b| a.tail_u.total_cmp(&b.tail_u));
+    found
 }
 
 #[cfg(test)]
@@ -88,6 +106,17 @@ mod tests {
         assert_eq!(tail_crossings(&points, 0, DVec3::Z), vec![Layer::Over, Layer::Under]);
         // Only the crossings of segments from body `from` on are listed.
         assert_eq!(tail_crossings(&points, 14, DVec3::Z), vec![Layer::Under]);
+    }
+
+    #[test]
+    fn a_crossing_says_where_it_lies_on_both_strands() {
+        let crossings = crossings_of_tail(&curl(1.0), 0, DVec3::Z);
+        assert_eq!(crossings.len(), 1);
+        let Crossing { tail_u, other_u, layer } = crossings[0];
+        // The segment from (5.5, 1) to (5.5, −2) crosses y = 0 a third of the way, over x = 5.5.
+        assert!((tail_u - (12.0 + 1.0 / 3.0)).abs() < 1e-12, "{tail_u}");
+        assert!((other_u - 5.5).abs() < 1e-12, "{other_u}");
+        assert_eq!(layer, Layer::Over);
     }
 
     #[test]

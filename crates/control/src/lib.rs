@@ -73,7 +73,7 @@ mod until;
 
 pub use controller::{Actuation, ControlContext, Controller, Passive, PointDamper, PointForce};
 pub use controller_state::ControllerState;
-pub use crossings::{Layer, tail_crossings};
+pub use crossings::{Crossing, Layer, crossings_of_tail, tail_crossings};
 pub use dof_kind::{DofKind, KindSelection};
 pub use drag::WaterDrag;
 pub use error::ControlError;
@@ -94,8 +94,8 @@ pub use replay::{Replay, ReplayField};
 pub use tail_pd::TailGains;
 pub use thigmotaxis::{SlidingTargets, Strand, ThigmoParameters, ThigmoRequest};
 pub use tie::{
-    CrossingCheck, CrossingMiss, Handedness, LayerCode, MIN_AGREEMENT, PlannedKnot, TieKnot,
-    TiePhase, TieProgress,
+    CrossingCheck, CrossingMiss, HOLD_REACH_BODIES, Handedness, HeldCrossing, LayerCode,
+    MAX_HELD_CROSSINGS, MIN_AGREEMENT, PlannedKnot, TieKnot, TiePhase, TieProgress,
 };
 pub use tie_plan::{PlanStep, TiePlan};
 pub use tube_length::{diameters_tail_ward, fraction_leaving};

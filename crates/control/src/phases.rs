@@ -4,17 +4,22 @@
 use std::fmt;
 
 use glam::DVec3;
+use hagfish_geometry::SelfContact;
 use hagfish_tree::Body;
 use serde::{Deserialize, Serialize};
 
 use crate::controller::{Actuation, ControlContext, Controller};
-use crate::crossings::{Layer, tail_crossings};
+use crate::crossings::{Crossing, Layer, crossings_of_tail};
 use crate::drag::WaterDrag;
+use crate::force_space::Confinement;
 use crate::forming::{FormingController, FormingScript, body_at_fraction, body_length};
 use crate::knot_span::KnotSpan;
 use crate::load::LoadPhase;
-use crate::thigmotaxis::ThigmoParameters;
-use crate::tie::{CrossingCheck, CrossingMiss, LayerCode, TieKnot, TiePhase, TieProgress};
+use crate::thigmotaxis::{Strand, ThigmoParameters, ThigmoRequest};
+use crate::tie::{
+    CrossingCheck, CrossingMiss, HOLD_REACH_BODIES, HeldCrossing, LayerCode, TieKnot, TiePhase,
+    TieProgress,
+};
 use crate::until::{Observation, Until};
 
 /// One phase of a scenario.
@@ -228,8 +233,44 @@ impl PhasedController {
         }
         let centres: Vec<DVec3> =
             (0..context.model.body_count()).map(|i| context.centre(i)).collect();
-        let found = tail_crossings(&centres, body_at_fraction(context, phase.at), DVec3::Z);
+        let found = crossings_of_tail(&centres, body_at_fraction(context, phase.at), DVec3::Z);
         self.observe_crossings(&found);
+    }
+
+    /// A hold row ([`TiePhase::hold_crossings_dyn`]) on the self contact at each held
+    /// crossing: the contact within [`HOLD_REACH_BODIES`] of where the crossing was on both
+    /// strands, the nearest (in the larger of the two distances), which the crossing then
+    /// follows. A crossing without such a contact (its strands apart) is not held this step.
+    fn hold_crossings(&mut self, context: &ControlContext<'_>, out: &mut Actuation) {
+        let Some(Phase::Tie(phase)) = self.phases.get(self.progress.phase) else {
+            return;
+        };
+        let Some(max_force) = phase.hold_crossings_dyn else {
+            return;
+        };
+        for held in self.tie.held.iter_mut().flatten() {
+            let distance =
+                |c: &SelfContact| (c.u_a - held.other_u).abs().max((c.u_b - held.tail_u).abs());
+            let nearest = context
+                .self_contacts
+                .iter()
+                .enumerate()
+                .map(|(k, c)| (k, distance(c)))
+                .filter(|&(_, d)| d <= HOLD_REACH_BODIES)
+                .min_by(|a, b| a.1.total_cmp(&b.1));
+            let Some((k, _)) = nearest else { continue };
+            let contact = &context.self_contacts[k];
+            *held = HeldCrossing { tail_u: contact.u_b, other_u: contact.u_a };
+            if out.thigmo.iter().all(|request| request.contact != k) {
+                out.thigmo.push(ThigmoRequest {
+                    contact: k,
+                    strand: Strand::Posterior,
+                    speed: 0.0,
+                    max_force,
+                    confinement: Confinement::Full,
+                });
+            }
+        }
     }
 
     /// The tie phase's next crossing check, if the plan step carrying it has ended.
@@ -245,16 +286,36 @@ impl PhasedController {
     /// Runs the due crossing checks on the crossings `found`. A failed check is recorded
     /// ([`TieProgress::last_miss`]) and ends the checking of this attempt; the attempt itself
     /// ends as before, on the knot analysis: a check is a diagnosis, the analysis the judge.
-    pub(crate) fn observe_crossings(&mut self, found: &[Layer]) {
+    /// A check that passes on the crossings themselves starts holding those it checked, when
+    /// the phase holds crossings.
+    pub(crate) fn observe_crossings(&mut self, found: &[Crossing]) {
+        let layers: Vec<Layer> = found.iter().map(|c| c.layer).collect();
+        let holds = matches!(
+            self.phases.get(self.progress.phase),
+            Some(Phase::Tie(TiePhase { hold_crossings_dyn: Some(_), .. }))
+        );
         while let Some(check) = self.crossing_check_due() {
-            if check.is_met_by(found) || self.tie.shown_since.is_some() {
+            if check.is_met_by(&layers) {
+                let checked = check.expected.len();
+                for (slot, crossing) in self.tie.held.iter_mut().zip(&found[..checked]) {
+                    if holds && slot.is_none() {
+                        *slot = Some(HeldCrossing {
+                            tail_u: crossing.tail_u,
+                            other_u: crossing.other_u,
+                        });
+                    }
+                }
+                self.tie.checks_done += 1;
+                continue;
+            }
+            if self.tie.shown_since.is_some() {
                 self.tie.checks_done += 1;
                 continue;
             }
             self.tie.last_miss = Some(CrossingMiss {
                 attempt: self.tie.attempt,
                 check: self.tie.checks_done,
-                found: LayerCode::of(found),
+                found: LayerCode::of(&layers),
             });
             self.tie.checks_done = self.tie_checks.len() as u32;
         }
@@ -378,6 +439,7 @@ impl Controller for PhasedController {
                     }
                 }
                 self.check_crossings(context);
+                self.hold_crossings(context, out);
             }
             Some(Phase::Thigmotaxis(phase)) => {
                 let since = context.state.t - self.progress.started_at;

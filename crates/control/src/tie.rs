@@ -254,7 +254,31 @@ pub struct TiePhase {
     /// counts as failed (s, default 2).
     #[serde(default = "default_settle")]
     pub settle_s: f64,
+    /// Hold the crossings the tie has made (dyn, the largest force of each hold), if set:
+    /// once a crossing check passes, each crossing it checked is held while the tail makes
+    /// the next ones — a soft row on the self contact at that crossing,
+    /// `t_bᵀ(P(u_b) − P(u_a)) q̇ ≥ 0`, so that the tail-ward strand does not slide back
+    /// through it ([`HeldCrossing`]). Default `None`: no hold.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub hold_crossings_dyn: Option<f64>,
 }
+
+/// A crossing the tie holds: where it lies on its two strands (spline parameters, body index
+/// plus fraction), followed from step to step as the self contact there moves.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct HeldCrossing {
+    /// On the tail-ward strand (the contact's posterior point, `u_b`).
+    pub tail_u: f64,
+    /// On the head-ward strand (the contact's anterior point, `u_a`).
+    pub other_u: f64,
+}
+
+/// The most crossings a tie holds at once (the first ones its checks pass).
+pub const MAX_HELD_CROSSINGS: usize = 8;
+
+/// How far (in bodies, on each strand) a held crossing's contact may have moved since the
+/// step before and still be taken for it.
+pub const HOLD_REACH_BODIES: f64 = 3.0;
 
 fn default_speed() -> f64 {
     5.0
@@ -286,6 +310,7 @@ impl TiePhase {
             attempts: default_attempts(),
             hold_s: default_hold(),
             settle_s: default_settle(),
+            hold_crossings_dyn: None,
         }
     }
 
@@ -320,11 +345,20 @@ pub struct TieProgress {
     /// The latest crossing check that failed, in any attempt.
     #[serde(default)]
     pub last_miss: Option<CrossingMiss>,
+    /// The crossings held in the current attempt (`hold_crossings_dyn`), in the order made.
+    #[serde(default, skip_serializing_if = "holds_none")]
+    pub held: [Option<HeldCrossing>; MAX_HELD_CROSSINGS],
+}
+
+/// Whether no crossing is held (then `held` is left out of a checkpoint).
+fn holds_none(held: &[Option<HeldCrossing>; MAX_HELD_CROSSINGS]) -> bool {
+    held.iter().all(Option::is_none)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::crossings::Crossing;
     use crate::phases::{KnotObservation, Phase, PhasedController};
 
     fn phase(handedness: Handedness) -> TiePhase {
@@ -396,6 +430,35 @@ mod tests {
         assert_eq!((failure.knot, failure.attempts), (TieKnot::Trefoil(Handedness::Right), 2));
     }
 
+    /// Crossings of the given layers, the k-th at body 50 + k of the tail-ward strand and
+    /// 10 + k of the other.
+    fn crossings(layers: &[Layer]) -> Vec<Crossing> {
+        let at = |k: usize| (50.0 + k as f64, 10.0 + k as f64);
+        let crossing =
+            |(k, &layer): (usize, &Layer)| Crossing { tail_u: at(k).0, other_u: at(k).1, layer };
+        layers.iter().enumerate().map(crossing).collect()
+    }
+
+    #[test]
+    fn a_passed_check_holds_the_crossings_it_checked_when_the_phase_holds() {
+        use Layer::{Over, Under};
+        let holding = |hold: Option<f64>| {
+            let phase =
+                TiePhase { hold_crossings_dyn: hold, ..TiePhase::new(TieKnot::FigureEight, 0.31) };
+            let mut controller = PhasedController::new(None, vec![Phase::Tie(phase)]);
+            at_step(&mut controller, 7);
+            controller.observe_crossings(&crossings(&[Over, Under]));
+            controller.state().tie.held
+        };
+        let held = holding(Some(500.0));
+        assert_eq!(held[0], Some(HeldCrossing { tail_u: 50.0, other_u: 10.0 }), "{held:?}");
+        assert!(
+            held[1..].iter().all(Option::is_none),
+            "the crossover's check covers one: {held:?}"
+        );
+        assert!(holding(None).iter().all(Option::is_none), "no hold asked");
+    }
+
     fn tie_controller(knot: TieKnot, attempts: u32) -> PhasedController {
         let phase = TiePhase { attempts, ..TiePhase::new(knot, 0.31) };
         PhasedController::new(None, vec![Phase::Tie(phase)])
@@ -410,13 +473,13 @@ mod tests {
         use Layer::{Over, Under};
         let mut controller = tie_controller(TieKnot::Trefoil(Handedness::Right), 2);
         at_step(&mut controller, 6);
-        controller.observe_crossings(&[Under]);
+        controller.observe_crossings(&crossings(&[Under]));
         assert_eq!(controller.state().tie.last_miss, None, "not due before its step has ended");
         at_step(&mut controller, 7);
-        controller.observe_crossings(&[Over, Under]);
+        controller.observe_crossings(&crossings(&[Over, Under]));
         assert_eq!(controller.state().tie.checks_done, 1, "a sequence that begins right");
         at_step(&mut controller, 10);
-        controller.observe_crossings(&[Under, Over]);
+        controller.observe_crossings(&crossings(&[Under, Over]));
         let tie = controller.state().tie;
         assert_eq!((tie.attempt, tie.checks_done), (1, 2), "kept; no more checks this attempt");
         let miss = tie.last_miss.expect("kept");
@@ -430,7 +493,7 @@ mod tests {
         assert_eq!(controller.state().tie.attempt, 2);
         assert_eq!(controller.state().tie.last_miss, Some(miss), "kept across attempts");
         at_step(&mut controller, 7);
-        controller.observe_crossings(&[]);
+        controller.observe_crossings(&crossings(&[]));
         controller.tie.plan_done_at = Some(40.0);
         controller.observe_knot(42.0, None);
         let failure = controller.tie_failure().expect("failed");
@@ -447,7 +510,7 @@ mod tests {
         use Layer::{Over, Under};
         let mut left = tie_controller(TieKnot::Trefoil(Handedness::Left), 2);
         at_step(&mut left, 10);
-        left.observe_crossings(&[Under, Over, Over]);
+        left.observe_crossings(&crossings(&[Under, Over, Over]));
         assert_eq!(left.state().tie.checks_done, 2);
         assert_eq!(left.state().tie.attempt, 1);
 
@@ -461,7 +524,7 @@ mod tests {
         };
         eight.observe_knot(12.0, Some(shown));
         at_step(&mut eight, 13);
-        eight.observe_crossings(&[Under]);
+        eight.observe_crossings(&crossings(&[Under]));
         assert!(eight.tie_failure().is_none(), "the knot analysis is the judge");
         assert_eq!(eight.state().tie.checks_done, 4);
     }
