@@ -55,6 +55,9 @@ pub enum MemoryBound {
     DataLimit,
     /// The cgroup v2 `memory.max` of the process' cgroup, less its `memory.current`.
     CgroupMax,
+    /// The cgroup v1 `memory.limit_in_bytes` of the process' memory cgroup, less its
+    /// `memory.usage_in_bytes`.
+    CgroupV1Limit,
 }
 
 impl std::fmt::Display for MemoryBound {
@@ -66,6 +69,9 @@ impl std::fmt::Display for MemoryBound {
             }
             Self::DataLimit => "the process' data limit (RLIMIT_DATA, `ulimit -d`) less its data",
             Self::CgroupMax => "its cgroup's memory.max less memory.current",
+            Self::CgroupV1Limit => {
+                "its memory cgroup's memory.limit_in_bytes less memory.usage_in_bytes (v1)"
+            }
         })
     }
 }
@@ -81,18 +87,25 @@ pub struct MemoryHeadroom {
 
 /// The memory available for new allocations: the smallest headroom under `MemAvailable`, the
 /// process' `RLIMIT_AS` and `RLIMIT_DATA` (each less what is in use, `VmSize` and `VmData` of
-/// `/proc/self/status`) and its cgroup v2 `memory.max` (less `memory.current`), those that
-/// can be read and are finite; `None` if none is (then no check is made).
+/// `/proc/self/status`) and its cgroup's limit — v2 `memory.max` less `memory.current`, v1
+/// `memory.limit_in_bytes` less `memory.usage_in_bytes` — those that can be read and are
+/// finite; `None` if none is (then no check is made).
 pub fn available_memory() -> Option<MemoryHeadroom> {
     let read = |path: &str| std::fs::read_to_string(path).ok();
     let status = read("/proc/self/status");
     let in_use = |field| status.as_deref().and_then(|s| status_kib(s, field));
     let limits = process_limits();
-    let cgroup = read("/proc/self/cgroup").and_then(|text| cgroup_v2_dir(&text)).and_then(|dir| {
-        let max = parse_cgroup_bytes(&read(&format!("{dir}/memory.max"))?)?;
-        let current = read(&format!("{dir}/memory.current")).and_then(|t| parse_cgroup_bytes(&t));
+    let proc_cgroup = read("/proc/self/cgroup");
+    let cgroup_limit = |dir: Option<String>, limit: &str, usage: &str| {
+        let dir = dir?;
+        let max = parse_cgroup_bytes(&read(&format!("{dir}/{limit}"))?)?;
+        let current = read(&format!("{dir}/{usage}")).and_then(|t| parse_cgroup_bytes(&t));
         Some((max, current.unwrap_or(0)))
-    });
+    };
+    let v2 = proc_cgroup.as_deref().and_then(cgroup_v2_dir);
+    let cgroup = cgroup_limit(v2, "memory.max", "memory.current");
+    let v1 = proc_cgroup.as_deref().and_then(cgroup_v1_memory_dir);
+    let cgroup_v1 = cgroup_limit(v1, "memory.limit_in_bytes", "memory.usage_in_bytes");
     let candidates = [
         read("/proc/meminfo")
             .and_then(|text| meminfo_available(&text))
@@ -102,6 +115,7 @@ pub fn available_memory() -> Option<MemoryHeadroom> {
             .map(|limit| (limit, in_use("VmSize:").unwrap_or(0), MemoryBound::AddressSpaceLimit)),
         limits.data.map(|limit| (limit, in_use("VmData:").unwrap_or(0), MemoryBound::DataLimit)),
         cgroup.map(|(max, current)| (max, current, MemoryBound::CgroupMax)),
+        cgroup_v1.map(|(max, current)| (max, current, MemoryBound::CgroupV1Limit)),
     ];
     smallest_headroom(candidates.into_iter().flatten())
 }
@@ -155,6 +169,19 @@ fn cgroup_v2_dir(proc_cgroup: &str) -> Option<String> {
     let path = proc_cgroup.lines().find_map(|l| l.strip_prefix("0::"))?.trim();
     let path = path.trim_end_matches('/');
     (!path.contains("..")).then(|| format!("/sys/fs/cgroup{path}"))
+}
+
+/// The directory of the process' cgroup v1 memory controller from a `/proc/self/cgroup` text:
+/// the path of the `ID:CONTROLLERS:PATH` line whose controllers include `memory`, under
+/// `/sys/fs/cgroup/memory`; `None` without one (cgroup v2 only).
+fn cgroup_v1_memory_dir(proc_cgroup: &str) -> Option<String> {
+    let path = proc_cgroup.lines().find_map(|line| {
+        let mut parts = line.splitn(3, ':');
+        let (_, controllers, path) = (parts.next()?, parts.next()?, parts.next()?);
+        controllers.split(',').any(|c| c == "memory").then_some(path)
+    })?;
+    let path = path.trim().trim_end_matches('/');
+    (!path.contains("..")).then(|| format!("/sys/fs/cgroup/memory{path}"))
 }
 
 /// A cgroup v2 `memory.max` or `memory.current` value in bytes; `None` for `max` (no limit)
@@ -226,6 +253,14 @@ mod tests {
         assert_eq!(cgroup_v2_dir("0::/\n").as_deref(), Some("/sys/fs/cgroup"));
         assert_eq!(cgroup_v2_dir("4:memory:/a\n"), None, "cgroup v1 only");
         assert_eq!(cgroup_v2_dir("0::/../../etc\n"), None);
+        let v1 = "12:cpu,cpuacct:/x\n4:memory:/docker/abc/\n0::/\n";
+        assert_eq!(cgroup_v1_memory_dir(v1).as_deref(), Some("/sys/fs/cgroup/memory/docker/abc"));
+        assert_eq!(
+            cgroup_v1_memory_dir("7:blkio,memory:/\n").as_deref(),
+            Some("/sys/fs/cgroup/memory")
+        );
+        assert_eq!(cgroup_v1_memory_dir("0::/user.slice\n"), None, "cgroup v2 only");
+        assert_eq!(cgroup_v1_memory_dir("4:memory:/../x\n"), None);
         assert_eq!(parse_cgroup_bytes("max\n"), None, "no limit");
         assert_eq!(parse_cgroup_bytes("1073741824\n"), Some(1 << 30));
     }
