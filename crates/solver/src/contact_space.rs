@@ -37,6 +37,16 @@ use crate::problem::Problem;
 /// Columns per block of the product W = YᵀY.
 const W_BLOCK: usize = 8;
 
+/// Columns of Y solved between two polls of the stop flag (a multiple of the tree factor's
+/// four-column batches, so that the columns are solved as in one call).
+const Y_CHUNK: usize = 64;
+
+/// Entries of Y a block of W may read (its rows used × its columns) before its rows are
+/// formed in chunks of [`W_BLOCK`] with a poll of the stop flag between them: 2²⁴ (128 MiB),
+/// far beyond the knotted states of a few hundred bodies, reached on tens of thousands, where
+/// one block would otherwise run unpolled for a second.
+const W_POLLED_ENTRIES: usize = 1 << 24;
+
 /// Y, W, z, r and b of one solve (sizes n × m, m × m, n, m, m), the support eᵢ of Y's
 /// columns (entries eᵢ.. of column i are zero), and the scratch of the build: the rows by
 /// decreasing support (`order`), their supports, Y and W in that order.
@@ -128,27 +138,19 @@ impl ContactSpace {
         for (k, &i) in self.order.iter().enumerate() {
             self.sorted.col_as_slice_mut(k).copy_from_slice(rows.row(i));
         }
-        problem.check_stop()?;
-        factor.solve_lower_supported(self.sorted.as_mut(), &self.sorted_support);
+        for first in (0..m).step_by(Y_CHUNK) {
+            problem.check_stop()?;
+            let count = Y_CHUNK.min(m - first);
+            let chunk = self.sorted.as_mut().submatrix_mut(0, first, n, count);
+            factor.solve_lower_supported(chunk, &self.sorted_support[first..first + count]);
+        }
         problem.check_stop()?;
         self.y.resize_with(n, m, |_, _| 0.0);
         for (k, &i) in self.order.iter().enumerate() {
             self.y.col_as_slice_mut(i).copy_from_slice(self.sorted.col_as_slice(k));
         }
-        // W in sorted order by column blocks [a, b): W[..b, a..b] = Y[..e_a, ..b]ᵀY[..e_a, a..b]
-        // (e_a, the block's largest support, bounds every product in it); the upper triangle
-        // is scattered to both triangles of W in row order.
-        self.w.resize_with(m, m, |_, _| 0.0);
-        self.sorted_w.resize_with(m, m, |_, _| 0.0);
-        for a in (0..m).step_by(W_BLOCK) {
-            problem.check_stop()?;
-            let b = (a + W_BLOCK).min(m);
-            let rows_used = self.sorted_support[a];
-            let left = self.sorted.as_ref().submatrix(0, 0, rows_used, b);
-            let right = self.sorted.as_ref().submatrix(0, a, rows_used, b - a);
-            let target = self.sorted_w.as_mut().submatrix_mut(0, a, b, b - a);
-            matmul(target, Accum::Replace, left.transpose(), right, 1.0, Par::Seq);
-        }
+        self.form_sorted_w(m, W_POLLED_ENTRIES, problem)?;
+        // The upper triangle is scattered to both triangles of W in row order.
         for (l, &j) in self.order.iter().enumerate() {
             for (k, &i) in self.order[..=l].iter().enumerate() {
                 let value = self.sorted_w[(k, l)];
@@ -165,6 +167,39 @@ impl ContactSpace {
         }
 
         self.update_force(factor, problem);
+        Ok(())
+    }
+
+    /// `sorted_w`'s upper triangle from `sorted` (Y with its columns sorted by decreasing
+    /// support), by column blocks [a, b): W[..b, a..b] = Y[..e_a, ..b]ᵀY[..e_a, a..b] (e_a,
+    /// the block's largest support, bounds every product in it), polling the stop flag before
+    /// each block, and between chunks of the block's rows when it reads more than
+    /// `polled_entries` entries of Y.
+    fn form_sorted_w(
+        &mut self,
+        m: usize,
+        polled_entries: usize,
+        problem: &Problem<'_>,
+    ) -> Result<(), SolverError> {
+        self.w.resize_with(m, m, |_, _| 0.0);
+        self.sorted_w.resize_with(m, m, |_, _| 0.0);
+        for a in (0..m).step_by(W_BLOCK) {
+            problem.check_stop()?;
+            let b = (a + W_BLOCK).min(m);
+            let rows_used = self.sorted_support[a];
+            let right = self.sorted.as_ref().submatrix(0, a, rows_used, b - a);
+            // W's rows [c, d) of the block: all at once, or in polled chunks when large.
+            let chunk = if rows_used * b > polled_entries { W_BLOCK } else { b };
+            for c in (0..b).step_by(chunk) {
+                let d = (c + chunk).min(b);
+                if c > 0 {
+                    problem.check_stop()?;
+                }
+                let left = self.sorted.as_ref().submatrix(0, c, rows_used, d - c);
+                let target = self.sorted_w.as_mut().submatrix_mut(c, a, d - c, b - a);
+                matmul(target, Accum::Replace, left.transpose(), right, 1.0, Par::Seq);
+            }
+        }
         Ok(())
     }
 
@@ -303,6 +338,40 @@ mod tests {
             return Err(format!("W {gap:e}, r {r_gap:e}, q̇ {q_gap:e}, symmetric {symmetric}"));
         }
         Ok(())
+    }
+
+    /// W formed in polled row chunks (as for a huge body) equals W formed a block at once, to
+    /// rounding; and Y solved in chunks of [`Y_CHUNK`] columns, with more rows than one chunk,
+    /// is Y solved at once, bit for bit.
+    #[test]
+    fn w_in_polled_chunks_and_y_in_column_chunks_are_the_same_products() {
+        let (n, m) = (40, 2 * Y_CHUNK + 5);
+        let mut next = stream(7);
+        let mass = random_spd(n, &mut next);
+        let force: Vec<f64> = (0..n).map(|_| next()).collect();
+        let mut rows = Rows::new(n);
+        for _ in 0..m {
+            let row =
+                rows.push_zeroed(RowKind::Inequality, RowSource::new(RowTag::new(3), 0), next());
+            row.iter_mut().for_each(|c| *c = next());
+        }
+        let problem = Problem::new(mass.as_ref(), &force, &rows).expect("a problem");
+        let mut reverse = MassFactor::new();
+        reverse.factor(mass.as_ref()).expect("SPD");
+        let mut space = ContactSpace::new();
+        space.build(&reverse, &problem).expect("room for Y and W");
+        let mut whole = Mat::<f64>::zeros(n, m);
+        for (k, &i) in space.order.iter().enumerate() {
+            whole.col_as_slice_mut(k).copy_from_slice(rows.row(i));
+        }
+        reverse.solve_lower_supported(whole.as_mut(), &space.sorted_support);
+        assert!(whole == space.sorted, "Y solved in chunks of {Y_CHUNK} columns");
+        let at_once = space.sorted_w.clone();
+        space.form_sorted_w(m, 0, &problem).expect("not stopped");
+        let upper =
+            |w: &Mat<f64>| Mat::<f64>::from_fn(m, m, |i, j| if i <= j { w[(i, j)] } else { 0.0 });
+        let gap = relative_gap(upper(&space.sorted_w).as_ref(), upper(&at_once).as_ref());
+        assert!(gap < 1e-14, "W in polled chunks differs by {gap:e}");
     }
 
     proptest! {
