@@ -61,7 +61,7 @@ fn a_plan_that_is_not_one_is_refused_before_the_run_with_its_position() {
     }
 }
 
-/// The frames of `dir`'s thigmo_force.npy field that are not all zero, among the frames of
+/// The frames whose `thigmo` group in `dir`'s forces.csv is not all zero, among the frames of
 /// metrics.csv's `phase` = `tie`.
 fn tie_frames_with_force(dir: &Path) -> (usize, usize) {
     let (columns, rows) = crate::common::metrics_table(dir);
