@@ -45,13 +45,8 @@ pub struct Crossing {
 }
 
 /// The crossings of the strand from body `from` to the tail with the whole centreline, seen
-/// along `view`, in order from `from` toward the tail: whether the tail-ward strand of each is
-/// over or under.
-pub fn tail_crossings(centres: &[DVec3], from: usize, view: DVec3) -> Vec<Layer> {
-    crossings_of_tail(centres, from, view).into_iter().map(|c| c.layer).collect()
-}
-
-/// [`tail_crossings`] with where each crossing lies on its two strands.
+/// along `view`, in order from `from` toward the tail: where each lies on its two strands and
+/// whether the tail-ward strand is over or under.
 pub fn crossings_of_tail(centres: &[DVec3], from: usize, view: DVec3) -> Vec<Crossing> {
     let view = view.normalize();
     let (u, v) = view.any_orthonormal_pair();
@@ -78,6 +73,11 @@ pub fn crossings_of_tail(centres: &[DVec3], from: usize, view: DVec3) -> Vec<Cro
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The layers of [`crossings_of_tail`], in order.
+    fn tail_crossings(centres: &[DVec3], from: usize, view: DVec3) -> Vec<Layer> {
+        crossings_of_tail(centres, from, view).into_iter().map(|c| c.layer).collect()
+    }
 
     /// A line along +X, then a curl back over (or under) it, the tail ending inside the curl.
     fn curl(height: f64) -> Vec<DVec3> {

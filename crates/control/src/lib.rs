@@ -73,7 +73,7 @@ mod until;
 
 pub use controller::{Actuation, ControlContext, Controller, Passive, PointDamper, PointForce};
 pub use controller_state::ControllerState;
-pub use crossings::{Crossing, Layer, crossings_of_tail, tail_crossings};
+pub use crossings::{Crossing, Layer, crossings_of_tail};
 pub use dof_kind::{DofKind, KindSelection};
 pub use drag::WaterDrag;
 pub use error::ControlError;

@@ -12,7 +12,7 @@
 //! and then the phase fails (the run ends with its own status, never a hang).
 //!
 //! Each crossing is checked as it is made ([`CrossingCheck`]): once the plan step carrying
-//! the check has ended (the step after the move that makes the crossing), the tail's crossings seen from above ([`tail_crossings`], from the crossover on)
+//! the check has ended (the step after the move that makes the crossing), the tail's crossings seen from above ([`crossings_of_tail`](crate::crossings_of_tail), from the crossover on)
 //! must begin with the over/under sequence the plan makes. A crossing lost or made the wrong
 //! way (a loop that slipped open, a tail that went round instead of through) is kept
 //! ([`CrossingMiss`]) for the run's failure message and ends the checks of that attempt;
