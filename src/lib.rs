@@ -16,6 +16,7 @@ pub mod run_dir;
 pub mod runner;
 pub mod study;
 pub mod sweep;
+pub mod sweep_summary;
 mod utc;
 
 pub use error::CliError;

@@ -4,7 +4,11 @@
 //! Everything is computed from the files (`manifest.json`, `metrics.csv`, `forces.csv`), so a
 //! row describes any run directory, a resumed or an interrupted one included. The knot's
 //! numbers follow the knotted core of `metrics.csv` (the shortest knotted stretch of body):
-//! - the knot is *tied* at the first frame whose type is the run's final, non-trivial type;
+//! - the knot is *tied* at the first frame whose type is the run's final, non-trivial type, and
+//!   *held* on the share of the frames from there to the last that show that type;
+//! - the core's start when tied is read at the first frame of that type whose core is a
+//!   stretch of the body, not all of it (a knot whose shortest knotted stretch is the whole
+//!   body has no place yet);
 //! - *travel* is how far the core's midpoint moves head-ward from the start of the phase named
 //!   `slide` (from the tie if there is none) to its nearest approach to the head while the knot
 //!   is of that type (fraction of the body length L; as the acceptance tests of
@@ -42,7 +46,10 @@ pub struct RunRow {
     pub knot_agreement: Option<f64>,
     /// Time of the first frame with the final knot type (s).
     pub tied_at_s: Option<f64>,
-    /// The core's head-ward end at that frame (fraction of L from the head).
+    /// Share of the frames from that one to the last that show the final knot type.
+    pub knot_held_fraction: Option<f64>,
+    /// The core's head-ward end at the first frame of the final type whose core is shorter
+    /// than the body (fraction of L from the head).
     pub core_start_tied_l: Option<f64>,
     /// Head-ward travel of the core's midpoint from the slide's start (or the tie) to its
     /// nearest approach to the head while the knot was of its final type (L).
@@ -63,6 +70,9 @@ pub struct RunRow {
     pub thigmo_max_dyn_cm: f64,
     /// Mean |f_thigmo| over the DOFs of the frames where it acts (dyn·cm; 0 if it never does).
     pub thigmo_mean_dyn_cm: f64,
+    /// Mean |f_thigmo| over the DOFs and the frames of the phase named `slide`: the control
+    /// force that slides the knot (dyn·cm; `None` without such a phase).
+    pub slide_force_mean_dyn_cm: Option<f64>,
     /// Simulation time reached (s).
     pub time_s: f64,
     /// Steps taken.
@@ -73,11 +83,12 @@ pub struct RunRow {
 
 impl RunRow {
     /// The CSV header of [`RunRow::values`], units in the names.
-    pub const COLUMNS: [&'static str; 17] = [
+    pub const COLUMNS: [&'static str; 19] = [
         "status",
         "final_knot",
         "knot_agreement",
         "tied_at_s",
+        "knot_held_fraction",
         "core_start_tied_L",
         "core_travel_L",
         "core_final_start_L",
@@ -88,6 +99,7 @@ impl RunRow {
         "max_limit_excess_deg",
         "thigmo_max_dyn_cm",
         "thigmo_mean_dyn_cm",
+        "slide_force_mean_dyn_cm",
         "time_s",
         "steps",
         "wall_time_s",
@@ -121,7 +133,11 @@ impl RunRow {
             status: manifest.status.name().to_owned(),
             knot_agreement: m.knot_agreement[last],
             tied_at_s: tied.map(|f| m.time[f]),
-            core_start_tied_l: tied.and_then(|f| m.knot_core_start_l[f]),
+            knot_held_fraction: tied.map(|f| typed.len() as f64 / (last + 1 - f) as f64),
+            core_start_tied_l: typed
+                .iter()
+                .find(|&&f| !core_spans_the_body(m, f))
+                .and_then(|&f| m.knot_core_start_l[f]),
             core_travel_l: travel(m, &typed),
             core_final_start_l: untied.and_then(|f| m.knot_core_start_l[f]),
             core_speed_cm_s: slide_speed(m),
@@ -132,6 +148,7 @@ impl RunRow {
             max_limit_excess_deg: max(&m.limit_excess_deg),
             thigmo_max_dyn_cm,
             thigmo_mean_dyn_cm,
+            slide_force_mean_dyn_cm: slide_force(m, forces),
             time_s: manifest.time_s,
             steps: manifest.steps,
             wall_time_s: manifest.wall_time_s,
@@ -142,25 +159,43 @@ impl RunRow {
     /// numbers with Rust's shortest round-trip formatting).
     pub fn values(&self) -> Vec<String> {
         let number = |x: Option<f64>| x.map_or_else(String::new, |x| x.to_string());
-        vec![
-            self.status.clone(),
-            self.final_knot.clone(),
-            number(self.knot_agreement),
-            number(self.tied_at_s),
-            number(self.core_start_tied_l),
-            number(self.core_travel_l),
-            number(self.core_final_start_l),
-            number(self.core_speed_cm_s),
-            number(self.core_length_change),
-            self.max_self_penetration_rel.to_string(),
-            self.max_wall_penetration_cm.to_string(),
-            self.max_limit_excess_deg.to_string(),
-            self.thigmo_max_dyn_cm.to_string(),
-            self.thigmo_mean_dyn_cm.to_string(),
-            self.time_s.to_string(),
-            self.steps.to_string(),
-            self.wall_time_s.to_string(),
+        [self.status.clone(), self.final_knot.clone()]
+            .into_iter()
+            .chain(self.numbers().into_iter().map(number))
+            .collect()
+    }
+
+    /// The numeric values, in the order of [`RunRow::COLUMNS`] after its two text columns
+    /// (`status`, `final_knot`): what a study averages over replicates.
+    pub fn numbers(&self) -> [Option<f64>; Self::COLUMNS.len() - 2] {
+        [
+            self.knot_agreement,
+            self.tied_at_s,
+            self.knot_held_fraction,
+            self.core_start_tied_l,
+            self.core_travel_l,
+            self.core_final_start_l,
+            self.core_speed_cm_s,
+            self.core_length_change,
+            Some(self.max_self_penetration_rel),
+            Some(self.max_wall_penetration_cm),
+            Some(self.max_limit_excess_deg),
+            Some(self.thigmo_max_dyn_cm),
+            Some(self.thigmo_mean_dyn_cm),
+            self.slide_force_mean_dyn_cm,
+            Some(self.time_s),
+            Some(self.steps as f64),
+            Some(self.wall_time_s),
         ]
+    }
+}
+
+/// Whether frame `f`'s core is the whole body: its head-ward end at the head and its other
+/// end, 2·mid − start (fractions of L), at the tail (to 10⁻⁹ L).
+fn core_spans_the_body(m: &Metrics, f: usize) -> bool {
+    match (m.knot_core_start_l[f], m.knot_core_mid_l[f]) {
+        (Some(start), Some(mid)) => start <= 1e-9 && 2.0 * mid - start >= 1.0 - 1e-9,
+        _ => false,
     }
 }
 
@@ -221,6 +256,22 @@ fn slide_length_change(m: &Metrics) -> Option<f64> {
     let first = mean(t0, t0 + LENGTH_WINDOW_S)?;
     let last = mean(t1 - LENGTH_WINDOW_S, t1)?;
     (first > 0.0).then(|| (last - first) / first)
+}
+
+/// Mean |f| over the DOFs and the frames of the slide phase (`None` without a slide frame in
+/// `forces`).
+fn slide_force(m: &Metrics, forces: &ThigmoForces) -> Option<f64> {
+    let frames: Vec<usize> =
+        (0..forces.times.len().min(m.frames())).filter(|&f| m.phase[f] == SLIDE_PHASE).collect();
+    let count = frames.len() * 3 * forces.joints;
+    let sum: f64 = frames
+        .iter()
+        .flat_map(|&f| {
+            forces.values.iter().flat_map(move |axis| &axis[f * forces.joints..][..forces.joints])
+        })
+        .map(|x| x.abs())
+        .sum();
+    (count > 0).then(|| sum / count as f64)
 }
 
 /// Largest |f| and mean |f| over the DOFs of the frames where any DOF's force is non-zero.
@@ -292,8 +343,28 @@ mod tests {
         let travel = row.core_travel_l.expect("a knot");
         assert!((travel - 0.2).abs() < 1e-9, "travel {travel}");
         assert!(row.core_length_change.expect("a slide").abs() < 1e-12);
+        // Two slide frames of 2 joints × 3 axes, all zero.
+        assert_eq!(row.slide_force_mean_dyn_cm, Some(0.0));
         assert_eq!((row.steps, row.status.as_str()), (400, "completed"));
         assert_eq!(row.values().len(), RunRow::COLUMNS.len());
+    }
+
+    #[test]
+    fn the_tied_core_start_skips_frames_whose_core_is_the_whole_body() {
+        let mut m = sliding();
+        m.knot[0] = "0_1".into();
+        (m.knot_core_start_l[1], m.knot_core_mid_l[1]) = (Some(0.0), Some(0.5));
+        m.knot[7] = "0_1".into();
+        let forces = ThigmoForces {
+            times: vec![0.0],
+            joints: 1,
+            values: [vec![0.0; 1], vec![0.0; 1], vec![0.0; 1]],
+        };
+        let row = RunRow::of(&manifest(), &m, &forces);
+        assert_eq!(row.tied_at_s, Some(0.1));
+        assert_eq!(row.core_start_tied_l, m.knot_core_start_l[2]);
+        // Frames 1 … 40 from the tie, one of them (7) without the knot.
+        assert_eq!(row.knot_held_fraction, Some(39.0 / 40.0));
     }
 
     #[test]
@@ -310,5 +381,6 @@ mod tests {
         assert_eq!((row.tied_at_s, row.core_travel_l, row.core_speed_cm_s), (None, None, None));
         // One acting frame of 2 joints × 3 axes: |3| + |−1| over 6 DOFs.
         assert_eq!((row.thigmo_max_dyn_cm, row.thigmo_mean_dyn_cm), (3.0, 4.0 / 6.0));
+        assert_eq!(row.slide_force_mean_dyn_cm, None);
     }
 }

@@ -3,17 +3,20 @@
 //! makes only the runs that are missing.
 //!
 //! A sweep folder holds
-//! - `plan.json`: the scenario (absolute path), the swept parameter paths and every run's id
-//!   and overrides (`PATH=VALUE`, as `hagfish run --set` takes them), written once by
-//!   [`Plan::write`];
+//! - `plan.json`: the scenario (absolute path), the swept parameter paths and every run's id,
+//!   replicate index and overrides (`PATH=VALUE`, as `hagfish run --set` takes them), written
+//!   by [`Plan::write`];
 //! - `runs/<id>/`: one run directory per run (`docs/outputs.md`);
-//! - `summary.csv` and `plots/`: written by [`collect`] — one row per run (its id, the value
-//!   of each swept parameter, then [`RunRow`]'s columns) and each numeric summary column
-//!   against each numeric swept parameter that varies.
+//! - `summary.csv`, `intervals.csv` and `plots/`: written by [`collect`] — one row per run,
+//!   and per grid point each statistic's mean, spread and confidence interval
+//!   ([`crate::sweep_summary`]).
 //!
 //! The grid file (`hagfish sweep plan GRID.ron`) names the scenario (relative to the grid file)
-//! and the values of each parameter; the runs are their Cartesian product (the last parameter
-//! varies fastest), followed by any runs listed one by one:
+//! and the values of each parameter; the grid points are their Cartesian product (the last
+//! parameter varies fastest), followed by any runs listed one by one. With `replicates: N`,
+//! each grid point is run N times, replicate j with the time step h(1 + j·10⁻¹²)
+//! ([`hagfish_scenario::rounding_perturbed_step`]): the knot runs are chaotic, and a
+//! difference between grid points means something only beside the spread of its replicates.
 //!
 //! ```ron
 //! Sweep(
@@ -23,31 +26,30 @@
 //!         ("drag.quadratic_g_per_cm3", ["0.5", "1.0"]),
 //!     ],
 //!     runs: [["time_step_s=0.02", "duration_s=5"]],
+//!     replicates: 8,
 //! )
 //! ```
+//!
+//! A run's id is its grid point's (zero-padded index), followed by `-j` for replicate j ≥ 1,
+//! so that a sweep planned again with more replicates keeps every run it has made.
 
-use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::Instant;
 
-use hagfish_scenario::{LoadedScenario, Override};
+use hagfish_scenario::{LoadedScenario, Override, rounding_perturbed_step};
 use serde::{Deserialize, Serialize};
 
 use crate::CliError;
 use crate::manifest::{MANIFEST_FILE, Manifest, Status};
 use crate::runner::{Existing, RunRequest, Source, run_into_directory};
-use crate::study::RunRow;
 
 /// The plan of a sweep folder.
 pub const PLAN_FILE: &str = "plan.json";
 
 /// The run directories' parent in a sweep folder.
 pub const RUNS_DIRECTORY: &str = "runs";
-
-/// The table [`collect`] writes.
-pub const SUMMARY_FILE: &str = "summary.csv";
 
 /// A grid file (`GRID.ron`): the scenario and the values to sweep.
 #[derive(Clone, Debug, Deserialize)]
@@ -62,15 +64,34 @@ pub struct Grid {
     /// Further runs, each a list of `PATH=VALUE` overrides.
     #[serde(default)]
     pub runs: Vec<Vec<String>>,
+    /// Runs per grid point (1 … [`MAX_REPLICATES`]), each at its rounding perturbation.
+    #[serde(default = "one")]
+    pub replicates: usize,
+}
+
+/// The most replicates a grid point may have.
+pub const MAX_REPLICATES: usize = 1000;
+
+/// The default number of replicates.
+fn one() -> usize {
+    1
 }
 
 /// One planned run.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct PlannedRun {
-    /// Its id: the run's directory name under `runs/` (zero-padded index).
+    /// Its id: the run's directory name under `runs/` (its grid point's zero-padded index,
+    /// then `-j` for replicate j ≥ 1).
     pub id: String,
-    /// Its overrides, `PATH=VALUE`, in order.
+    /// Its grid point's overrides, `PATH=VALUE`, in order.
     pub overrides: Vec<String>,
+    /// Its replicate index j (0: the grid point as written).
+    #[serde(default)]
+    pub replicate: usize,
+    /// The replicate's rounding perturbation, applied after `overrides`:
+    /// `time_step_s=h(1 + j·10⁻¹²)` for j ≥ 1, nothing for j = 0.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub perturbation: Vec<String>,
 }
 
 /// The content of `plan.json`.
@@ -80,7 +101,7 @@ pub struct Plan {
     pub scenario: PathBuf,
     /// The swept parameter paths, in the order of the grid then of first appearance.
     pub parameters: Vec<String>,
-    /// The runs.
+    /// The runs, grid point by grid point, replicates of a point together.
     pub runs: Vec<PlannedRun>,
 }
 
@@ -154,20 +175,31 @@ impl Plan {
                 grid_path.display()
             )));
         }
-        Self::with_runs(scenario, combinations)
+        Self::with_runs(scenario, combinations, grid.replicates)
     }
 
-    /// The plan of `scenario` (absolute) with one run per list of overrides, checked.
+    /// The plan of `scenario` (absolute) with one grid point per list of overrides, each run
+    /// `replicates` times, checked.
     ///
     /// # Errors
-    /// A [`CliError`] naming the run and the override that does not fit.
-    pub fn with_runs(scenario: PathBuf, combinations: Vec<Vec<String>>) -> Result<Self, CliError> {
+    /// A [`CliError`] naming the run and the override that does not fit, or a number of
+    /// replicates outside 1 … [`MAX_REPLICATES`].
+    pub fn with_runs(
+        scenario: PathBuf,
+        combinations: Vec<Vec<String>>,
+        replicates: usize,
+    ) -> Result<Self, CliError> {
+        if !(1..=MAX_REPLICATES).contains(&replicates) {
+            return Err(CliError::Sweep(format!(
+                "replicates: {replicates}: expected 1 … {MAX_REPLICATES}"
+            )));
+        }
         let width = combinations.len().saturating_sub(1).to_string().len().max(4);
         let mut parameters: Vec<String> = Vec::new();
-        let mut runs = Vec::with_capacity(combinations.len());
+        let mut runs = Vec::with_capacity(combinations.len() * replicates);
         for (index, overrides) in combinations.into_iter().enumerate() {
             let parsed = parse_overrides(&overrides)?;
-            LoadedScenario::load_with(&scenario, &parsed).map_err(|e| {
+            let loaded = LoadedScenario::load_with(&scenario, &parsed).map_err(|e| {
                 CliError::Sweep(format!("run {index} ({}): {e}", overrides.join(" ")))
             })?;
             for o in &parsed {
@@ -175,13 +207,26 @@ impl Plan {
                     parameters.push(o.path.clone());
                 }
             }
-            runs.push(PlannedRun { id: format!("{index:0width$}"), overrides });
+            let step = loaded.scenario.time_step_s;
+            runs.extend((0..replicates).map(|j| PlannedRun {
+                id: match j {
+                    0 => format!("{index:0width$}"),
+                    j => format!("{index:0width$}-{j}"),
+                },
+                overrides: overrides.clone(),
+                replicate: j,
+                perturbation: match j {
+                    0 => Vec::new(),
+                    j => vec![format!("time_step_s={:?}", rounding_perturbed_step(step, j))],
+                },
+            }));
         }
         Ok(Self { scenario, parameters, runs })
     }
 
-    /// Writes `plan.json` into `folder` (created if missing). A folder that already holds a
-    /// different plan is refused: its runs belong to that plan.
+    /// Writes `plan.json` into `folder` (created if missing). A folder that already holds
+    /// this plan, or one whose runs are all in this plan with the same id (the same sweep
+    /// with fewer replicates), takes it; another plan is refused: its runs belong to it.
     ///
     /// # Errors
     /// [`CliError::Sweep`] for another plan there, [`CliError::RunDirectory`] if it cannot be
@@ -190,14 +235,15 @@ impl Plan {
         let path = folder.join(PLAN_FILE);
         if path.exists() {
             let existing = Self::read(folder)?;
-            return if existing == *self {
-                Ok(())
-            } else {
-                Err(CliError::Sweep(format!(
+            if existing == *self {
+                return Ok(());
+            }
+            if !self.extends(&existing) {
+                return Err(CliError::Sweep(format!(
                     "{} holds another plan: choose another folder for this sweep",
                     path.display()
-                )))
-            };
+                )));
+            }
         }
         std::fs::create_dir_all(folder.join(RUNS_DIRECTORY)).map_err(|e| {
             CliError::RunDirectory { path: folder.to_path_buf(), reason: e.to_string() }
@@ -231,6 +277,29 @@ impl Plan {
             )));
         }
         Ok(plan)
+    }
+
+    /// Whether this plan holds every run of `earlier`, each with the same id, overrides and
+    /// perturbation, over the same scenario and parameters: `earlier` with more replicates.
+    fn extends(&self, earlier: &Plan) -> bool {
+        self.scenario == earlier.scenario
+            && self.parameters == earlier.parameters
+            && earlier.runs.iter().all(|run| self.runs.contains(run))
+    }
+
+    /// The grid point of each run: runs with the same overrides are one point, numbered in
+    /// the order of first appearance.
+    pub fn points(&self) -> Vec<usize> {
+        let mut seen: Vec<&[String]> = Vec::new();
+        self.runs
+            .iter()
+            .map(|run| {
+                seen.iter().position(|o| *o == run.overrides.as_slice()).unwrap_or_else(|| {
+                    seen.push(&run.overrides);
+                    seen.len() - 1
+                })
+            })
+            .collect()
     }
 
     /// The run directory of `run` in the sweep folder `folder`.
@@ -308,7 +377,8 @@ pub fn run_one(
     if let Some(status) = ended(&directory) {
         return Ok(RunResult::Skipped(status));
     }
-    let overrides = parse_overrides(&run.overrides)?;
+    let texts: Vec<String> = run.overrides.iter().chain(&run.perturbation).cloned().collect();
+    let overrides = parse_overrides(&texts)?;
     let request = RunRequest {
         source: Source::Scenario { path: &plan.scenario, overrides: &overrides },
         directory: &directory,
@@ -320,34 +390,46 @@ pub fn run_one(
     Ok(RunResult::Ran(finished.manifest.status))
 }
 
-/// Which runs of a plan one process makes: those whose index is `index` modulo `count`.
+/// Which runs of a plan one process makes: shard i of n (counted from 1, as one says "part
+/// 1 of 2") makes the runs whose index is i − 1 modulo n.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Shard {
-    /// This shard, from 0.
-    pub index: usize,
+    /// This shard, from 1.
+    pub number: usize,
     /// How many shards there are.
     pub count: usize,
 }
 
 impl Shard {
     /// Every run.
-    pub const ALL: Shard = Shard { index: 0, count: 1 };
+    pub const ALL: Shard = Shard { number: 1, count: 1 };
 
-    /// Parses `i/n` with `i < n` (0-based, as Slurm's `--array=0-(n-1)` numbers its tasks).
+    /// Parses `i/n` with 1 ≤ i ≤ n. Shards count from 1: `0/n` is refused with the way to
+    /// number a 0-based job array (`$((SLURM_ARRAY_TASK_ID - SLURM_ARRAY_TASK_MIN + 1))`).
     ///
     /// # Errors
     /// [`CliError::Sweep`] for anything else.
     pub fn parse(text: &str) -> Result<Self, CliError> {
-        let bad = || CliError::Sweep(format!("--shard {text}: expected i/n with 0 ≤ i < n"));
-        let (i, n) = text.split_once('/').ok_or_else(bad)?;
-        let (index, count): (usize, usize) =
-            (i.trim().parse().map_err(|_| bad())?, n.trim().parse().map_err(|_| bad())?);
-        if index < count { Ok(Self { index, count }) } else { Err(bad()) }
+        let bad = |why: &str| CliError::Sweep(format!("--shard {text}: {why}"));
+        let expected = "expected i/n with 1 ≤ i ≤ n (shard i of n)";
+        let (i, n) = text.split_once('/').ok_or_else(|| bad(expected))?;
+        let (number, count): (usize, usize) = (
+            i.trim().parse().map_err(|_| bad(expected))?,
+            n.trim().parse().map_err(|_| bad(expected))?,
+        );
+        match (number, count) {
+            (0, _) => Err(bad(
+                "shards count from 1 (1/n … n/n); from a Slurm array numbered from 0 or 1, \
+                 pass $((SLURM_ARRAY_TASK_ID - SLURM_ARRAY_TASK_MIN + 1))/$SLURM_ARRAY_TASK_COUNT",
+            )),
+            (number, count) if number <= count => Ok(Self { number, count }),
+            _ => Err(bad(expected)),
+        }
     }
 
     /// The indices of this shard among `runs` runs.
     pub fn indices(self, runs: usize) -> impl Iterator<Item = usize> {
-        (self.index..runs).step_by(self.count)
+        (self.number - 1..runs).step_by(self.count)
     }
 }
 
@@ -391,88 +473,40 @@ pub fn run_shard(
     Ok(results)
 }
 
-/// Reads every run of the sweep in `folder` and writes `summary.csv` (one row per planned
-/// run; a run without a run directory has status `missing` and empty values) and, in
-/// `plots/`, each numeric summary column against each swept parameter whose values are
-/// numbers that vary. Returns the table's rows (without the header).
-///
-/// # Errors
-/// [`CliError`] if the plan, a run's files or an output cannot be read or written.
-pub fn collect(folder: &Path) -> Result<Vec<Vec<String>>, CliError> {
-    let plan = Plan::read(folder)?;
-    let header: Vec<String> = ["id"]
-        .into_iter()
-        .map(str::to_owned)
-        .chain(plan.parameters.iter().cloned())
-        .chain(RunRow::COLUMNS.iter().map(|c| (*c).to_owned()))
-        .collect();
-    let mut rows = Vec::with_capacity(plan.runs.len());
-    for run in &plan.runs {
-        let directory = Plan::directory(folder, run);
-        let values =
-            if directory.join(MANIFEST_FILE).exists() && directory.join("metrics.csv").exists() {
-                RunRow::read(&directory)?.values()
-            } else {
-                let mut empty = vec![String::new(); RunRow::COLUMNS.len()];
-                empty[0] = "missing".into();
-                empty
-            };
-        rows.push([vec![run.id.clone()], plan.values(run), values].concat());
-    }
-    let mut text = hagfish_run::csv_record(&header);
-    for row in &rows {
-        text.push_str(&hagfish_run::csv_record(row));
-    }
-    hagfish_run::replace_file(&folder.join(SUMMARY_FILE), text.as_bytes())?;
-    hagfish_report::write_scatters(&scatters(&plan, &header, &rows), &folder.join("plots"))?;
-    Ok(rows)
-}
-
-/// Each numeric summary column against each swept parameter whose values are all numbers and
-/// not all the same (a scenario override every run shares is a column, not an axis).
-fn scatters(plan: &Plan, header: &[String], rows: &[Vec<String>]) -> Vec<hagfish_report::Scatter> {
-    let number = |row: &Vec<String>, c: usize| row.get(c).and_then(|v| v.parse::<f64>().ok());
-    let first_metric = 1 + plan.parameters.len();
-    let skip: BTreeSet<&str> = ["steps", "time_s"].into_iter().collect();
-    let mut scatters = Vec::new();
-    for (p, parameter) in plan.parameters.iter().enumerate() {
-        let x = 1 + p;
-        let values: Option<Vec<f64>> = rows.iter().map(|r| number(r, x)).collect();
-        let varies = values.is_some_and(|v| v.iter().any(|x| *x != v[0]));
-        if !varies {
-            continue;
-        }
-        for (m, metric) in header.iter().enumerate().skip(first_metric) {
-            let points: Vec<(f64, f64)> =
-                rows.iter().filter_map(|r| Some((number(r, x)?, number(r, m)?))).collect();
-            if points.is_empty() || skip.contains(metric.as_str()) {
-                continue;
-            }
-            let stem = format!("{}_vs_{}", metric, parameter.replace(['.', '[', ']'], "_"));
-            scatters.push(hagfish_report::Scatter {
-                title: format!("{metric} against {parameter}"),
-                stem,
-                x_label: parameter.clone(),
-                y_label: metric.clone(),
-                points,
-            });
-        }
-    }
-    scatters
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
+    fn the_example_grid_plans_its_points_with_their_replicates() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/timestep_grid.ron");
+        let grid = Grid::read(&path).expect("the example grid");
+        let plan = Plan::of(&grid, &path).expect("its plan");
+        assert_eq!(plan.runs.len(), 9 * 4);
+        assert_eq!(plan.points(), (0..9).flat_map(|p| [p; 4]).collect::<Vec<_>>());
+        let ids: Vec<&str> = plan.runs[..5].iter().map(|r| r.id.as_str()).collect();
+        assert_eq!(ids, ["0000", "0000-1", "0000-2", "0000-3", "0001"]);
+        assert!(plan.runs[0].perturbation.is_empty());
+        assert_eq!(plan.runs[1].perturbation, [format!("time_step_s={:?}", 0.005 * (1.0 + 1e-12))]);
+        let fewer = Plan::with_runs(plan.scenario.clone(), vec![plan.runs[0].overrides.clone()], 2)
+            .expect("a plan");
+        assert!(plan.extends(&fewer) && !fewer.extends(&plan));
+        for bad in [0, MAX_REPLICATES + 1] {
+            let refused = Plan::with_runs(plan.scenario.clone(), vec![Vec::new()], bad);
+            assert!(refused.is_err_and(|e| e.to_string().contains("replicates")), "{bad}");
+        }
+    }
+
+    #[test]
     fn shards_split_the_runs_without_overlap() {
         let shards: Vec<Vec<usize>> =
-            (0..3).map(|i| Shard { index: i, count: 3 }.indices(8).collect()).collect();
+            (1..=3).map(|i| Shard { number: i, count: 3 }.indices(8).collect()).collect();
         assert_eq!(shards, vec![vec![0, 3, 6], vec![1, 4, 7], vec![2, 5]]);
-        assert_eq!(Shard::parse("1/4").ok(), Some(Shard { index: 1, count: 4 }));
-        for bad in ["4/4", "1", "a/2", "-1/2"] {
+        assert_eq!(Shard::parse("4/4").ok(), Some(Shard { number: 4, count: 4 }));
+        for bad in ["0/4", "5/4", "1", "a/2", "-1/2", "1/0"] {
             assert!(Shard::parse(bad).is_err(), "{bad}");
         }
+        let zero = Shard::parse("0/2").err().map(|e| e.to_string()).unwrap_or_default();
+        assert!(zero.contains("count from 1"), "{zero}");
     }
 }

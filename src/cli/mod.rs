@@ -11,6 +11,7 @@ mod recover;
 mod render;
 mod report;
 mod run;
+mod stop_signal;
 mod sweep;
 
 use std::io::{BufWriter, Write};

@@ -96,7 +96,7 @@ pub fn run(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let signalled = Arc::new(AtomicBool::new(false));
     let reporting = Arc::new(AtomicBool::new(false));
     let (flag, in_report) = (Arc::clone(&signalled), Arc::clone(&reporting));
-    ctrlc::set_handler(move || {
+    let _stop_signal = super::stop_signal::on_stop_signal(move || {
         if in_report.load(Ordering::Relaxed) {
             eprintln!(
                 "interrupted while writing the pictures and report (the run is recorded; \

@@ -12,7 +12,8 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use clap::{Args, Subcommand};
 
 use crate::CliError;
-use crate::sweep::{Grid, Plan, RunResult, Shard, collect, run_shard};
+use crate::sweep::{Grid, Plan, RunResult, Shard, run_shard};
+use crate::sweep_summary::{INTERVALS_FILE, SUMMARY_FILE, collect};
 
 /// Arguments of `hagfish sweep`.
 #[derive(Debug, Args)]
@@ -25,7 +26,8 @@ pub struct SweepArgs {
 /// The steps of a sweep.
 #[derive(Debug, Subcommand)]
 enum Action {
-    /// Check a grid file and write the sweep's plan (plan.json, one run per combination).
+    /// Check a grid file and write the sweep's plan (plan.json: each combination, `replicates`
+    /// times). A folder planned before with fewer replicates keeps its runs.
     Plan {
         /// The grid file (RON): `Sweep(scenario: "…", grid: [("PATH", ["VALUE", …]), …])`.
         grid: PathBuf,
@@ -37,16 +39,17 @@ enum Action {
     Run {
         /// The sweep folder.
         directory: PathBuf,
-        /// Only the runs whose index is i modulo n (0 ≤ i < n), e.g. `--shard
-        /// $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT`.
+        /// Only shard i of n (1 ≤ i ≤ n): the runs whose index is i − 1 modulo n. Collect
+        /// once every shard has run.
         #[arg(long, value_name = "i/n")]
         shard: Option<String>,
         /// Runs made at the same time, each on one thread.
         #[arg(long, value_name = "N", default_value_t = 1)]
         jobs: usize,
     },
-    /// Read every run of DIR into DIR/summary.csv and plot each summary metric against each
-    /// swept parameter (DIR/plots).
+    /// Read every run of DIR into DIR/summary.csv, each grid point's means and 95 % intervals
+    /// into DIR/intervals.csv, and plot each statistic against each swept parameter
+    /// (DIR/plots).
     Collect {
         /// The sweep folder.
         directory: PathBuf,
@@ -59,10 +62,12 @@ pub fn run(args: &SweepArgs, out: &mut dyn Write) -> Result<(), CliError> {
         Action::Plan { grid, out: folder } => {
             let plan = Plan::of(&Grid::read(grid)?, grid)?;
             plan.write(folder)?;
+            let points = plan.points().into_iter().max().map_or(0, |p| p + 1);
             writeln!(
                 out,
-                "{} runs of {} over {} in {}",
+                "{} runs ({points} grid points × {} replicates) of {} over {} in {}",
                 plan.runs.len(),
+                plan.runs.len() / points.max(1),
                 plan.scenario.display(),
                 plan.parameters.join(", "),
                 folder.display()
@@ -75,9 +80,18 @@ pub fn run(args: &SweepArgs, out: &mut dyn Write) -> Result<(), CliError> {
             }
             let stop = Arc::new(AtomicBool::new(false));
             let flag = Arc::clone(&stop);
-            ctrlc::set_handler(move || flag.store(true, Ordering::Relaxed))?;
+            let _stop_signal =
+                super::stop_signal::on_stop_signal(move || flag.store(true, Ordering::Relaxed))?;
             let plan = Plan::read(directory)?;
             let total = shard.indices(plan.runs.len()).count();
+            if shard != Shard::ALL {
+                eprintln!(
+                    "shard {}/{}: {total} of the plan's {} runs; collect once every shard has run",
+                    shard.number,
+                    shard.count,
+                    plan.runs.len()
+                );
+            }
             let done = AtomicUsize::new(0);
             let report = |index: usize, result: &RunResult, seconds: f64| {
                 let count = done.fetch_add(1, Ordering::Relaxed) + 1;
@@ -108,8 +122,16 @@ pub fn run(args: &SweepArgs, out: &mut dyn Write) -> Result<(), CliError> {
         }
         Action::Collect { directory } => {
             let rows = collect(directory)?;
-            let path = directory.join(crate::sweep::SUMMARY_FILE);
-            writeln!(out, "{} runs in {}", rows.len(), path.display())?;
+            // The status column follows the id, the point, the parameters and the replicate.
+            let status = 3 + Plan::read(directory)?.parameters.len();
+            let missing = rows.iter().filter(|r| r[status] == "missing").count();
+            writeln!(
+                out,
+                "{} runs ({missing} not made yet) in {}; per grid point in {}",
+                rows.len(),
+                directory.join(SUMMARY_FILE).display(),
+                directory.join(INTERVALS_FILE).display()
+            )?;
         }
     }
     Ok(())

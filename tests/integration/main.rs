@@ -24,5 +24,6 @@ mod run_command;
 mod run_directory;
 mod step_acceptance;
 mod sweep_command;
+mod sweep_replicates;
 mod tie_family;
 mod user_names;

@@ -5,11 +5,9 @@
 use std::path::PathBuf;
 
 use hagfish_bench_support::Variant;
+use hagfish_scenario::rounding_perturbed_step;
 
 use crate::family::Runner;
-
-/// The relative step of the rounding perturbations of the time step.
-const ROUNDING_STEP: f64 = 1e-12;
 
 /// One run: a member at one rounding perturbation `j` of its time step, with its body file
 /// (written once per member, before any of its runs reads it).
@@ -46,7 +44,7 @@ impl Case<'_> {
             0 => String::new(),
             j => {
                 let step = member_step(self.variant, runner.request.sets, scenario_step)?;
-                let perturbed = step * (1.0 + j as f64 * ROUNDING_STEP);
+                let perturbed = rounding_perturbed_step(step, j);
                 extra.push(format!("time_step_s={perturbed:?}"));
                 format!("_dh{j}")
             }

@@ -2,23 +2,28 @@
 //! built from this checkout (`crates/python`, maturin) and its tests run by pytest.
 //!
 //! The environment lives in `<target directory>/python-venv` (made with `python3 -m venv` on
-//! first use, kept between runs); `pip` installs maturin, NumPy, pandas, pytest and Dask from
-//! PyPI (nothing is downloaded again once they are there), then builds the package from the
-//! checkout without build isolation and reinstalls it. The tests get the command-line program
-//! in `HAGFISH_BIN`, to compare runs with it.
+//! first use, kept between runs); `pip` installs maturin, NumPy, pandas, pytest, Dask,
+//! dask-jobqueue, matplotlib and SALib from PyPI (the `test` extra of
+//! `crates/python/pyproject.toml`; nothing is downloaded again once they are there), then
+//! builds the package from the checkout without build isolation and reinstalls it (with its
+//! `hagfish` command in the environment's `bin`). The tests get the command-line program
+//! Cargo built in `HAGFISH_BIN`, to compare runs with it.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-/// What the package's tests need besides the package.
-/// (matplotlib for the example study in `examples/`).
-const TEST_REQUIREMENTS: [&str; 6] = [
+/// What the package's tests need besides the package: its dependencies and its `test` extra
+/// (`crates/python/pyproject.toml`; dask-jobqueue for the Slurm job-script test, matplotlib
+/// and SALib for the example study in `examples/`).
+const TEST_REQUIREMENTS: [&str; 8] = [
     "maturin>=1.9,<2",
     "numpy>=1.22",
     "pandas>=1.5",
     "pytest>=7",
     "dask[distributed]>=2023.1",
+    "dask-jobqueue>=0.8",
     "matplotlib>=3.5",
+    "SALib>=1.4",
 ];
 
 /// The target directory Cargo builds into (`CARGO_TARGET_DIR`, else `<root>/target`).

@@ -144,6 +144,7 @@ fn spectrum(d: &Decomposition) -> Scatter {
             .enumerate()
             .map(|(i, e)| ((i + 1) as f64, 100.0 * e))
             .collect(),
+        intervals: Vec::new(),
     }
 }
 

@@ -248,14 +248,21 @@ fn modes<'py>(
     Ok(result)
 }
 
-/// Writes the plan of a sweep of `scenario` with one run per list of overrides into
-/// `folder` (checked: a bad override raises naming the run); returns the run ids.
+/// Writes the plan of a sweep of `scenario` with one grid point per list of overrides, each
+/// run `replicates` times, into `folder` (checked: a bad override raises naming the run);
+/// returns the run ids.
 #[pyfunction]
-fn sweep_plan(scenario: PathBuf, runs: Vec<Vec<String>>, folder: PathBuf) -> PyResult<Vec<String>> {
+#[pyo3(signature = (scenario, runs, folder, replicates = 1))]
+fn sweep_plan(
+    scenario: PathBuf,
+    runs: Vec<Vec<String>>,
+    folder: PathBuf,
+    replicates: usize,
+) -> PyResult<Vec<String>> {
     let scenario = std::path::absolute(&scenario).map_err(|e| {
         raise(&CliError::RunDirectory { path: scenario.clone(), reason: e.to_string() })
     })?;
-    let plan = Plan::with_runs(scenario, runs).map_err(|e| raise(&e))?;
+    let plan = Plan::with_runs(scenario, runs, replicates).map_err(|e| raise(&e))?;
     plan.write(&folder).map_err(|e| raise(&e))?;
     Ok(plan.runs.into_iter().map(|r| r.id).collect())
 }
@@ -274,11 +281,42 @@ fn sweep_run(py: Python<'_>, folder: PathBuf, index: usize) -> PyResult<(String,
     }
 }
 
-/// Writes `summary.csv` and the plots of the sweep in `folder`; returns the summary's path.
+/// Writes `summary.csv`, `intervals.csv` and the plots of the sweep in `folder`; returns the
+/// two tables' paths.
 #[pyfunction]
-fn sweep_collect(py: Python<'_>, folder: PathBuf) -> PyResult<PathBuf> {
-    py.detach(|| hagfish::sweep::collect(&folder)).map_err(|e| raise(&e))?;
-    Ok(folder.join(hagfish::sweep::SUMMARY_FILE))
+fn sweep_collect(py: Python<'_>, folder: PathBuf) -> PyResult<(PathBuf, PathBuf)> {
+    py.detach(|| hagfish::sweep_summary::collect(&folder)).map_err(|e| raise(&e))?;
+    let table = |name: &str| folder.join(name);
+    Ok((table(hagfish::sweep_summary::SUMMARY_FILE), table(hagfish::sweep_summary::INTERVALS_FILE)))
+}
+
+/// The command line `hagfish` in-process, for the `hagfish` command pip installs and
+/// `python -m hagfish`: `argv` as the program gets it (the program's name first). Returns
+/// the exit code the program exits with: clap's for a usage mistake (2, with its message on
+/// stderr) or `--help`/`--version` (0), else 0 or the error's code after `error: …` on stderr
+/// (as `src/main.rs`). Runs with the GIL released; from the first `run` or `sweep run` on,
+/// SIGINT and SIGTERM are the program's for the rest of the process (they stop the run
+/// being made and are ignored between runs, as `ctrlc` keeps them), not Python's.
+#[pyfunction]
+fn main(py: Python<'_>, argv: Vec<String>) -> i32 {
+    use clap::Parser;
+    use std::io::Write;
+    let code = match hagfish::cli::Cli::try_parse_from(argv) {
+        Err(usage) => {
+            // Nothing sensible is left to do if stdout or stderr itself is closed.
+            let _ = usage.print();
+            usage.exit_code()
+        }
+        Ok(cli) => py.detach(|| match hagfish::cli::run(cli) {
+            Ok(()) => 0,
+            Err(e) => {
+                let _ = writeln!(std::io::stderr(), "error: {e}");
+                i32::from(e.exit_code())
+            }
+        }),
+    };
+    let _ = std::io::stdout().flush();
+    code
 }
 
 /// The module `hagfish._native`.
@@ -296,5 +334,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(sweep_plan, m)?)?;
     m.add_function(wrap_pyfunction!(sweep_run, m)?)?;
     m.add_function(wrap_pyfunction!(sweep_collect, m)?)?;
+    m.add_function(wrap_pyfunction!(main, m)?)?;
     Ok(())
 }

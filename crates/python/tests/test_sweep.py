@@ -5,7 +5,9 @@ a sweep planned from Python."""
 import json
 import subprocess
 from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
 
+import numpy as np
 import pandas as pd
 import pytest
 
@@ -99,3 +101,69 @@ def test_a_run_that_cannot_be_made_does_not_stop_the_others(tmp_path, thesis):
     # Once the folder is free, running the sweep again makes run 1 only.
     table = hagfish.sweep(scenario, grid, out=folder, progress=False)
     assert table.status.tolist() == ["completed"] * 3
+
+
+def test_a_replicated_grid_gives_the_same_rows_by_cli_shards_and_by_python_on_dask(
+        tmp_path, thesis, hagfish_bin, capsys):
+    distributed = pytest.importorskip("distributed")
+    grid_file = tmp_path / "grid.ron"
+    grid_file.write_text(
+        f'Sweep(scenario: "{thesis}", grid: [("time_step_s", ["0.02"]), '
+        f'("drag.quadratic_g_per_cm3", ["0.5", "1.0"])], replicates: 2)\n')
+    cli = tmp_path / "cli"
+    for command in (["plan", str(grid_file), "--out", str(cli)],
+                    ["run", str(cli), "--shard", "1/2"], ["run", str(cli), "--shard", "2/2"],
+                    ["collect", str(cli)]):
+        subprocess.run([str(hagfish_bin), "sweep", *command], check=True, capture_output=True)
+    scenario = hagfish.Scenario.load(thesis)
+    grid = {"time_step_s": [0.02], "drag.quadratic_g_per_cm3": [0.5, 1.0]}
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+    ) as cluster, distributed.Client(cluster) as client:
+        table = hagfish.sweep(scenario, grid, out=tmp_path / "py", executor=client, replicates=2)
+    by_cli = pd.read_csv(cli / "summary.csv", dtype={"id": str}, keep_default_na=False,
+                         na_values=[""])
+    pd.testing.assert_frame_equal(comparable(by_cli), comparable(table))
+    assert list(table.id) == ["0000", "0000-1", "0001", "0001-1"]
+    assert list(table.replicate) == [0, 1, 0, 1] and list(table.point) == [0, 0, 1, 1]
+    # The replicates differ at rounding level, so their knots' paths differ.
+    assert final_hashes(cli)["0000"] != final_hashes(cli)["0000-1"]
+
+    def without_wall_time(intervals):
+        return intervals[intervals.statistic != "wall_time_s"].reset_index(drop=True)
+
+    cli_intervals = pd.read_csv(cli / "intervals.csv", keep_default_na=False, na_values=[""])
+    intervals = hagfish.open_intervals(tmp_path / "py")
+    pd.testing.assert_frame_equal(without_wall_time(cli_intervals), without_wall_time(intervals))
+    travel = intervals[intervals.statistic == "core_travel_L"].set_index("point")
+    means = table.groupby("point").core_travel_L.mean()
+    assert np.allclose(travel["mean"], means, rtol=1e-12)
+    assert (travel.n == 2).all() and travel.ci_low.isna().all(), "2 runs give no bootstrap-t"
+    tied = intervals[intervals.statistic == "tied_share"]
+    assert ((tied.ci_low <= tied["mean"]) & (tied["mean"] <= tied.ci_high)).all()
+
+    # The same study with a third replicate makes only the third.
+    capsys.readouterr()
+    again = hagfish.sweep(scenario, grid, out=tmp_path / "py", replicates=3)
+    assert list(again.id) == ["0000", "0000-1", "0000-2", "0001", "0001-1", "0001-2"]
+    lines = capsys.readouterr().err.splitlines()
+    made = [line.split()[2] for line in lines if not line.split(": ", 1)[1].startswith("already")]
+    assert made == ["0000-2", "0001-2"], lines
+
+
+@pytest.mark.parametrize("first, task, shard", [(0, 0, "1/8"), (0, 7, "8/8"), (1, 1, "1/8"),
+                                                (1, 8, "8/8")])
+def test_the_slurm_script_numbers_its_shards_from_any_first_array_index(
+        tmp_path, first, task, shard):
+    """`examples/slurm_sweep.sh` under `--array=0-7` or `--array=1-8` runs every shard once
+    (a stand-in `hagfish` records its arguments)."""
+    fake = tmp_path / "bin" / "hagfish"
+    fake.parent.mkdir()
+    fake.write_text('#!/bin/sh\necho "$@"\n')
+    fake.chmod(0o755)
+    env = {"PATH": f"{fake.parent}:/usr/bin:/bin", "SLURM_ARRAY_TASK_ID": str(task),
+           "SLURM_ARRAY_TASK_MIN": str(first), "SLURM_ARRAY_TASK_COUNT": "8"}
+    script = Path(__file__).resolve().parents[3] / "examples" / "slurm_sweep.sh"
+    done = subprocess.run(["bash", str(script), "SWEEP"], env=env, check=True,
+                          capture_output=True, text=True)
+    assert done.stdout.split() == ["sweep", "run", "SWEEP", "--shard", shard]

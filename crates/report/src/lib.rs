@@ -83,7 +83,7 @@ pub use outputs::{
     write_all,
 };
 pub use plots::{
-    Line, Plot, Scatter, TimeSeries, draw_line_plot, write_line_plots, write_scatters,
+    IntervalBar, Line, Plot, Scatter, TimeSeries, draw_line_plot, write_line_plots, write_scatters,
 };
 pub use radii::{DEFAULT_RADIUS_CM, Radii};
 pub use run_dir::RunDir;

@@ -33,6 +33,7 @@ mod override_value;
 mod overrides;
 mod parameters;
 mod replay_file;
+mod rounding;
 mod scenario;
 mod scenario_check;
 
@@ -40,4 +41,5 @@ pub use error::{ECHO_HEAD, ECHO_TAIL, ScenarioError, echo};
 pub use initial_shape::{InitialShape, OpenTorusKnot};
 pub use overrides::{Override, apply_overrides};
 pub use parameters::{PARAMETERS, Parameter};
+pub use rounding::{ROUNDING_STEP, rounding_perturbed_step};
 pub use scenario::{LoadedScenario, MIN_TIME_STEP_S, Scenario};

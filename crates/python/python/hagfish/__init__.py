@@ -9,7 +9,9 @@ as pandas DataFrames and NumPy arrays::
     run = hagfish.run(scenario, out="out/h02")
     run.summary["core_speed_cm_s"], run.metrics["knot_core_mid_L"], run.centreline.shape
 
-    table = hagfish.sweep(scenario, {"time_step_s": [0.005, 0.01, 0.02]}, out="sweeps/h")
+    table = hagfish.sweep(scenario, {"time_step_s": [0.005, 0.01, 0.02]}, out="sweeps/h",
+                          replicates=8)
+    hagfish.open_intervals("sweeps/h")   # per grid point: mean, sd, 95 % interval
 
 Every mistake raises :class:`HagfishError` with the message (file:line:column where there
 is one) and exit code of the command line.
@@ -18,8 +20,9 @@ is one) and exit code of the command line.
 from ._native import HagfishError, __version__
 from .scenario import Body, Scenario, override_text, params
 from .runs import Run, open_run, run
-from . import modes, runs, sweeps
-from .sweeps import open_sweep, sweep
+from . import modes, runs, sensitivities, sweeps
+from .sweeps import open_intervals, open_sweep, sweep
+from .sensitivities import Sensitivity, sensitivity
 
 __all__ = [
     "Body",
@@ -27,6 +30,8 @@ __all__ = [
     "Run",
     "Scenario",
     "__version__",
+    "Sensitivity",
+    "open_intervals",
     "open_run",
     "open_sweep",
     "override_text",
@@ -34,6 +39,8 @@ __all__ = [
     "params",
     "run",
     "runs",
+    "sensitivities",
+    "sensitivity",
     "sweep",
     "sweeps",
 ]

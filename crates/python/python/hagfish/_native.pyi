@@ -42,11 +42,15 @@ def modes(
     """The arrays of one selection of ``modes.npz`` (float64/int64 arrays, ``axis`` a list of
     str, ``length_cm`` a float)."""
 
-def sweep_plan(scenario: str, runs: list[list[str]], folder: str) -> list[str]:
-    """Writes plan.json; returns the run ids."""
+def sweep_plan(scenario: str, runs: list[list[str]], folder: str, replicates: int = 1) -> list[str]:
+    """Writes plan.json (each grid point ``replicates`` times); returns the run ids."""
 
 def sweep_run(folder: str, index: int) -> tuple[str, bool]:
     """Makes one planned run unless it has ended; returns (status, skipped)."""
 
-def sweep_collect(folder: str) -> str:
-    """Writes summary.csv and plots; returns the summary's path."""
+def sweep_collect(folder: str) -> tuple[str, str]:
+    """Writes summary.csv, intervals.csv and plots; returns the two tables' paths."""
+
+def main(argv: list[str]) -> int:
+    """The command line ``hagfish`` in-process (``argv[0]`` the program's name); returns its
+    exit code."""

@@ -3,10 +3,15 @@ under a sweep folder, run serially or on any executor (``concurrent.futures`` or
 ``distributed.Client``), collected into one tidy DataFrame.
 
 The folder has the layout of ``hagfish sweep plan`` (``plan.json``, ``runs/<id>/``,
-``summary.csv``, ``plots/``), so the command line can run or collect a sweep planned here and
-the other way round. A run that has ended (completed, diverged, tie failed) is never made
-again: rerunning an interrupted sweep makes only the missing runs, and resumes the one that
-was cut off from its last frame."""
+``summary.csv``, ``intervals.csv``, ``plots/``), so the command line can run or collect a sweep
+planned here and the other way round. A run that has ended (completed, diverged, tie failed)
+is never made again: rerunning an interrupted sweep, or the same sweep with more replicates,
+makes only the missing runs, and resumes the one that was cut off from its last frame.
+
+The knot runs are chaotic (a change of the time step by parts in 10¹² moves the knot by
+centimetres), so a study should run each grid point several times: ``replicates=N`` runs
+replicate j with the time step h(1 + j·10⁻¹²), and :func:`open_intervals` gives each grid
+point's mean, spread and 95 % interval of every statistic."""
 
 from __future__ import annotations
 
@@ -49,13 +54,17 @@ def sweep(
     out: PathLike,
     *,
     executor: Any = None,
+    replicates: int = 1,
     progress: bool = True,
 ) -> pd.DataFrame:
     """Runs ``scenario`` once per combination of ``grid`` (see :func:`combinations`), each
-    into ``out/runs/<id>``, and returns ``summary.csv`` as a DataFrame: one row per run with
-    its id, the value of each swept path, then status, final knot, tie time, the knotted
-    core's travel, speed and length change, penetration maxima, force-field statistics and
-    wall time (units in the column names).
+    into ``out/runs/<id>``, ``replicates`` times each (replicate j at the time step
+    h(1 + j·10⁻¹²); j = 0 is the run as written), and returns ``summary.csv`` as a DataFrame:
+    one row per run with its id, its grid point, the value of each swept path, its
+    replicate, then status, final knot, tie time, the share of frames the knot held, the
+    knotted core's travel, speed and length change, penetration maxima, force-field
+    statistics and wall time (units in the column names). :func:`open_intervals` gives the
+    same sweep per grid point, with intervals.
 
     ``executor`` is ``None`` (one run after another in this process), a
     ``concurrent.futures`` executor, or a Dask ``distributed.Client`` (a ``LocalCluster`` or
@@ -75,7 +84,9 @@ def sweep(
         base + [f"{path}={override_text(value)}" for path, value in run.items()]
         for run in combinations(grid)
     ]
-    ids = _native.sweep_plan(str(scenario.path), runs, str(folder))
+    points = runs
+    ids = _native.sweep_plan(str(scenario.path), points, str(folder), replicates)
+    runs = [run for run in points for _ in range(replicates)]
     indices: Iterable[int] = range(len(ids))
     started = time.monotonic()
 
@@ -105,19 +116,36 @@ def sweep(
             futures = [submit(run_planned, str(folder), i) for i in indices]
         for index, future in enumerate(futures):
             report(index, future.result)
-    summary = _native.sweep_collect(str(folder))
+    summary, _ = _native.sweep_collect(str(folder))
     if failed:
         raise _native.HagfishError(
             f"{len(failed)} of {len(ids)} runs could not be made (the others are in "
             f"{summary}):\n" + "\n".join(failed), 2)
-    return pd.read_csv(summary, dtype={"id": str}, keep_default_na=False, na_values=[""])
+    return _read(summary)
+
+
+def _read(table: PathLike) -> pd.DataFrame:
+    """A table of the sweep folder: ids as text, empty fields as NaN, text kept as it is."""
+    return pd.read_csv(table, dtype={"id": str}, keep_default_na=False, na_values=[""])
 
 
 def open_sweep(out: PathLike) -> pd.DataFrame:
     """Collects the sweep in ``out`` (runs made so far; missing ones have status
-    ``missing``) and returns its ``summary.csv``."""
-    summary = _native.sweep_collect(str(Path(out).resolve()))
-    return pd.read_csv(summary, dtype={"id": str}, keep_default_na=False, na_values=[""])
+    ``missing``) and returns its ``summary.csv``, one row per run."""
+    summary, _ = _native.sweep_collect(str(Path(out).resolve()))
+    return _read(summary)
 
 
-__all__ = ["combinations", "open_sweep", "run_planned", "sweep"]
+def open_intervals(out: PathLike) -> pd.DataFrame:
+    """Collects the sweep in ``out`` and returns its ``intervals.csv``: one row per grid
+    point and statistic, over the point's ended runs — ``point``, the swept paths' values,
+    ``runs``, ``statistic`` (a numeric column of the summary, or ``tied_share``,
+    ``held_share``, ``slid_share``), ``n`` (runs with a value), ``mean``, ``sd`` (n − 1),
+    ``ci_low``, ``ci_high`` (95 %: bootstrap-t of the mean, from 3 values on; Wilson for a
+    share) and ``level``. ``table.pivot(index="point", columns="statistic", values="mean")``
+    gives one row per point."""
+    _, intervals = _native.sweep_collect(str(Path(out).resolve()))
+    return _read(intervals)
+
+
+__all__ = ["combinations", "open_intervals", "open_sweep", "run_planned", "sweep"]

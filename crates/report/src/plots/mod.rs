@@ -13,7 +13,7 @@ use plotters::style::RGBColor;
 
 pub use figure::Plot;
 use kymograph::Kymograph;
-pub use scatter::Scatter;
+pub use scatter::{IntervalBar, Scatter};
 pub use time_series::{Line, TimeSeries};
 
 use crate::colour::Rgb;

@@ -1,5 +1,6 @@
 //! A scatter plot of one quantity against another: a sweep's summary metric against a swept
-//! parameter, one point per run.
+//! parameter, one point per run, and where the runs are replicated each grid point's mean
+//! with its confidence interval drawn as an error bar.
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -19,6 +20,21 @@ pub struct Scatter {
     pub y_label: String,
     /// The points (x, y).
     pub points: Vec<(f64, f64)>,
+    /// Intervals drawn over the points (none for a plain scatter).
+    pub intervals: Vec<IntervalBar>,
+}
+
+/// A mean and its confidence interval at one x, drawn as a dark marker with a vertical bar.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct IntervalBar {
+    /// Where (x).
+    pub x: f64,
+    /// The mean (y).
+    pub mean: f64,
+    /// The interval's lower end (y).
+    pub low: f64,
+    /// The interval's upper end (y).
+    pub high: f64,
 }
 
 /// Smallest and largest of `values`, widened by 5 % of the range (by 0.5 if all are equal;
@@ -39,8 +55,10 @@ impl Figure for Scatter {
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<DB> {
-        let (x0, x1) = range(self.points.iter().map(|p| p.0));
-        let (y0, y1) = range(self.points.iter().map(|p| p.1));
+        let bars = &self.intervals;
+        let (x0, x1) = range(self.points.iter().map(|p| p.0).chain(bars.iter().map(|b| b.x)));
+        let ends = bars.iter().flat_map(|b| [b.low, b.high]);
+        let (y0, y1) = range(self.points.iter().map(|p| p.1).chain(ends));
         let axes = Axes {
             title: &self.title,
             title_size: 16,
@@ -50,7 +68,16 @@ impl Figure for Scatter {
         };
         let mut chart = chart(root, &axes, x0..x1, y0..y1)?;
         let colour = RGBColor(31, 119, 180);
-        chart.draw_series(self.points.iter().map(|&p| Circle::new(p, 4, colour.filled())))?;
+        if bars.is_empty() {
+            chart.draw_series(self.points.iter().map(|&p| Circle::new(p, 4, colour.filled())))?;
+            return Ok(());
+        }
+        let runs = RGBColor(158, 202, 225);
+        chart.draw_series(self.points.iter().map(|&p| Circle::new(p, 3, runs.filled())))?;
+        let style = ShapeStyle::from(&BLACK).stroke_width(2);
+        chart.draw_series(
+            bars.iter().map(|b| ErrorBar::new_vertical(b.x, b.low, b.mean, b.high, style, 8)),
+        )?;
         Ok(())
     }
 }
