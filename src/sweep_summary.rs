@@ -89,12 +89,55 @@ impl Share {
     }
 }
 
+/// What [`collect`] found.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Collected {
+    /// The swept parameters' paths.
+    pub parameters: Vec<String>,
+    /// The planned runs.
+    pub runs: usize,
+    /// Of those, the runs not made yet.
+    pub missing: usize,
+    /// The rows of `intervals.csv`.
+    pub points: Vec<PointStatistic>,
+}
+
+impl Collected {
+    /// A few lines per grid point to read at the terminal: its parameters, its ended runs,
+    /// the shares that tied and slid, and the knot's speed and travel with their intervals.
+    pub fn table(&self) -> String {
+        let statistic = |point: usize, name: &str| {
+            self.points.iter().find(|p| p.point == point && p.statistic == name)
+        };
+        let shown = |p: Option<&PointStatistic>| match p {
+            Some(PointStatistic { mean: Some(mean), interval: Some((low, high)), .. }) => {
+                format!("{mean:.3} [{low:.3}, {high:.3}]")
+            }
+            Some(PointStatistic { mean: Some(mean), .. }) => format!("{mean:.3}"),
+            _ => "—".into(),
+        };
+        let count = self.points.iter().map(|p| p.point + 1).max().unwrap_or(0);
+        let mut text = String::new();
+        for point in 0..count {
+            let Some(first) = self.points.iter().find(|p| p.point == point) else { continue };
+            let setting: Vec<String> = (self.parameters.iter().zip(&first.parameters))
+                .map(|(path, value)| format!("{path}={value}"))
+                .collect();
+            text += &format!("point {point} ({}): {} runs ended\n", setting.join(" "), first.runs);
+            for name in ["tied_share", "slid_share", "core_speed_cm_s", "core_travel_L"] {
+                text += &format!("  {name:<16} {}\n", shown(statistic(point, name)));
+            }
+        }
+        text
+    }
+}
+
 /// Reads every run of the sweep in `folder` and writes `summary.csv`, `intervals.csv` and
-/// `plots/` (module docs). Returns the summary's rows (without the header).
+/// `plots/` (module docs).
 ///
 /// # Errors
 /// [`CliError`] if the plan, a run's files or an output cannot be read or written.
-pub fn collect(folder: &Path) -> Result<Vec<Vec<String>>, CliError> {
+pub fn collect(folder: &Path) -> Result<Collected, CliError> {
     let plan = Plan::read(folder)?;
     let points = plan.points();
     let mut runs: Vec<Option<RunRow>> = Vec::with_capacity(plan.runs.len());
@@ -126,7 +169,12 @@ pub fn collect(folder: &Path) -> Result<Vec<Vec<String>>, CliError> {
     let interval_rows: Vec<Vec<String>> = intervals.iter().map(PointStatistic::values).collect();
     write_table(&folder.join(INTERVALS_FILE), &interval_header, &interval_rows)?;
     hagfish_report::write_scatters(&scatters(&plan, &runs, &intervals), &folder.join("plots"))?;
-    Ok(rows)
+    Ok(Collected {
+        runs: runs.len(),
+        missing: runs.iter().filter(|r| r.is_none()).count(),
+        parameters: plan.parameters,
+        points: intervals,
+    })
 }
 
 /// The values of a run not made yet: status `missing`, the rest empty.

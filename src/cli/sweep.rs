@@ -121,14 +121,17 @@ pub fn run(args: &SweepArgs, out: &mut dyn Write) -> Result<(), CliError> {
             }
         }
         Action::Collect { directory } => {
-            let rows = collect(directory)?;
-            // The status column follows the id, the point, the parameters and the replicate.
-            let status = 3 + Plan::read(directory)?.parameters.len();
-            let missing = rows.iter().filter(|r| r[status] == "missing").count();
+            let collected = collect(directory)?;
+            let points = collected.points.iter().map(|p| p.point + 1).max().unwrap_or(0);
+            if points <= MAX_POINTS_SHOWN {
+                write!(out, "{}", collected.table())?;
+            }
             writeln!(
                 out,
-                "{} runs ({missing} not made yet) in {}; per grid point in {}",
-                rows.len(),
+                "{} runs ({} not made yet) in {}; per grid point, every statistic with its 95 % \
+                 interval, in {}",
+                collected.runs,
+                collected.missing,
                 directory.join(SUMMARY_FILE).display(),
                 directory.join(INTERVALS_FILE).display()
             )?;
@@ -136,6 +139,10 @@ pub fn run(args: &SweepArgs, out: &mut dyn Write) -> Result<(), CliError> {
     }
     Ok(())
 }
+
+/// The most grid points `collect` lists at the terminal (a larger sweep is read in its
+/// tables).
+const MAX_POINTS_SHOWN: usize = 24;
 
 /// How a run ended, in a few words.
 fn describe(result: &RunResult) -> String {

@@ -49,7 +49,11 @@ fn more_replicates_make_only_the_new_runs_and_the_intervals_hold_their_runs() {
     let rerun = ok(&["sweep", "run", out, "--jobs", "2"]);
     assert_eq!(rerun.matches("already completed").count(), 8, "{rerun}");
     assert!(rerun.contains("run 0000-4 ") && rerun.contains("run 0001-4 "), "{rerun}");
-    ok(&["sweep", "collect", out]);
+    let collected = ok(&["sweep", "collect", out]);
+    assert!(
+        collected.contains("point 1 (drag.quadratic_g_per_cm3=1.0): 5 runs ended"),
+        "{collected}"
+    );
 
     let runs = table(&folder.join("summary.csv"));
     let ids: Vec<&str> = runs.iter().map(|r| r["id"].as_str()).collect();
