@@ -337,6 +337,19 @@ fn open_stopped(
             ),
         });
     }
+    if let Some(then) = checkpoint.referenced_files_hash.as_ref()
+        && *then != loaded.referenced_files_hash
+    {
+        return Err(CliError::RunDirectory {
+            path: directory.join(SCENARIO_FILE),
+            reason: format!(
+                "a knot plan, modal basis or replay file the scenario reads changed since the \
+                 run's checkpoint (hash {then:?} then, {:?} now): resuming would continue \
+                 another run; start a new run",
+                loaded.referenced_files_hash
+            ),
+        });
+    }
     let hash = loaded.hash();
     let hashes = [Some(checkpoint.scenario_hash.as_str()), Some(&manifest.scenario_hash), expected];
     if let Some(other) = hashes.into_iter().flatten().find(|h| *h != hash) {

@@ -115,3 +115,34 @@ fn a_tie_that_holds_its_crossings_pushes_on_them_and_resumes_bit_for_bit() {
         assert!(a.expect(file) == b.expect(file), "{file} differs after the resume");
     }
 }
+
+#[test]
+fn a_resume_refuses_a_knot_plan_edited_since_the_checkpoint() {
+    let dir = fresh_dir("knot_plans_edited");
+    let plan = dir.join("overhand.ron");
+    std::fs::copy("data/knots/overhand.ron", &plan).expect("copy the plan");
+    let out = dir.join("out");
+    let knot = format!("Planned((file: {:?}))", plan.to_str().expect("UTF-8"));
+    let stopped = run_hagfish([
+        "run",
+        "data/scenarios/tie.ron",
+        "--quiet",
+        "--out",
+        out.to_str().expect("UTF-8"),
+        "--set",
+        &format!("phases[0].Tie.knot={knot}"),
+        "--stop-after-frames",
+        "5",
+    ]);
+    assert!(stopped.status.success(), "{}", code_and_stderr(&stopped).1);
+    let resume = || run_hagfish(["run", "--resume", out.to_str().expect("UTF-8"), "--quiet"]);
+    let text = std::fs::read_to_string(&plan).expect("the plan");
+    std::fs::write(&plan, text.clone() + "// an edit\n").expect("edit the plan");
+    let (code, stderr) = code_and_stderr(&resume());
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("a knot plan, modal basis or replay file"), "{stderr}");
+    // Put back, the same plan resumes.
+    std::fs::write(&plan, text).expect("restore the plan");
+    let resumed = resume();
+    assert!(resumed.status.success(), "{}", code_and_stderr(&resumed).1);
+}

@@ -74,6 +74,11 @@ pub struct Checkpoint {
     /// Hash of the body file's bytes ([`crate::LoadedScenario::body_hash`]), to refuse a
     /// resume after the body file was edited.
     pub body_hash: String,
+    /// Hash of the files the phases read ([`crate::LoadedScenario::referenced_files_hash`]),
+    /// to refuse a resume after a knot plan, modal basis or replay was edited; `None` in
+    /// checkpoints written before it existed (nothing to compare then).
+    #[serde(default)]
+    pub referenced_files_hash: Option<String>,
     /// Frames recorded (the next frame's index).
     pub frames: usize,
     /// Steps taken.
@@ -171,6 +176,7 @@ mod tests {
             format: CHECKPOINT_FORMAT,
             scenario_hash: "0123456789abcdef".into(),
             body_hash: "fedcba9876543210".into(),
+            referenced_files_hash: Some(String::new()),
             frames: 7,
             steps: 70,
             t: ExactF64s(vec![0.7000000000000005]),

@@ -245,7 +245,7 @@ fn stepping(
     let scenario = &loaded.scenario;
     let record_every = whole_steps(scenario.record_every_s, scenario.time_step_s);
     let observe_every = whole_steps(scenario.observe_every_s, scenario.time_step_s);
-    let mut recording = Recording::new(&world, loaded.hash(), loaded.body_hash.clone());
+    let mut recording = Recording::new(&world, loaded);
     // Frame 0 is the initial state, and the first observation; a resumed run recorded its
     // last frame (and made any observation due at it) before it stopped.
     let mut record = options.resume.is_none();
@@ -331,6 +331,7 @@ fn whole_steps(interval_s: f64, time_step_s: f64) -> u64 {
 struct Recording {
     hash: String,
     body_hash: String,
+    referenced_files_hash: String,
     radii: Vec<f64>,
     body_length_cm: f64,
     knot_options: KnotOptions,
@@ -345,10 +346,11 @@ struct Recording {
 }
 
 impl Recording {
-    fn new(world: &World, hash: String, body_hash: String) -> Self {
+    fn new(world: &World, loaded: &LoadedScenario) -> Self {
         Self {
-            hash,
-            body_hash,
+            hash: loaded.hash(),
+            body_hash: loaded.body_hash.clone(),
+            referenced_files_hash: loaded.referenced_files_hash.clone(),
             radii: world.model().bodies().iter().map(|b| b.radius).collect(),
             body_length_cm: world.model().bodies().iter().map(|b| b.length).sum(),
             knot_options: KnotOptions::default(),
@@ -460,6 +462,7 @@ impl Recording {
             format: CHECKPOINT_FORMAT,
             scenario_hash: self.hash.clone(),
             body_hash: self.body_hash.clone(),
+            referenced_files_hash: Some(self.referenced_files_hash.clone()),
             frames: summary.frames,
             steps: world.steps(),
             t: ExactF64s(vec![state.t]),

@@ -32,6 +32,7 @@ mod modal_space;
 mod override_value;
 mod overrides;
 mod parameters;
+mod referenced_files;
 mod replay_file;
 mod rounding;
 mod scenario;

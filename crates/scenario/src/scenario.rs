@@ -27,6 +27,7 @@ use crate::initial_shape::InitialShape;
 use crate::knot_plan_file::resolve_knot_plans;
 use crate::modal_space::resolve_modal_spaces;
 use crate::overrides::{Override, apply_overrides};
+use crate::referenced_files::{referenced_files, referenced_files_hash};
 use crate::replay_file::resolve_replays;
 use crate::scenario_check::check_scenario;
 
@@ -113,6 +114,9 @@ pub struct LoadedScenario {
     /// FNV-1a hash of the body file's bytes (16 hex digits), so that a resume can tell that
     /// the body file changed although the scenario (which names it) did not.
     pub body_hash: String,
+    /// FNV-1a hash of the knot plans, modal bases and replays the phases read (16 hex
+    /// digits; empty when they read none), for the same reason (`referenced_files.rs`).
+    pub referenced_files_hash: String,
 }
 
 impl LoadedScenario {
@@ -180,9 +184,16 @@ impl LoadedScenario {
             source: Box::new(source),
         })?;
         let body_hash = format!("{:016x}", fnv1a64(&bytes));
+        let referenced_files_hash = referenced_files_hash(&referenced_files(&phases))?;
         let body = std::fs::canonicalize(&body).unwrap_or(body);
         let resolved = Scenario { body, phases, ..file.value };
-        Ok(Self { scenario: resolved, body: loaded, path: file.path, body_hash })
+        Ok(Self {
+            scenario: resolved,
+            body: loaded,
+            path: file.path,
+            body_hash,
+            referenced_files_hash,
+        })
     }
 
     /// The scenario as RON text with every default filled in and the body file as an absolute

@@ -18,6 +18,7 @@ fn checkpoint() -> Checkpoint {
         format: CHECKPOINT_FORMAT,
         scenario_hash: "0123456789abcdef".into(),
         body_hash: "fedcba9876543210".into(),
+        referenced_files_hash: Some("00112233aabbccdd".into()),
         frames: 42,
         steps: 420,
         t: ExactF64s(vec![4.2]),
