@@ -8,7 +8,7 @@ use serde::de::DeserializeOwned;
 
 use crate::biometrics::Biometrics;
 use crate::error::{AnatomyError, Field, Origin};
-use crate::locate::{locate, position};
+use crate::locate::{locate, locate_literal, position};
 
 /// A parsed RON data file that keeps its text, so values rejected after parsing can still be
 /// reported at their `file:line:column`.
@@ -47,6 +47,13 @@ impl<T: DeserializeOwned> DataFile<T> {
     /// defaulted field).
     pub fn locate(&self, field: &Field) -> Origin {
         locate(&self.text, &self.path, field)
+    }
+
+    /// Where the `key` whose value is the string `value` sits in the file (the whole file if
+    /// no `key` has it, e.g. a value given by an override): `file: "plan.ron"` among the
+    /// `file` keys of knot plans, modal bases and replays.
+    pub fn locate_string(&self, key: &str, value: &str) -> Origin {
+        locate_literal(&self.text, &self.path, key, &format!("{value:?}"))
     }
 }
 

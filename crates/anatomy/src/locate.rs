@@ -18,6 +18,18 @@ pub(crate) fn locate(source: &str, path: &Path, field: &Field) -> Origin {
     }
 }
 
+/// The origin of the value of the first `key` whose value is the text `literal` (a string as
+/// the file writes it, quotes included), or just the file when no `key` has it: a key that
+/// several kinds of field share (`file`) is found by what it says, not by its count.
+pub(crate) fn locate_literal(source: &str, path: &Path, key: &str, literal: &str) -> Origin {
+    let code = code_chars(source);
+    (0..)
+        .map_while(|occurrence| find_key(&code, key, occurrence))
+        .filter_map(|at| code.get(at).map(|&(offset, _)| offset))
+        .find(|&offset| source.get(offset..).is_some_and(|rest| rest.starts_with(literal)))
+        .map_or_else(|| Origin::File(path.to_path_buf()), |offset| position(source, path, offset))
+}
+
 /// The origin of byte `offset` of `source`: 1-based line, 1-based column in characters.
 pub(crate) fn position(source: &str, path: &Path, offset: usize) -> Origin {
     let before = source.get(..offset).unwrap_or(source);
@@ -153,6 +165,19 @@ mod tests {
             Origin::Position { line, column, .. } => Some((line, column)),
             _ => None,
         }
+    }
+
+    #[test]
+    fn a_shared_key_is_found_by_its_string_value() {
+        let source = "(\n  knot: Planned((file: \"plan.ron\")),\n  // file: \"modes.csv\"\n  \
+                      force_space: Modes((file: \"modes.csv\", modes: 4)),\n)";
+        let at = |literal: &str| match locate_literal(source, Path::new("f.ron"), "file", literal) {
+            Origin::Position { line, column, .. } => Some((line, column)),
+            _ => None,
+        };
+        assert_eq!(at("\"modes.csv\""), Some((4, 29)), "not the comment, not the plan's");
+        assert_eq!(at("\"plan.ron\""), Some((2, 24)));
+        assert_eq!(at("\"other.csv\""), None);
     }
 
     #[test]

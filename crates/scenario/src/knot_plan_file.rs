@@ -5,7 +5,7 @@
 use std::path::Path;
 use std::sync::Arc;
 
-use hagfish_anatomy::{DataFile, Field};
+use hagfish_anatomy::DataFile;
 use hagfish_control::{KnotPlan, Phase, TieKnot};
 
 use crate::error::ScenarioError;
@@ -20,7 +20,6 @@ pub(crate) fn resolve_knot_plans(
     directory: &Path,
     mut phases: Vec<Phase>,
 ) -> Result<Vec<Phase>, ScenarioError> {
-    let mut occurrence = 0;
     for phase in &mut phases {
         let Phase::Tie(tie) = phase else { continue };
         let TieKnot::Planned(planned) = &mut tie.knot else { continue };
@@ -30,12 +29,11 @@ pub(crate) fn resolve_knot_plans(
             Ok(read.value)
         });
         let plan = plan.map_err(|reason| ScenarioError::KnotPlanFile {
-            at: file.locate(&Field::nth("file", occurrence)),
+            at: file.locate_string("file", &planned.file.to_string_lossy()),
             reason,
         })?;
         planned.file = std::fs::canonicalize(&path).unwrap_or(path);
         planned.plan = Some(Arc::new(plan));
-        occurrence += 1;
     }
     Ok(phases)
 }

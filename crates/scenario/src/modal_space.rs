@@ -45,7 +45,12 @@ pub(crate) fn resolve_modal_spaces(
     for phase in &mut phases {
         let Phase::Thigmotaxis(thigmo) = phase else { continue };
         let ForceSpace::Modes(space) = &mut thigmo.parameters.force_space else { continue };
-        let at = |key| file.locate(&Field::nth(key, occurrence));
+        // `file` is a key of knot plans and replays too: found by its value; `modes` is
+        // the modal spaces' own, found by its count.
+        let at = |key| match key {
+            "file" => file.locate_string("file", &space.file.to_string_lossy()),
+            key => file.locate(&Field::nth(key, occurrence)),
+        };
         let error = |key, reason: String| ScenarioError::ModeFile { at: at(key), reason };
         let path = directory.join(&space.file);
         let (vectors, available) = resample(&path, space, model, length_cm)

@@ -5,7 +5,7 @@
 use std::path::Path;
 use std::sync::Arc;
 
-use hagfish_anatomy::{DataFile, Field};
+use hagfish_anatomy::DataFile;
 use hagfish_control::{Phase, ReplayField};
 
 use crate::error::ScenarioError;
@@ -20,18 +20,16 @@ pub(crate) fn resolve_replays(
     mut phases: Vec<Phase>,
     dofs: usize,
 ) -> Result<Vec<Phase>, ScenarioError> {
-    let mut occurrence = 0;
     for phase in &mut phases {
         let Phase::Thigmotaxis(thigmo) = phase else { continue };
         let Some(replay) = &mut thigmo.parameters.replay else { continue };
         let path = directory.join(&replay.file);
         let field = read(&path, dofs).map_err(|reason| ScenarioError::ModeFile {
-            at: file.locate(&Field::nth("file", occurrence)),
+            at: file.locate_string("file", &replay.file.to_string_lossy()),
             reason: format!("{}: {reason}", path.display()),
         })?;
         replay.file = std::fs::canonicalize(&path).unwrap_or(path);
         replay.field = Some(Arc::new(field));
-        occurrence += 1;
     }
     Ok(phases)
 }
