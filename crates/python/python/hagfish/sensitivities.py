@@ -51,11 +51,33 @@ class Sensitivity:
     ``S1``, ``S1_conf``, ``ST``, ``ST_conf``; for Morris ``mu_star``, ``mu_star_conf``,
     ``sigma``), ``samples`` (one row per sample: its values and its outputs, the mean of its
     replicates, and ``completed``, how many of them completed rather than diverged or failed
-    their tie) and ``skipped`` (output → why it has no indices)."""
+    their tie), ``skipped`` (output → why it has no indices) and, with replicates, ``noise``
+    (:func:`replicate_noise`; ``None`` with one run per sample)."""
 
     indices: pd.DataFrame
     samples: pd.DataFrame
     skipped: Dict[str, str]
+    noise: Optional[pd.DataFrame] = None
+
+
+def replicate_noise(table: pd.DataFrame, sample: np.ndarray, outputs: Sequence[str],
+                    means: pd.DataFrame) -> pd.DataFrame:
+    """The runs' own scatter over the whole design, from the replicates of each sample: per
+    output the pooled replicate variance σ² (the mean over samples of each sample's variance,
+    n − 1 divisor), the replicates per sample R, and η = (σ²/R) / Var(sample means), the share
+    of the analysed means' variance that is noise. Jansen's total-index estimator counts η in
+    every parameter's ST (E[(f(A) − f(A_B⁽ⁱ⁾))²]/2V gains σ²/R from each of the two
+    independent evaluations, halved), so ST − η is the parameter's own share; the first-order
+    estimator is unbiased by it."""
+    grouped = table[list(outputs)].groupby(sample)
+    within = grouped.var().mean()
+    replicates = grouped.size().min()
+    return pd.DataFrame({
+        "output": list(outputs),
+        "replicate_variance": [float(within[o]) for o in outputs],
+        "replicates": int(replicates),
+        "noise_share": [float(within[o] / replicates / means[o].var()) for o in outputs],
+    })
 
 
 def _salib(problem: Problem) -> dict:
@@ -134,7 +156,8 @@ def sensitivity(
     overrides from ``design``, by default the names as scenario paths), ``replicates`` times,
     on ``executor`` (see :func:`hagfish.sweep`), and returns the indices of each of
     ``outputs`` (columns of the sweep's summary) with :func:`indices`. Writes
-    ``out/sensitivity.csv`` and ``out/samples.csv``. Rerunning makes only the missing runs.
+    ``out/sensitivity.csv``, ``out/samples.csv`` and, with replicates, ``out/noise.csv``
+    (:func:`replicate_noise`). Rerunning makes only the missing runs.
     A missing travel (no knot) counts as 0; another output's missing values are handled as
     ``missing`` says (see :func:`indices`). ``samples.csv`` keeps them missing."""
     x = design_samples(problem, samples, method, seed)
@@ -158,7 +181,10 @@ def sensitivity(
     sampled = pd.concat([pd.DataFrame(x, columns=names), means.reset_index(drop=True)], axis=1)
     found.to_csv(folder / "sensitivity.csv", index=False)
     sampled.to_csv(folder / "samples.csv", index=False)
-    return Sensitivity(indices=found, samples=sampled, skipped=skipped)
+    noise = replicate_noise(table, sample, outputs, means) if replicates > 1 else None
+    if noise is not None:
+        noise.to_csv(folder / "noise.csv", index=False)
+    return Sensitivity(indices=found, samples=sampled, skipped=skipped, noise=noise)
 
 
-__all__ = ["OUTPUTS", "Sensitivity", "design_samples", "indices", "sensitivity"]
+__all__ = ["OUTPUTS", "Sensitivity", "design_samples", "indices", "replicate_noise", "sensitivity"]
