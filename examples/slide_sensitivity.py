@@ -9,7 +9,8 @@ The parameters: ``length_cm`` (mass ∝ length × circumference², the same dens
 ``circumference_factor`` (every mark's circumference × it), ``log10_stiffness_factor`` (the
 bending and twist stiffness × 10^it) and ``log10_damping_factor`` (the damping × 10^it), each
 uniform over its range. Saltelli's design with N = 256 gives N (D + 2) = 1536 samples, each
-run twice at rounding perturbations of its time step (3072 runs, ≈ 18 min on 2 cores): the
+run twice at rounding perturbations of its time step (3072 runs, ≈ 18 min on 2 cores and
+≈ 34 GB of run directories, ≈ 11 MB a run: put RUNS where there is room): the
 knot runs are chaotic, and the replicates measure the noise share η of each output that is
 part of every total index (see :func:`reading`). Writes into OUT ``sensitivity.csv``
 (SALib's S1, ST and their 95 % half-widths per output and parameter), ``samples.csv``,

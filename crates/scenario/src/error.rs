@@ -42,6 +42,15 @@ pub enum ScenarioError {
         /// What is wrong.
         reason: String,
     },
+    /// The vertex file of an initial `Polyline` shape is unreadable or not a curve (`at`: the
+    /// shape's `file` in the scenario; the reason names the vertex file and its line).
+    #[error("{at}: the initial shape: {reason}")]
+    ShapeFile {
+        /// Where the scenario names the vertex file.
+        at: hagfish_anatomy::Origin,
+        /// What is wrong.
+        reason: String,
+    },
     /// The body's model could not be built.
     #[error("building the model: {0}")]
     Model(#[from] hagfish_tree::TreeError),

@@ -1,6 +1,7 @@
 //! The body's shape at t = 0, when it is not straight: an open (2, q) torus knot (a trefoil
 //! for q = 3, a cinquefoil for q = 5), for starting a rod already knotted (the loose knots of
-//! rod theory, `docs/validation.md`).
+//! rod theory, `docs/validation.md`), or a curve read from a file of vertices
+//! ([`PolylineShape`]: another simulator's starting knot).
 //!
 //! The chain is posed by its bending joints: bodies meet a bending (universal) joint every
 //! second joint, so the chain is a polyline of segments 2ℓ long (ℓ for the head and the last
@@ -10,11 +11,15 @@ use glam::{DMat3, DVec3};
 use hagfish_tree::{JointKind, Model};
 use serde::{Deserialize, Serialize};
 
+use crate::polyline_shape::PolylineShape;
+
 /// The body's shape at t = 0 (the default, no shape, is straight along +X from the head).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub enum InitialShape {
     /// An open torus knot ([`OpenTorusKnot`]).
     OpenTorusKnot(OpenTorusKnot),
+    /// A curve read from a file of vertices ([`PolylineShape`]).
+    Polyline(PolylineShape),
 }
 
 /// An open (2, q) torus knot: the head runs straight along +X for `start_l`·L, then the body
@@ -118,8 +123,13 @@ impl InitialShape {
     /// The joint angles that lay `model` (a chain along +X from the head, with twist and
     /// bending joints, of total length `length_cm`) along this shape.
     pub fn pose(&self, model: &Model, length_cm: f64) -> Vec<f64> {
-        let InitialShape::OpenTorusKnot(knot) = self;
-        let points = knot.curve(length_cm);
+        let points = match self {
+            InitialShape::OpenTorusKnot(knot) => knot.curve(length_cm),
+            InitialShape::Polyline(polyline) => polyline.curve(length_cm),
+        };
+        if points.len() < 2 {
+            return vec![0.0; model.dof_count()];
+        }
         let mut walker = CurveWalker { points: &points, segment: 0, at: DVec3::ZERO };
         let mut q = vec![0.0; model.dof_count()];
         let mut frame = DMat3::IDENTITY;

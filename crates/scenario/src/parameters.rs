@@ -41,12 +41,15 @@ pub const PARAMETERS: &[Parameter] = &[
     p("drag", "-", "None", "water drag on every body: Some((...)) or None for vacuum"),
     p("drag.linear_dyn_s_per_cm3", "dyn·s/cm³", "required in drag", "linear (viscous) drag per projected area 2rℓ, ≥ 0"),
     p("drag.quadratic_g_per_cm3", "g/cm³", "required in drag", "quadratic drag ½ρC_d per projected area, ≥ 0 (water: 0.5)"),
-    p("initial_shape", "-", "None", "the body's shape at t = 0: Some(OpenTorusKnot((...))) or None (straight along +X)"),
+    p("initial_shape", "-", "None", "the body's shape at t = 0: Some(OpenTorusKnot((...))), Some(Polyline((...))) or None (straight along +X)"),
     p("initial_shape.OpenTorusKnot", "-", "-", "an open (2, q) torus knot: head line along +X, the knot, tail line along +X"),
     p("initial_shape.OpenTorusKnot.crossings", "-", "required", "q of the open (2, q) torus knot, odd ≥ 3: 3 trefoil, 5 cinquefoil"),
     p("initial_shape.OpenTorusKnot.radius_l", "L", "required", "the torus' major radius R₀ (its minor radius is R₀/2)"),
     p("initial_shape.OpenTorusKnot.start_l", "L", "required", "the straight head part before the knot, ≥ 3(R₀ + R₀/2)/L (off the wall)"),
     p("initial_shape.OpenTorusKnot.mirror", "-", "false", "the mirror image (z → −z)"),
+    p("initial_shape.Polyline", "-", "-", "a curve from a vertex file, its first vertex at the head and first segment along +X, straight on past its end"),
+    p("initial_shape.Polyline.file", "-", "required", "the vertex file, relative to the scenario file: a vertex per line, x y z first (blanks or commas)"),
+    p("initial_shape.Polyline.cm_per_unit", "cm", "1", "centimetres per unit of the file (100 for metres)"),
     p("skin", "-", "None", "a skin for the body in place of the body file's: Some((...)) or None (the body file's own)"),
     p("skin.thickness_fraction", "-", "required in skin", "the compressible layer's thickness, fraction of the local radius, in (0, 1)"),
     p("skin.pressure_dyn_per_cm2", "dyn/cm²", "required in skin", "pressure under the skin: a crossing compressed by δ pushes π·p·√(r_a r_b)·δ"),
@@ -271,7 +274,16 @@ mod tests {
 
     #[test]
     fn every_field_and_variant_has_a_row_and_every_row_exists() {
-        let text = ron::ser::to_string(&everything()).expect("plain data serializes");
+        let mut other = everything();
+        other.initial_shape = Some(crate::InitialShape::Polyline(crate::PolylineShape {
+            file: "curve.txt".into(),
+            cm_per_unit: 100.0,
+            vertices: None,
+        }));
+        let text = [everything(), other]
+            .iter()
+            .map(|s| ron::ser::to_string(s).expect("plain data serializes"))
+            .collect::<String>();
         let keys: BTreeSet<&str> = PARAMETERS.iter().map(|p| parameter_key(p.name)).collect();
         let found = identifiers(&text);
         assert!(found.len() > 20, "{found:?}");

@@ -1,6 +1,7 @@
-//! The files a scenario's phases read besides the scenario and its body — knot plans
-//! ([`hagfish_control::TieKnot::Planned`]), modal bases ([`hagfish_control::ModalSpace`]) and
-//! replays ([`hagfish_control::Replay`]) — and a hash of their bytes. Their contents are not
+//! The files a scenario reads besides itself and its body — an initial shape's vertices
+//! ([`crate::PolylineShape`]), knot plans ([`hagfish_control::TieKnot::Planned`]), modal bases
+//! ([`hagfish_control::ModalSpace`]) and replays ([`hagfish_control::Replay`]) — and a hash of
+//! their bytes. Their contents are not
 //! part of the resolved scenario text (only their paths are), so a resume compares this hash
 //! with its checkpoint's: a run continued with an edited plan would not be the run it resumes.
 
@@ -11,12 +12,18 @@ use hagfish_control::{ForceSpace, Phase, TieKnot};
 use hagfish_sim::fnv1a64;
 
 use crate::error::ScenarioError;
+use crate::initial_shape::InitialShape;
+use crate::scenario::Scenario;
 
-/// The files `phases` read, in phase order (a phase's knot plan, then its modal basis, then
-/// its replay), as the loaded scenario names them (absolute).
-pub(crate) fn referenced_files(phases: &[Phase]) -> Vec<PathBuf> {
+/// The files `scenario` reads, as the loaded scenario names them (absolute): its initial
+/// shape's, then its phases' in phase order (a phase's knot plan, then its modal basis, then
+/// its replay).
+pub(crate) fn referenced_files(scenario: &Scenario) -> Vec<PathBuf> {
     let mut files = Vec::new();
-    for phase in phases {
+    if let Some(InitialShape::Polyline(shape)) = &scenario.initial_shape {
+        files.push(shape.file.clone());
+    }
+    for phase in &scenario.phases {
         match phase {
             Phase::Tie(tie) => {
                 if let TieKnot::Planned(planned) = &tie.knot {

@@ -27,6 +27,7 @@ use crate::initial_shape::InitialShape;
 use crate::knot_plan_file::resolve_knot_plans;
 use crate::modal_space::resolve_modal_spaces;
 use crate::overrides::{Override, apply_overrides};
+use crate::polyline_shape::resolve_polyline;
 use crate::referenced_files::{referenced_files, referenced_files_hash};
 use crate::replay_file::resolve_replays;
 use crate::scenario_check::check_scenario;
@@ -184,9 +185,15 @@ impl LoadedScenario {
             source: Box::new(source),
         })?;
         let body_hash = format!("{:016x}", fnv1a64(&bytes));
-        let referenced_files_hash = referenced_files_hash(&referenced_files(&phases))?;
+        let initial_shape = match file.value.initial_shape.clone() {
+            Some(InitialShape::Polyline(shape)) => {
+                Some(InitialShape::Polyline(resolve_polyline(&file, directory, shape)?))
+            }
+            other => other,
+        };
         let body = std::fs::canonicalize(&body).unwrap_or(body);
-        let resolved = Scenario { body, phases, ..file.value };
+        let resolved = Scenario { body, phases, initial_shape, ..file.value };
+        let referenced_files_hash = referenced_files_hash(&referenced_files(&resolved))?;
         Ok(Self {
             scenario: resolved,
             body: loaded,

@@ -1,4 +1,5 @@
 //! Integration tests of `hagfish-scenario`: one test binary.
 
 mod modal_space;
+mod polyline_shape;
 mod scenario_mutations;
