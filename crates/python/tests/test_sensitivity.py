@@ -79,3 +79,15 @@ def test_a_small_study_of_the_thesis_runs_end_to_end_and_reruns_nothing(tmp_path
     again = hagfish.sensitivity(scenario, problem, out=tmp_path, samples=2)
     assert again.samples.equals(result.samples)
     assert capsys.readouterr().err.count("already completed") == 6
+
+
+def test_morris_gives_a_linear_functions_coefficients_exactly():
+    """Elementary effects of y = 3x₁ − x₂ + 0·x₃ on [0, 1]³ are the coefficients, whatever
+    the trajectory: μ* = |aᵢ|, σ = 0."""
+    problem = {"names": ["a", "b", "c"], "bounds": [[0.0, 1.0]] * 3}
+    x = design_samples(problem, 10, "morris", seed=3)
+    assert x.shape == (10 * 4, 3)
+    table, skipped = indices(problem, x, {"y": 3 * x[:, 0] - x[:, 1]}, "morris", seed=3)
+    assert not skipped
+    np.testing.assert_allclose(table.mu_star, [3.0, 1.0, 0.0], atol=1e-12)
+    np.testing.assert_allclose(table.sigma, [0.0, 0.0, 0.0], atol=1e-12)
