@@ -23,9 +23,7 @@ the first command above.
 from __future__ import annotations
 
 import argparse
-import ast
 import hashlib
-import re
 from pathlib import Path
 
 import numpy as np
@@ -49,14 +47,6 @@ LABELS = {
 }
 
 
-def es103_field(name: str):
-    """A top-level number or list of ES103's body file, as written there."""
-    found = re.search(rf"^\s*{name}\s*:\s*([^\n]*?),?\s*$", ES103.read_text(), re.M)
-    if found is None:
-        raise KeyError(f"{ES103}: no field {name}")
-    return ast.literal_eval(found.group(1))
-
-
 class Design:
     """Turns a sample into its body file (written once, named by the sample's values) and
     the override that runs the scenario on it."""
@@ -72,7 +62,7 @@ class Design:
         base, c = self.base, sample["circumference_factor"]
         stiffness = 10 ** sample["log10_stiffness_factor"]
         damping = 10 ** sample["log10_damping_factor"]
-        scaled = {name: es103_field(name) * factor for name, factor in [
+        scaled = {name: self.base.read_field(name) * factor for name, factor in [
             ("bending_stiffness_dyn_cm_per_rad", stiffness),
             ("twist_stiffness_dyn_cm_per_rad", stiffness),
             ("damping_dyn_cm_s_per_rad", damping)]}
@@ -81,7 +71,7 @@ class Design:
                 path,
                 length_cm=sample["length_cm"],
                 mass_g=base.mass_g * sample["length_cm"] / base.length_cm * c**2,
-                circumferences_cm=[x * c for x in es103_field("circumferences_cm")],
+                circumferences_cm=[x * c for x in base.read_field("circumferences_cm")],
                 **scaled,
             )
         return {"body": path.resolve()}

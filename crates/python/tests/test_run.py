@@ -147,3 +147,12 @@ def test_python_values_become_the_command_lines_text():
     assert hagfish.override_text({"v_a": -1.0, "v_b": (1, 2)}) == "(v_a: -1.0, v_b: (1, 2))"
     with pytest.raises(TypeError):
         hagfish.override_text(object())
+
+
+def test_a_body_files_fields_are_read_as_written(tmp_path):
+    body = hagfish.Body.load(Path(__file__).resolve().parents[3] / "data" / "hagfish" / "es103.ron")
+    assert body.read_field("circumferences_cm") == [5.6, 5.5, 5.6, 4.3]
+    assert body.read_field("length_cm") == body.length_cm
+    with pytest.raises(KeyError, match="no top-level field `girth`"):
+        body.read_field("girth")
+    assert body.read_field("tail_taper") is None

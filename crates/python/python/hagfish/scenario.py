@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import ast
 import os
 import re
 from dataclasses import dataclass, field
@@ -80,6 +81,16 @@ class Body:
             table=pd.DataFrame(derived["rows"]),
         )
 
+    def read_field(self, name: str) -> Any:
+        """A top-level number, string or list of this body file as written:
+        ``body.read_field("circumferences_cm")`` → ``[5.6, 5.5, 5.6, 4.3]``. A field the file does
+        not have, or whose value is not a plain literal, raises ``KeyError``."""
+        found = _field_pattern(name).search(self.path.read_text())
+        try:
+            return ast.literal_eval(found.group(2)) if found else _missing(self.path, name)
+        except (ValueError, SyntaxError):
+            raise KeyError(f"{self.path}: field `{name}` is not a plain literal") from None
+
     def variant(self, out: PathLike, **fields: Any) -> "Body":
         """A copy of this body file with top-level fields changed, written to ``out`` and
         loaded (checked): ``body.variant("long.ron", length_cm=50.0, mass_g=94.3)``. Values
@@ -87,14 +98,24 @@ class Body:
         ``KeyError``. For studies of the body: scenario overrides cannot reach a body file."""
         text = self.path.read_text()
         for name, value in fields.items():
-            pattern = re.compile(rf"^(\s*{re.escape(name)}\s*:\s*)([^\n]*?)(,?\s*(//[^\n]*)?)$", re.M)
+            pattern = _field_pattern(name)
             if not pattern.search(text):
-                raise KeyError(f"{self.path}: no top-level field `{name}`")
+                _missing(self.path, name)
             replacement = override_text(value)
             text = pattern.sub(lambda m: m.group(1) + replacement + m.group(3), text, count=1)
         out = Path(out)
         out.write_text(text)
         return Body.load(out)
+
+
+def _field_pattern(name: str) -> "re.Pattern[str]":
+    """A body file's top-level line ``name: value,  // comment``: groups (prefix, value,
+    the rest)."""
+    return re.compile(rf"^(\s*{re.escape(name)}\s*:\s*)([^\n]*?)(,?\s*(//[^\n]*)?)$", re.M)
+
+
+def _missing(path: Path, name: str) -> Any:
+    raise KeyError(f"{path}: no top-level field `{name}`")
 
 
 @dataclass(frozen=True)
