@@ -82,8 +82,8 @@ fn tie_frames_with_force(dir: &Path) -> (usize, usize) {
     (pushed, tie_frames.len())
 }
 
-/// `figure_eight.ron` with its tie holding the crossings it has made
-/// (`hold_crossings_dyn`): hold rows push during the tie (the `thigmo` group of forces.csv),
+/// `figure_eight.ron` tied by its plan of waypoints on the rigid tube, holding the crossings it
+/// has made (`hold_crossings_dyn`): hold rows push during the tie (the `thigmo` group of forces.csv),
 /// where the same tie without holds pushes nothing; and a run stopped after the first hold
 /// resumes bit for bit (the held crossings are in the checkpoint).
 #[test]
@@ -91,9 +91,11 @@ fn a_tie_that_holds_its_crossings_pushes_on_them_and_resumes_bit_for_bit() {
     let dir = fresh_dir("knot_plans_hold");
     let scenario = "data/scenarios/figure_eight.ron";
     let hold = "phases[0].Tie.hold_crossings_dyn=Some(1000.0)";
+    let plan = "phases[0]=Tie((knot: FigureEight, at: 0.31, min_tail_d: Some(18.5)))";
     let run = |name: &str, extra: &[&str]| {
         let out = dir.join(name);
         let mut args = vec!["run", scenario, "--quiet", "--out", out.to_str().expect("UTF-8")];
+        args.extend_from_slice(&["--set", plan, "--set", "skin=None"]);
         args.extend_from_slice(&["--set", "end_after_phases=false", "--set", "duration_s=21.0"]);
         args.extend_from_slice(extra);
         let output = run_hagfish(args);

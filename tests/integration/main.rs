@@ -9,6 +9,7 @@ mod body_counts;
 mod commands;
 mod errors;
 mod export_command;
+mod follow_tie;
 mod hostile_inputs;
 mod huge_bodies;
 mod knot_core;

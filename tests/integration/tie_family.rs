@@ -8,7 +8,10 @@
 //! head-ward end comes within 0.05 L of it, self penetration stays below 2 % of the local
 //! radius and no joint passes its limit by 0.5°. On ES103 the slide is also checked for
 //! speed, length and attribution over rounding-level perturbations. And a tie stopped
-//! mid-plan resumes bit for bit.
+//! mid-plan resumes bit for bit. The figure-eight (`figure_eight.ron`) and the Miller
+//! Institute knot (`miller_institute.ron`, both mirror images), tied by following their
+//! templates, meet their bounds on ES103 against zero-target controls; the figure-eight's plan
+//! of waypoints keeps its tube on a thicker body.
 
 use std::path::Path;
 use std::sync::Mutex;
@@ -167,12 +170,13 @@ fn the_tied_knot_slides_to_the_head_on_es103_because_of_the_targets() {
     );
 }
 
-/// The figure-eight of `figure_eight.ron` on ES103 (tie → tighten → slide): tied and held
-/// as 4_1 on every frame after, its core's head-ward end brought within 0.05 L of the head,
-/// self penetration below 2 % of the radius; its midpoint travels at least 0.15 L (the
-/// issue's bound for the long 6_2: the 4_1 core is ≈ 17 D of ES103's 24 D, so the 0.25 L of
-/// the trefoil does not fit, docs/physics.md) and 0.08 L more than in the control run with
-/// zero slide targets, whose head-ward end stays beyond 0.1 L.
+/// The figure-eight of `figure_eight.ron` on ES103 (tied by following its template → tighten
+/// → slide) meets the trefoil's bounds (issue #36): held as 4_1 on ≥ 99 % of the frames after
+/// tying, its core's head-ward end ≥ 0.35 L from the head when tied, its midpoint travelling
+/// ≥ 0.25 L at 2 cm/s ± 30 %, its head-ward end brought within 0.05 L of the head, core
+/// penetration below 2 % of the radius; and the slide is the targets' doing: the control run
+/// with zero slide targets travels at least 0.2 L less and its head-ward end stays beyond
+/// 0.1 L.
 #[test]
 fn the_figure_eight_is_tied_held_and_slid_to_the_head_on_es103() {
     let (run, control) = std::thread::scope(|scope| {
@@ -181,18 +185,39 @@ fn the_figure_eight_is_tied_held_and_slid_to_the_head_on_es103() {
         let control = slide("figure_eight.ron", "figure_eight_control", &zero);
         (run.join().expect("the run"), control)
     });
-    assert!(run.held("4_1", None) >= 0.99, "4_1 held on {} of the frames", run.held("4_1", None));
-    assert!(run.penetration < 0.02, "penetration {} of r", run.penetration);
-    assert!(run.limit_excess_deg < 0.5, "limit excess {}°", run.limit_excess_deg);
-    assert!(run.nearest <= 0.05, "the core's head-ward end came to {} L", run.nearest);
-    assert!(run.travel >= 0.15, "the core's midpoint moved {} L", run.travel);
-    assert!(run.travel - control.travel >= 0.08, "{} L, control {} L", run.travel, control.travel);
+    let failures = run.failures(&SlideBounds::TREFOIL, "4_1", None);
+    assert!(failures.is_empty(), "the trefoil's bounds: {failures:?}");
+    assert!(run.travel - control.travel >= 0.2, "{} L, control {} L", run.travel, control.travel);
     assert!(control.nearest > 0.1, "without targets the core came to {} L", control.nearest);
 }
 
-/// The figure-eight on a body 15 % thicker (≈ 22.6 local diameters long; ES103 ≈ 26 by
+/// The Miller Institute knot of `miller_institute.ron` on ES103, both mirror images, meets
+/// its bounds (issue #36): shown on ≥ 95 % of the frames after tying, tied ≥ 0.2 L from the
+/// head, travelling ≥ 0.15 L to within 0.05 L of the head, core penetration below 2 %; and
+/// the control with zero slide targets travels at least 0.1 L less.
+#[test]
+fn the_miller_institute_knot_is_tied_held_and_slid_to_the_head_on_es103() {
+    let mirror = ["--set".to_string(), "phases[0].Follow.template.mirror=true".to_string()];
+    let (run, mirrored, control) = std::thread::scope(|scope| {
+        let run = scope.spawn(|| slide("miller_institute.ron", "miller_institute_slide", &[]));
+        let mirrored =
+            scope.spawn(|| slide("miller_institute.ron", "miller_institute_mirror", &mirror));
+        let zero = zero_slide_targets();
+        let control = slide("miller_institute.ron", "miller_institute_control", &zero);
+        (run.join().expect("the run"), mirrored.join().expect("the mirror image"), control)
+    });
+    for (label, run) in [("as written", &run), ("mirrored", &mirrored)] {
+        let failures = run.failures(&SlideBounds::MILLER_INSTITUTE, "6_2", None);
+        assert!(failures.is_empty(), "{label}: 6_2's bounds: {failures:?}");
+    }
+    assert!(run.travel - control.travel >= 0.1, "{} L, control {} L", run.travel, control.travel);
+}
+
+/// The figure-eight tied by its plan of waypoints (`figure_eight.ron` with
+/// `Tie((knot: FigureEight, at: 0.31, min_tail_d: Some(18.5)))` for its template and the rigid
+/// tube) on a body 15 % thicker (≈ 22.6 local diameters long; ES103 ≈ 26 by
 /// ∫ ds / 2r): at 0.31 L the plan has 16.2 D of body tail-ward of the crossover and does not tie
-/// (exit 4). `figure_eight.ron`'s `min_tail_d` (18.5 D) moves the crossover to ≈ 0.2 L, and on
+/// (exit 4). `min_tail_d` (18.5 D) moves the crossover to ≈ 0.2 L, and on
 /// the file as written and one rounding perturbation of its time step the knot is tied, held
 /// as 4_1 on every frame after and slid to the head as a whole: its head-ward end brought
 /// within 0.05 L of the head, its midpoint moved ≥ 0.05 L (more than a local diameter) and its
@@ -209,6 +234,9 @@ fn the_figure_eight_keeps_its_tube_on_a_thicker_body() {
     );
     let on_thicker = |sets: &[&str]| {
         let mut extra = vec!["--body".to_string(), thicker.to_string_lossy().into_owned()];
+        let plan =
+            ["phases[0]=Tie((knot: FigureEight, at: 0.31, min_tail_d: Some(18.5)))", "skin=None"];
+        extra.extend(plan.iter().flat_map(|s| ["--set".to_string(), s.to_string()]));
         extra.extend(sets.iter().flat_map(|s| ["--set".to_string(), s.to_string()]));
         extra
     };

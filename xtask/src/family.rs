@@ -131,10 +131,10 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
         .filter_map(|(c, (_, f))| f.as_ref().map(|f| (c.label(), f)))
         .collect();
     println!(
-        "\n{} of {} runs pass the trefoil's slide bounds (held ≥ 99 %, tied ≥ 0.35 L, travel \
-         ≥ 0.25 L, to ≤ 0.05 L, 2 cm/s ± 30 %, penetration < 2 %, limit excess < 0.5°){}",
+        "\n{} of {} runs pass {}{}",
         rows.len() - failed.len(),
         rows.len(),
+        SlideBounds::for_knot(request.knot),
         if failed.is_empty() { "." } else { "; the others:" }
     );
     failed.iter().for_each(|(label, why)| println!("- {label}: {why}"));
@@ -244,7 +244,8 @@ impl Runner<'_> {
         Err(format!("exit {}: {last}", output.status.code().unwrap_or(-1)))
     }
 
-    /// The slide table's row of `case` and, when it misses [`SlideBounds::TREFOIL`], how;
+    /// The slide table's row of `case` and, when it misses its knot's bounds
+    /// ([`SlideBounds::for_knot`]), how;
     /// `scenario_step` as in [`Case::run`].
     fn slide_row(&self, case: &Case<'_>, scenario_step: f64) -> (String, Option<String>) {
         let knot = self.request.knot;
@@ -254,7 +255,7 @@ impl Runner<'_> {
             .and_then(|out| KnotRun::read(&out).map_err(|e| e.to_string()));
         match measured {
             Ok(run) => {
-                let failures = run.failures(&SlideBounds::TREFOIL, knot, sign);
+                let failures = run.failures(&SlideBounds::for_knot(knot), knot, sign);
                 let row = run.table_row(&case.label(), knot, sign);
                 (row, (!failures.is_empty()).then(|| failures.join("; ")))
             }

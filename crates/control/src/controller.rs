@@ -71,6 +71,13 @@ pub struct Actuation {
     /// Joint torques τ_ext, one per DOF (dyn·cm), or empty for none (an open-loop replay,
     /// [`crate::Replay`]).
     pub torques: Vec<f64>,
+    /// Implicit joint servo stiffness per DOF (dyn·cm/rad), or empty for none: a servo
+    /// `τ = k(q* − q¹) − c(q̇¹ − q̇*)` is its explicit part `k(q* − q⁰) + c q̇*` in
+    /// [`Actuation::torques`] and its gains here and in [`Actuation::servo_damping`]
+    /// (`hagfish_tree::Data::servo_stiffness`; a [`crate::FollowPhase`]).
+    pub servo_stiffness: Vec<f64>,
+    /// Implicit joint servo damping per DOF (dyn·cm·s/rad), or empty for none.
+    pub servo_damping: Vec<f64>,
 }
 
 impl Actuation {
@@ -80,9 +87,11 @@ impl Actuation {
         self.dampers.clear();
         self.thigmo.clear();
         self.torques.clear();
+        self.servo_stiffness.clear();
+        self.servo_damping.clear();
     }
 
-    /// Writes the forces, dampers and joint torques into the tree data for the dynamics stage (the
+    /// Writes the forces, dampers, joint torques and servos into the tree data for the dynamics stage (the
     /// thigmotaxis requests are rows, built by the pipeline).
     pub fn apply_to(&self, data: &mut Data) {
         for f in &self.forces {
@@ -93,6 +102,12 @@ impl Actuation {
         }
         for (applied, torque) in data.applied_torques.iter_mut().zip(&self.torques) {
             *applied += torque;
+        }
+        for (applied, k) in data.servo_stiffness.iter_mut().zip(&self.servo_stiffness) {
+            *applied += k;
+        }
+        for (applied, c) in data.servo_damping.iter_mut().zip(&self.servo_damping) {
+            *applied += c;
         }
     }
 }

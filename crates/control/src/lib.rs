@@ -55,6 +55,7 @@ mod crossings;
 mod dof_kind;
 mod drag;
 mod error;
+mod follow;
 mod force_space;
 mod forming;
 mod knot_plan;
@@ -77,6 +78,7 @@ pub use crossings::{Crossing, Layer, crossings_of_tail};
 pub use dof_kind::{DofKind, KindSelection};
 pub use drag::WaterDrag;
 pub use error::ControlError;
+pub use follow::{FollowPhase, FollowScratch, KnotTemplate, ServoGains};
 pub use force_space::{Confinement, ForceSpace, ModalSpace};
 pub use forming::{FormingController, FormingScript, ScriptProgress, ScriptStep, Waypoint};
 pub use knot_plan::{

@@ -11,14 +11,15 @@ use serde::{Deserialize, Serialize};
 use crate::controller::{Actuation, ControlContext, Controller};
 use crate::crossings::{Crossing, Layer, crossings_of_tail};
 use crate::drag::WaterDrag;
+use crate::follow::{FollowPhase, FollowScratch};
 use crate::force_space::Confinement;
 use crate::forming::{FormingController, FormingScript, body_at_fraction, body_length};
 use crate::knot_span::KnotSpan;
 use crate::load::LoadPhase;
 use crate::thigmotaxis::{Strand, ThigmoParameters, ThigmoRequest};
 use crate::tie::{
-    CrossingCheck, CrossingMiss, HOLD_REACH_BODIES, HeldCrossing, LayerCode, TieKnot, TiePhase,
-    TieProgress,
+    CrossingCheck, CrossingMiss, HOLD_REACH_BODIES, HeldCrossing, LayerCode, TiePhase, TieProgress,
+    shows,
 };
 use crate::until::{Observation, Until};
 
@@ -38,6 +39,9 @@ pub enum Phase {
     /// Puts a load on the tail end ([`LoadPhase`]), which stays on after the phase, until a
     /// condition (e.g. settled).
     Load(LoadPhase),
+    /// Ties a knot by following the leader along a template ([`FollowPhase`]); ends once the
+    /// knot analysis shows it, or fails `settle_s` after the template without it.
+    Follow(FollowPhase),
 }
 
 impl Phase {
@@ -46,6 +50,7 @@ impl Phase {
     pub fn on_body(&self, bodies: &[Body]) -> Phase {
         match self {
             Phase::Tie(tie) => Phase::Tie(tie.on_body(bodies)),
+            Phase::Follow(follow) => Phase::Follow(follow.on_body(bodies)),
             other => other.clone(),
         }
     }
@@ -55,7 +60,7 @@ impl Phase {
         match self {
             Phase::Form(script) => Some(script.clone()),
             Phase::Tie(tie) => Some(tie.script()),
-            Phase::Hold(_) | Phase::Thigmotaxis(_) | Phase::Load(_) => None,
+            Phase::Hold(_) | Phase::Thigmotaxis(_) | Phase::Load(_) | Phase::Follow(_) => None,
         }
     }
 }
@@ -140,14 +145,16 @@ pub struct PhasedController {
     /// after which it runs ([`crate::TiePlan::checks`]); empty outside a tie. Derived from the
     /// phase and `tie.attempt` whenever either changes, so that a step does not build the plan.
     pub(crate) tie_checks: Vec<(usize, CrossingCheck)>,
+    /// A follow-the-leader tie's target buffers.
+    follow: FollowScratch,
 }
 
 /// A tie phase that failed: which knot, after how many attempts, and the latest crossing
 /// check that failed.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct TieFailure {
-    /// The knot asked for.
-    pub knot: TieKnot,
+    /// The knot asked for (its Rolfsen name).
+    pub knot: String,
     /// Attempts made.
     pub attempts: u32,
     /// The latest failed crossing check, described ("attempt 1: after the threading the
@@ -159,7 +166,7 @@ impl fmt::Display for TieFailure {
     /// "4_1 after 2 attempts (attempt 2: after the threading …)".
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let plural = if self.attempts == 1 { "" } else { "s" };
-        write!(f, "{} after {} attempt{plural}", self.knot.name(), self.attempts)?;
+        write!(f, "{} after {} attempt{plural}", self.knot, self.attempts)?;
         match &self.last_miss {
             Some(miss) => write!(f, " ({miss})"),
             None => Ok(()),
@@ -172,12 +179,22 @@ impl PhasedController {
     pub fn new(drag: Option<WaterDrag>, phases: Vec<Phase>) -> Self {
         let forming = phases.first().and_then(Phase::script).map(FormingController::new);
         let tie = match phases.first() {
-            Some(Phase::Tie(_)) => TieProgress { attempt: 1, ..TieProgress::default() },
+            Some(Phase::Tie(_) | Phase::Follow(_)) => {
+                TieProgress { attempt: 1, ..TieProgress::default() }
+            }
             _ => TieProgress::default(),
         };
         let load_since = matches!(phases.first(), Some(Phase::Load(_))).then_some(0.0);
         let progress = PhaseProgress { load_since, ..PhaseProgress::default() };
-        let mut controller = Self { drag, phases, progress, forming, tie, tie_checks: Vec::new() };
+        let mut controller = Self {
+            drag,
+            phases,
+            progress,
+            forming,
+            tie,
+            tie_checks: Vec::new(),
+            follow: FollowScratch::default(),
+        };
         controller.refresh_tie_checks();
         controller
     }
@@ -199,16 +216,35 @@ impl PhasedController {
     pub fn observe_knot(&mut self, t: f64, knot: Option<KnotObservation<'_>>) {
         self.progress.core_start_l = knot.and_then(|k| k.core_start_l);
         self.progress.core_length_d = knot.and_then(|k| k.core_length_d);
-        let Some(Phase::Tie(phase)) = self.phases.get(self.progress.phase) else {
-            return;
+        let (shown, settle_s) = match self.phases.get(self.progress.phase) {
+            Some(Phase::Tie(phase)) => (
+                knot.is_some_and(|k| phase.knot.is_shown_by(k.name, k.agreement, k.right_handed)),
+                phase.settle_s,
+            ),
+            Some(Phase::Follow(phase)) => {
+                let template = &phase.template;
+                let shown = knot.is_some_and(|k| {
+                    shows(
+                        &template.knot,
+                        template.shown_handedness(),
+                        k.name,
+                        k.agreement,
+                        k.right_handed,
+                    )
+                });
+                (shown, phase.settle_s)
+            }
+            _ => return,
         };
-        let shown =
-            knot.is_some_and(|k| phase.knot.is_shown_by(k.name, k.agreement, k.right_handed));
         self.tie.shown_since = if shown { Some(self.tie.shown_since.unwrap_or(t)) } else { None };
-        let late = self.tie.plan_done_at.is_some_and(|done| t - done >= phase.settle_s);
+        let late = self.tie.plan_done_at.is_some_and(|done| t - done >= settle_s);
         if shown || !late || self.tie.failed {
             return;
         }
+        let Some(Phase::Tie(phase)) = self.phases.get(self.progress.phase) else {
+            self.tie.failed = true;
+            return;
+        };
         if self.tie.attempt >= phase.attempts {
             self.tie.failed = true;
         } else {
@@ -325,10 +361,13 @@ impl PhasedController {
     pub fn tie_failure(&self) -> Option<TieFailure> {
         match self.phases.get(self.progress.phase) {
             Some(Phase::Tie(phase)) if self.tie.failed => Some(TieFailure {
-                knot: phase.knot.clone(),
+                knot: phase.knot.name().to_string(),
                 attempts: self.tie.attempt,
                 last_miss: self.tie.last_miss.map(|miss| Self::describe(phase, miss)),
             }),
+            Some(Phase::Follow(phase)) if self.tie.failed => {
+                Some(TieFailure { knot: phase.template.knot.clone(), attempts: 1, last_miss: None })
+            }
             _ => None,
         }
     }
@@ -351,14 +390,14 @@ impl PhasedController {
         &self.progress
     }
 
-    /// A short name of the current phase for tables: "form", "hold", the thigmotaxis phase's
-    /// name, or "done".
+    /// A short name of the current phase for tables: "form", "hold", "tie" (either kind of
+    /// tie), "load", the thigmotaxis phase's name, or "done".
     pub fn phase_name(&self) -> &str {
         match self.phases.get(self.progress.phase) {
             Some(Phase::Form(_)) => "form",
             Some(Phase::Hold(_)) => "hold",
             Some(Phase::Thigmotaxis(phase)) => &phase.name,
-            Some(Phase::Tie(_)) => "tie",
+            Some(Phase::Tie(_) | Phase::Follow(_)) => "tie",
             Some(Phase::Load(_)) => "load",
             None => "done",
         }
@@ -388,6 +427,9 @@ impl PhasedController {
                 until.over(t, elapsed, &observed, &mut self.progress.condition_since)
             }
             Some(Phase::Tie(phase)) => self.tie.shown_since.is_some_and(|s| t - s >= phase.hold_s),
+            Some(Phase::Follow(phase)) => {
+                self.tie.shown_since.is_some_and(|s| t - s >= phase.hold_s)
+            }
             None => false,
         }
     }
@@ -410,7 +452,9 @@ impl PhasedController {
             self.forming = Some(FormingController::new(script));
         }
         self.tie = match self.phases.get(self.progress.phase) {
-            Some(Phase::Tie(_)) => TieProgress { attempt: 1, ..TieProgress::default() },
+            Some(Phase::Tie(_) | Phase::Follow(_)) => {
+                TieProgress { attempt: 1, ..TieProgress::default() }
+            }
             _ => TieProgress::default(),
         };
         self.refresh_tie_checks();
@@ -445,6 +489,13 @@ impl Controller for PhasedController {
                 let since = context.state.t - self.progress.started_at;
                 phase.parameters.actuate_since(since, context, out);
             }
+            Some(Phase::Follow(phase)) => {
+                let elapsed = context.state.t - self.progress.started_at;
+                phase.actuate(elapsed, context, &mut self.follow, out);
+                if phase.followed_all(elapsed) && self.tie.plan_done_at.is_none() {
+                    self.tie.plan_done_at = Some(context.state.t);
+                }
+            }
             Some(Phase::Load(_)) | None => {}
         }
         if let Some((load, since)) = self.active_load() {
@@ -474,6 +525,9 @@ impl PhasedController {
     /// and the attempt (`tie (3_1 not tied, attempt 1 of 2)`).
     pub fn unfinished_phase(&self) -> Option<String> {
         match self.phases.get(self.progress.phase)? {
+            Phase::Follow(phase) => {
+                Some(format!("tie ({} not tied, following its template)", phase.template.knot))
+            }
             Phase::Tie(phase) => {
                 let miss = self.tie.last_miss.map(|m| format!("; {}", Self::describe(phase, m)));
                 Some(format!(
@@ -515,7 +569,7 @@ mod tests {
 
     #[test]
     fn the_unfinished_phase_is_named_and_a_tie_says_its_knot_and_attempt() {
-        let tie = TiePhase::new(TieKnot::Trefoil(crate::tie::Handedness::Right), 0.31);
+        let tie = TiePhase::new(crate::tie::TieKnot::Trefoil(crate::tie::Handedness::Right), 0.31);
         let mut controller = PhasedController::new(None, vec![Phase::Tie(tie), Phase::Hold(1.0)]);
         let unfinished = controller.unfinished_phase();
         assert_eq!(unfinished.as_deref(), Some("tie (3_1 not tied, attempt 1 of 2)"));

@@ -138,13 +138,26 @@ impl TieKnot {
     /// directions and the core's handedness if known) shows this knot: the type with
     /// agreement ≥ [`MIN_AGREEMENT`], and where the tie checks one, the right handedness.
     pub fn is_shown_by(&self, name: &str, agreement: f64, right_handed: Option<bool>) -> bool {
-        let chirality = match self.handedness() {
-            Some(Handedness::Right) => right_handed == Some(true),
-            Some(Handedness::Left) => right_handed == Some(false),
-            None => true,
-        };
-        name == self.name() && agreement >= MIN_AGREEMENT && chirality
+        shows(self.name(), self.handedness(), name, agreement, right_handed)
     }
+}
+
+/// Whether a knot analysis (a Rolfsen name, agreement over closure directions, the core's
+/// handedness if known) shows the knot `knot` of `handedness`: that type with agreement ≥
+/// [`MIN_AGREEMENT`] and, where a handedness is asked, that one.
+pub fn shows(
+    knot: &str,
+    handedness: Option<Handedness>,
+    name: &str,
+    agreement: f64,
+    right_handed: Option<bool>,
+) -> bool {
+    let chirality = match handedness {
+        Some(Handedness::Right) => right_handed == Some(true),
+        Some(Handedness::Left) => right_handed == Some(false),
+        None => true,
+    };
+    name == knot && agreement >= MIN_AGREEMENT && chirality
 }
 
 /// The agreement over closure directions a tied knot must reach.
@@ -427,7 +440,7 @@ mod tests {
         controller.tie.plan_done_at = Some(40.0);
         controller.observe_knot(42.0, None);
         let failure = controller.tie_failure().expect("failed");
-        assert_eq!((failure.knot, failure.attempts), (TieKnot::Trefoil(Handedness::Right), 2));
+        assert_eq!((failure.knot.as_str(), failure.attempts), ("3_1", 2));
     }
 
     /// Crossings of the given layers, the k-th at body 50 + k of the tail-ward strand and

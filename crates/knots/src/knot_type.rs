@@ -68,6 +68,11 @@ impl KnotType {
         }
     }
 
+    /// The named knot of Rolfsen name `name` (`"6_2"`), or `None` if it is not one of them.
+    pub fn from_rolfsen_name(name: &str) -> Option<Self> {
+        TABLE.iter().find(|(_, n, _)| *n == name).map(|(knot, _, _)| knot.clone())
+    }
+
     /// The Rolfsen name (`"3_1"`, …), or `None` for [`KnotType::Other`].
     pub fn rolfsen_name(&self) -> Option<&'static str> {
         TABLE.iter().find(|(knot, _, _)| knot == self).map(|(_, name, _)| *name)

@@ -56,6 +56,8 @@ pub const TABLE_HEADER: &str = "| variant | tied at (s) | held | core start when
 /// trefoil's of the family table and of issue #37's k-mode slides.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SlideBounds {
+    /// Whose bounds they are, for messages ("the trefoil's").
+    pub name: &'static str,
     /// Least share of the frames after tying that show the knot (of its handedness).
     pub held: f64,
     /// Least head-ward end of the core when tied.
@@ -77,6 +79,7 @@ impl SlideBounds {
     /// The trefoil's bounds: held ≥ 99 %, tied ≥ 0.35 L from the head, travel ≥ 0.25 L, to
     /// ≤ 0.05 L of the head, 2 cm/s ± 30 %, penetration < 2 % of r, limit excess < 0.5°.
     pub const TREFOIL: Self = Self {
+        name: "the trefoil's",
         held: 0.99,
         tied_core_start: 0.35,
         travel: 0.25,
@@ -85,6 +88,50 @@ impl SlideBounds {
         penetration: 0.02,
         limit_excess_deg: 0.5,
     };
+
+    /// The Miller Institute knot's bounds (issue #36): shown on ≥ 95 % of the frames after
+    /// tying, tied ≥ 0.2 L from the head, travel ≥ 0.15 L, to ≤ 0.05 L of the head, no speed
+    /// asked, core penetration < 2 % of r, limit excess < 0.5°.
+    pub const MILLER_INSTITUTE: Self = Self {
+        name: "the Miller Institute knot's",
+        held: 0.95,
+        tied_core_start: 0.2,
+        travel: 0.15,
+        nearest: 0.05,
+        speed: None,
+        penetration: 0.02,
+        limit_excess_deg: 0.5,
+    };
+
+    /// The bounds a knot of Rolfsen name `knot` is judged by: 6_2's for 6_2, the trefoil's
+    /// for any other (the figure-eight is asked to meet them).
+    pub fn for_knot(knot: &str) -> Self {
+        if knot == "6_2" { Self::MILLER_INSTITUTE } else { Self::TREFOIL }
+    }
+}
+
+impl std::fmt::Display for SlideBounds {
+    /// "the trefoil's slide bounds (held ≥ 99 %, tied ≥ 0.35 L, …)".
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} slide bounds (held ≥ {} %, tied ≥ {} L, travel ≥ {} L, to ≤ {} L",
+            self.name,
+            self.held * 100.0,
+            self.tied_core_start,
+            self.travel,
+            self.nearest
+        )?;
+        if let Some((speed, band)) = self.speed {
+            write!(f, ", {speed} cm/s ± {} %", band * 100.0)?;
+        }
+        write!(
+            f,
+            ", penetration < {} %, limit excess < {}°)",
+            self.penetration * 100.0,
+            self.limit_excess_deg
+        )
+    }
 }
 
 impl KnotRun {
@@ -288,6 +335,11 @@ mod tests {
                 "the core's head-ward end came to 0.300 L",
                 "1.00 cm/s"
             ]
+        );
+        assert_eq!(
+            SlideBounds::TREFOIL.to_string(),
+            "the trefoil's slide bounds (held ≥ 99 %, tied ≥ 0.35 L, travel ≥ 0.25 L, to ≤ 0.05 L, \
+             2 cm/s ± 30 %, penetration < 2 %, limit excess < 0.5°)"
         );
         let lenient = SlideBounds {
             travel: 0.19,

@@ -42,6 +42,16 @@ pub enum ScenarioError {
         /// What is wrong.
         reason: String,
     },
+    /// A follow phase's knot template is unreadable, not a curve, of an unknown knot or too
+    /// long for the body (`at`: the template's `file` in the scenario; the reason names the
+    /// vertex file).
+    #[error("{at}: the knot's template: {reason}")]
+    KnotTemplateFile {
+        /// Where the scenario names the template file.
+        at: hagfish_anatomy::Origin,
+        /// What is wrong.
+        reason: String,
+    },
     /// The vertex file of an initial `Polyline` shape is unreadable or not a curve (`at`: the
     /// shape's `file` in the scenario; the reason names the vertex file and its line).
     #[error("{at}: the initial shape: {reason}")]

@@ -3,12 +3,11 @@
 //! rod theory, `docs/validation.md`), or a curve read from a file of vertices
 //! ([`PolylineShape`]: another simulator's starting knot).
 //!
-//! The chain is posed by its bending joints: bodies meet a bending (universal) joint every
-//! second joint, so the chain is a polyline of segments 2ℓ long (ℓ for the head and the last
-//! body) whose corners are placed on the curve; the twist joints stay at 0.
+//! The chain is posed by its bending joints ([`hagfish_tree::pose_along`]); the twist joints
+//! stay at 0.
 
 use glam::{DMat3, DVec3};
-use hagfish_tree::{JointKind, Model};
+use hagfish_tree::{Model, pose_along};
 use serde::{Deserialize, Serialize};
 
 use crate::polyline_shape::PolylineShape;
@@ -121,86 +120,17 @@ impl OpenTorusKnot {
 
 impl InitialShape {
     /// The joint angles that lay `model` (a chain along +X from the head, with twist and
-    /// bending joints, of total length `length_cm`) along this shape.
+    /// bending joints, of total length `length_cm`) along this shape
+    /// ([`hagfish_tree::pose_along`]).
     pub fn pose(&self, model: &Model, length_cm: f64) -> Vec<f64> {
         let points = match self {
             InitialShape::OpenTorusKnot(knot) => knot.curve(length_cm),
             InitialShape::Polyline(polyline) => polyline.curve(length_cm),
         };
-        if points.len() < 2 {
-            return vec![0.0; model.dof_count()];
-        }
-        let mut walker = CurveWalker { points: &points, segment: 0, at: DVec3::ZERO };
         let mut q = vec![0.0; model.dof_count()];
-        let mut frame = DMat3::IDENTITY;
-        let (bodies, joints) = (model.bodies(), model.joints());
-        let mut index = 0;
-        while index < bodies.len() {
-            // The bodies up to the next bending joint turn with this one: one straight run.
-            let mut run = bodies[index].length;
-            let mut next = index + 1;
-            while next < bodies.len() && !matches!(joints[next].kind, JointKind::UniversalYz) {
-                run += bodies[next].length;
-                next += 1;
-            }
-            let (corner, next_corner) = walker.advance(run);
-            if matches!(joints[index].kind, JointKind::UniversalYz) {
-                let local = frame.transpose() * (next_corner - corner).normalize();
-                let (yaw, pitch) = ((-local.z).atan2(local.x), local.y.clamp(-1.0, 1.0).asin());
-                let dofs = joints[index].dofs();
-                q[dofs.start] = yaw;
-                q[dofs.start + 1] = pitch;
-                frame = frame * DMat3::from_rotation_y(yaw) * DMat3::from_rotation_z(pitch);
-            }
-            index = next;
-        }
+        pose_along(model, &points, &mut q);
         q
     }
-}
-
-/// Walks along a polyline by chords: each step goes to the first point ahead at a given
-/// distance from the last point reached.
-struct CurveWalker<'a> {
-    points: &'a [DVec3],
-    /// The polyline segment the last point reached lies on.
-    segment: usize,
-    /// The last point reached.
-    at: DVec3,
-}
-
-impl CurveWalker<'_> {
-    /// Steps on by `chord`: returns the point it started from and the point reached (or the
-    /// polyline's end, if it is nearer than `chord`).
-    fn advance(&mut self, chord: f64) -> (DVec3, DVec3) {
-        let from = self.at;
-        let mut a = from;
-        while self.segment + 1 < self.points.len() {
-            let b = self.points[self.segment + 1];
-            if from.distance(b) >= chord {
-                self.at = crossing(from, chord, a, b);
-                return (from, self.at);
-            }
-            self.segment += 1;
-            a = b;
-        }
-        self.at = a;
-        (from, a)
-    }
-}
-
-/// The point of segment `a`–`b` at distance `chord` from `from`, given that `a` is closer
-/// than `chord` and `b` is not (bisection).
-fn crossing(from: DVec3, chord: f64, a: DVec3, b: DVec3) -> DVec3 {
-    let (mut low, mut high) = (0.0, 1.0);
-    for _ in 0..60 {
-        let mid = 0.5 * (low + high);
-        if from.distance(a.lerp(b, mid)) < chord {
-            low = mid;
-        } else {
-            high = mid;
-        }
-    }
-    a.lerp(b, 0.5 * (low + high))
 }
 
 #[cfg(test)]

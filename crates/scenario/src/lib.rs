@@ -28,6 +28,7 @@
 mod error;
 mod initial_shape;
 mod knot_plan_file;
+mod knot_template_file;
 mod modal_space;
 mod override_value;
 mod overrides;

@@ -65,13 +65,17 @@ impl PolylineShape {
     }
 }
 
-/// Reads the vertices of the text at `path` (cm, scaled by `cm_per_unit`); errors say what is
-/// wrong and on which line.
-fn read_vertices(path: &Path, cm_per_unit: f64) -> Result<Vec<DVec3>, String> {
+/// Reads the vertices of the text at `path` (scaled by `cm_per_unit`), skipping blank lines and
+/// lines starting with `#`; errors say what is wrong and on which line.
+pub(crate) fn read_vertices(path: &Path, cm_per_unit: f64) -> Result<Vec<DVec3>, String> {
     let bytes = read_data_file(path).map_err(|e| e.to_string())?;
     let text = std::str::from_utf8(&bytes).map_err(|e| format!("not UTF-8 text: {e}"))?;
     let mut vertices = Vec::new();
-    for (number, line) in text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty()) {
+    let data_lines = text.lines().enumerate().filter(|(_, l)| {
+        let line = l.trim();
+        !line.is_empty() && !line.starts_with('#')
+    });
+    for (number, line) in data_lines {
         let fields: Vec<&str> =
             line.split(|c: char| c.is_whitespace() || c == ',').filter(|f| !f.is_empty()).collect();
         let values: Result<Vec<f64>, _> = fields.iter().take(3).map(|f| f.parse::<f64>()).collect();
@@ -146,7 +150,8 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("hagfish_polyline_{}", std::process::id()));
         std::fs::create_dir_all(&dir).expect("a temporary directory");
         let path = dir.join("curve.txt");
-        std::fs::write(&path, "0 0 0 7\n0.01, 0, 0\n\n0.01 0.02 0 1 2\n").expect("a file");
+        std::fs::write(&path, "# a comment\n0 0 0 7\n0.01, 0, 0\n\n0.01 0.02 0 1 2\n")
+            .expect("a file");
         let read = read_vertices(&path, 100.0).expect("a curve");
         assert_eq!(read, [DVec3::ZERO, DVec3::new(1.0, 0.0, 0.0), DVec3::new(1.0, 2.0, 0.0)]);
         for (text, said) in [

@@ -16,7 +16,7 @@ use crate::initial_shape::InitialShape;
 use crate::scenario::Scenario;
 
 /// The files `scenario` reads, as the loaded scenario names them (absolute): its initial
-/// shape's, then its phases' in phase order (a phase's knot plan, then its modal basis, then
+/// shape's, then its phases' in phase order (a phase's knot plan or template, then its modal basis, then
 /// its replay).
 pub(crate) fn referenced_files(scenario: &Scenario) -> Vec<PathBuf> {
     let mut files = Vec::new();
@@ -30,6 +30,7 @@ pub(crate) fn referenced_files(scenario: &Scenario) -> Vec<PathBuf> {
                     files.push(planned.file.clone());
                 }
             }
+            Phase::Follow(follow) => files.push(follow.template.file.clone()),
             Phase::Thigmotaxis(thigmo) => {
                 if let ForceSpace::Modes(space) = &thigmo.parameters.force_space {
                     files.push(space.file.clone());

@@ -25,6 +25,7 @@ use hagfish_sim::{DynamicsBackend, StepAcceptance, StepOptions, World, fnv1a64};
 use crate::error::ScenarioError;
 use crate::initial_shape::InitialShape;
 use crate::knot_plan_file::resolve_knot_plans;
+use crate::knot_template_file::resolve_knot_templates;
 use crate::modal_space::resolve_modal_spaces;
 use crate::overrides::{Override, apply_overrides};
 use crate::polyline_shape::resolve_polyline;
@@ -180,6 +181,7 @@ impl LoadedScenario {
         let phases = resolve_modal_spaces(&file, directory, &model, loaded.length_cm())?;
         let phases = resolve_replays(&file, directory, phases, model.dof_count())?;
         let phases = resolve_knot_plans(&file, directory, phases)?;
+        let phases = resolve_knot_templates(&file, directory, &model, phases)?;
         let bytes = read_data_file(&body).map_err(|source| ScenarioError::BodyFile {
             at: file.locate(&Field::whole("body")),
             source: Box::new(source),

@@ -11,8 +11,8 @@ use std::collections::HashMap;
 
 use hagfish_anatomy::{AnatomyError, DataFile, Field};
 use hagfish_control::{
-    ForceSpace, FormingScript, LoadDirection, LoadPhase, Phase, Quantity, ScriptStep, TailGains,
-    ThigmoPhase, Threshold, TiePhase, Until, Waypoint,
+    FollowPhase, ForceSpace, FormingScript, LoadDirection, LoadPhase, Phase, Quantity, ScriptStep,
+    TailGains, ThigmoPhase, Threshold, TiePhase, Until, Waypoint,
 };
 
 use crate::initial_shape::{InitialShape, OpenTorusKnot};
@@ -173,6 +173,16 @@ impl Checker<'_> {
         self.check("settle_s", phase.settle_s, Range::NonNegative)
     }
 
+    fn follow(&mut self, phase: &FollowPhase) -> Result<(), AnatomyError> {
+        self.check("diameters_per_unit", phase.template.diameters_per_unit, Range::Positive)?;
+        self.check("speed_cm_s", phase.speed_cm_s, Range::Positive)?;
+        let servo = &phase.servo;
+        self.check("stiffness_dyn_cm_per_rad", servo.stiffness_dyn_cm_per_rad, Range::NonNegative)?;
+        self.check("damping_dyn_cm_s_per_rad", servo.damping_dyn_cm_s_per_rad, Range::NonNegative)?;
+        self.check("hold_s", phase.hold_s, Range::NonNegative)?;
+        self.check("settle_s", phase.settle_s, Range::NonNegative)
+    }
+
     fn thigmotaxis(&mut self, phase: &ThigmoPhase) -> Result<(), AnatomyError> {
         let p = &phase.parameters;
         for targets in [p.head, p.tail] {
@@ -320,6 +330,7 @@ pub(crate) fn check_scenario(
             Phase::Thigmotaxis(phase) => checker.thigmotaxis(phase)?,
             Phase::Tie(phase) => checker.tie(phase, body_diameters)?,
             Phase::Load(phase) => checker.load(phase)?,
+            Phase::Follow(phase) => checker.follow(phase)?,
         }
     }
     Ok(())

@@ -125,7 +125,7 @@ impl TreeFactor {
     }
 
     /// Assembles the system of a step of size `h` (s) from the kinematics and the applied
-    /// point dampers in `data`: `Ĩ_i = I_i + h C_i`, `K̃_a = h d_a + h² k_a` and the axes
+    /// point dampers in `data`: `Ĩ_i = I_i + h C_i`, `K̃_a = h d_a + h² k_a` (with this step's joint servos, `Data::joint_diagonal`) and the axes
     /// `s_a`. `model` must be the one given to [`new`](Self::new). O(bodies).
     pub fn assemble(&mut self, model: &Model, data: &Data, h: f64) {
         self.axes.copy_from_slice(&data.axes);
@@ -135,8 +135,8 @@ impl TreeFactor {
             *tilde = *inertia;
             tilde.add_scaled(damping, h);
         }
-        for (k, dof) in self.joint_diagonal.iter_mut().zip(model.dofs()) {
-            *k = h * dof.damping + h * h * dof.stiffness;
+        for (a, (k, dof)) in self.joint_diagonal.iter_mut().zip(model.dofs()).enumerate() {
+            *k = data.joint_diagonal(dof, a, h);
         }
         self.factored = false;
     }

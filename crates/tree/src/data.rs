@@ -40,6 +40,15 @@ pub struct Data {
     /// Implicit point dampers per body, in inertia form (input: cleared by
     /// [`Data::clear_applied`], filled by [`Data::apply_point_damping`]).
     pub applied_damping: Vec<RigidInertia>,
+    /// Implicit joint servo stiffness per DOF (input, dyn·cm/rad; cleared by
+    /// [`Data::clear_applied`]): a servo `τ = k(q* − q¹) − c(q̇¹ − q̇*)` at the step's new
+    /// state puts `h c + h² k` into `M̃` (here and in [`Data::servo_damping`]) and its
+    /// explicit part `k(q* − q⁰) + c q̇*` into [`Data::applied_torques`], so that no gain can
+    /// destabilise the step (as the joints' own springs, `docs/physics.md` D3).
+    pub servo_stiffness: Vec<f64>,
+    /// Implicit joint servo damping per DOF (input, dyn·cm·s/rad; see
+    /// [`Data::servo_stiffness`]).
+    pub servo_damping: Vec<f64>,
     /// Reduced mass matrix `M = Jᵀ M_m J`, n×n (mass_matrix::mass_matrix; not needed by the
     /// step, which builds `M̃` directly). Like [`Data::effective_mass`] and [`Data::factor`],
     /// allocated by the first stage that fills it (0×0 before): a caller that never forms the
@@ -98,6 +107,8 @@ impl Data {
             applied_wrenches: vec![Spatial::ZERO; nb],
             applied_torques: vec![0.0; n],
             applied_damping: vec![RigidInertia::ZERO; nb],
+            servo_stiffness: vec![0.0; n],
+            servo_damping: vec![0.0; n],
             mass_matrix: Mat::zeros(0, 0),
             generalized_force: vec![0.0; n],
             momentum: vec![0.0; n],
@@ -113,11 +124,21 @@ impl Data {
         }
     }
 
-    /// Removes all applied wrenches and joint torques.
+    /// Removes all applied wrenches, joint torques, dampers and servos.
     pub fn clear_applied(&mut self) {
         self.applied_wrenches.fill(Spatial::ZERO);
         self.applied_torques.fill(0.0);
         self.applied_damping.fill(RigidInertia::ZERO);
+        self.servo_stiffness.fill(0.0);
+        self.servo_damping.fill(0.0);
+    }
+
+    /// The joint diagonal of `M̃` at DOF `a` for the step `h`: `h d + h² k` of the joint's own
+    /// damper and spring plus `h c + h² k` of this step's servo ([`Data::servo_stiffness`]).
+    pub fn joint_diagonal(&self, dof: &crate::DofParams, a: usize, h: f64) -> f64 {
+        h * dof.damping
+            + h * h * dof.stiffness
+            + (h * self.servo_damping[a] + h * h * self.servo_stiffness[a])
     }
 
     /// Adds an implicit linear damper at the world point `x` (cm) of `body`: the force

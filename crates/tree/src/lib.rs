@@ -61,6 +61,7 @@ pub mod joint_wrenches;
 pub mod kinematics;
 pub mod mass_matrix;
 mod model;
+mod pose;
 pub mod spatial;
 mod state;
 
@@ -78,5 +79,6 @@ pub use kinematics::{
 };
 pub use mass_matrix::{effective_mass, mass_matrix};
 pub use model::{Body, BodySpec, Joint, Model, ModelBuilder, PathToRoot, Skin};
+pub use pose::pose_along;
 pub use spatial::{RigidInertia, Spatial, SpatialComponents, Transform};
 pub use state::State;

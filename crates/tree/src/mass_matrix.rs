@@ -33,7 +33,8 @@ pub fn mass_matrix(model: &Model, data: &mut Data) {
 }
 
 /// Fills `data.effective_mass` with `M̃ = M + h Jᵀ C_m J + hD + h²K` for the step `h` (s), where
-/// `C_m` are the point dampers applied this step (treated implicitly, so a stiff drag or a
+/// `C_m` are the point dampers applied this step and `D`, `K` include this step's joint servos
+/// ([`Data::servo_stiffness`]) (treated implicitly, so a stiff drag or a
 /// stiff tail controller on a light body cannot make the step unstable).
 pub fn effective_mass(model: &Model, data: &mut Data, h: f64) {
     ensure_square(&mut data.effective_mass, model.dof_count());
@@ -52,7 +53,8 @@ pub fn effective_mass(model: &Model, data: &mut Data, h: f64) {
         &mut data.effective_mass,
     );
     for (a, dof) in model.dofs().iter().enumerate() {
-        data.effective_mass[(a, a)] += h * dof.damping + h * h * dof.stiffness;
+        let diagonal = data.joint_diagonal(dof, a, h);
+        data.effective_mass[(a, a)] += diagonal;
     }
 }
 

@@ -8,4 +8,5 @@ mod hagfish;
 mod hagfish_curve;
 mod invariance;
 mod plat_path;
+mod templates;
 mod unknots;

@@ -63,7 +63,7 @@ fn values(seed: u64, n: usize, scale: f64) -> Vec<f64> {
     (0..n).map(|a| scale * ((a as f64 + 1.0) * 0.731 + seed as f64 * 0.377).sin()).collect()
 }
 
-/// Kinematics at a random state with dampers on some bodies; the dense `M̃` and its factor
+/// Kinematics at a random state with dampers on some bodies and servos on some joints; the dense `M̃` and its factor
 /// in `data`, the tree factor assembled and factored.
 fn setup(model: &Model, seed: u64, h: f64) -> Result<(Data, TreeFactor), SparseError> {
     let n = model.dof_count();
@@ -73,6 +73,10 @@ fn setup(model: &Model, seed: u64, h: f64) -> Result<(Data, TreeFactor), SparseE
     for body in (0..model.body_count()).step_by(3) {
         let x = data.body_centre(body) + DVec3::new(0.1, -0.2, 0.05);
         data.apply_point_damping(body, x, 0.5 + body as f64);
+    }
+    for a in (0..n).step_by(2) {
+        data.servo_stiffness[a] = 40.0 + a as f64;
+        data.servo_damping[a] = 0.3;
     }
     effective_mass(model, &mut data, h);
     factor_effective_mass(&mut data, 0.0).expect("dense M̃ is SPD");
