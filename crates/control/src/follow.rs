@@ -21,7 +21,7 @@ use hagfish_tree::{Body, pose_along};
 use serde::{Deserialize, Serialize};
 
 use crate::controller::{Actuation, ControlContext};
-use crate::tie::Handedness;
+use crate::tie::{Handedness, shows};
 use crate::tube_length::diameters_tail_ward;
 
 /// A knot's template: a curve in units of the tube's diameter, read from a vertex file
@@ -89,6 +89,12 @@ impl KnotTemplate {
     /// The handedness the tie must show: as written, mirrored with the template.
     pub fn shown_handedness(&self) -> Option<Handedness> {
         self.handedness.map(|h| if self.mirror { h.mirrored() } else { h })
+    }
+
+    /// Whether a knot analysis (a Rolfsen name, agreement over closure directions, the core's
+    /// handedness if known) shows this template's knot ([`crate::tie::shows`]).
+    pub fn is_shown_by(&self, name: &str, agreement: f64, right_handed: Option<bool>) -> bool {
+        shows(&self.knot, self.shown_handedness(), name, agreement, right_handed)
     }
 }
 
@@ -258,6 +264,7 @@ impl FollowPhase {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::phases::{KnotObservation, Phase, PhasedController};
     use hagfish_tree::Transform;
 
     /// A follow phase along three perpendicular unit sides (template units, a right-handed
@@ -339,5 +346,49 @@ mod tests {
         let bodies: Vec<Body> = (0..20).map(|i| body(if i < 10 { 1.0 } else { 0.5 })).collect();
         let placed = corner(0.0, false).on_body(&bodies);
         assert!((placed.cm_per_unit - 0.5).abs() < 1e-12, "{}", placed.cm_per_unit);
+    }
+
+    /// A follow-the-leader tie is judged as a tie: shown (type and handedness, mirrored with
+    /// the template) it is held; not shown `settle_s` after its template it fails, once.
+    #[test]
+    fn a_follow_tie_ends_on_its_knot_and_fails_without_it() {
+        let template = KnotTemplate {
+            file: "6_2.txt".into(),
+            knot: "6_2".into(),
+            handedness: Some(Handedness::Right),
+            mirror: true,
+            diameters_per_unit: 1.0,
+            vertices: None,
+        };
+        let follow = FollowPhase {
+            template,
+            speed_cm_s: 2.0,
+            servo: ServoGains::default(),
+            hold_s: 0.5,
+            settle_s: 2.0,
+            cm_per_unit: 1.0,
+        };
+        let mut controller = PhasedController::new(None, vec![Phase::Follow(follow)]);
+        let seen = |right_handed| KnotObservation {
+            name: "6_2",
+            agreement: 0.95,
+            right_handed: Some(right_handed),
+            core_start_l: Some(0.25),
+            core_length_d: Some(18.0),
+        };
+        controller.observe_knot(9.0, Some(seen(false)));
+        assert_eq!(controller.tie.shown_since, Some(9.0), "the mirror image is left-handed");
+        controller.observe_knot(9.1, Some(seen(true)));
+        assert_eq!(controller.tie.shown_since, None, "the other handedness is not it");
+        controller.tie.plan_done_at = Some(10.0);
+        controller.observe_knot(11.9, None);
+        assert!(controller.tie_failure().is_none(), "within settle_s");
+        controller.observe_knot(12.0, None);
+        let failure = controller.tie_failure().expect("failed after settle_s");
+        assert_eq!((failure.knot.as_str(), failure.attempts), ("6_2", 1));
+        assert_eq!(
+            controller.unfinished_phase().as_deref(),
+            Some("tie (6_2 not tied, following its template)")
+        );
     }
 }

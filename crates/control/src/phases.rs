@@ -19,7 +19,6 @@ use crate::load::LoadPhase;
 use crate::thigmotaxis::{Strand, ThigmoParameters, ThigmoRequest};
 use crate::tie::{
     CrossingCheck, CrossingMiss, HOLD_REACH_BODIES, HeldCrossing, LayerCode, TiePhase, TieProgress,
-    shows,
 };
 use crate::until::{Observation, Until};
 
@@ -221,19 +220,12 @@ impl PhasedController {
                 knot.is_some_and(|k| phase.knot.is_shown_by(k.name, k.agreement, k.right_handed)),
                 phase.settle_s,
             ),
-            Some(Phase::Follow(phase)) => {
-                let template = &phase.template;
-                let shown = knot.is_some_and(|k| {
-                    shows(
-                        &template.knot,
-                        template.shown_handedness(),
-                        k.name,
-                        k.agreement,
-                        k.right_handed,
-                    )
-                });
-                (shown, phase.settle_s)
-            }
+            Some(Phase::Follow(phase)) => (
+                knot.is_some_and(|k| {
+                    phase.template.is_shown_by(k.name, k.agreement, k.right_handed)
+                }),
+                phase.settle_s,
+            ),
             _ => return,
         };
         self.tie.shown_since = if shown { Some(self.tie.shown_since.unwrap_or(t)) } else { None };
@@ -426,10 +418,9 @@ impl PhasedController {
                 };
                 until.over(t, elapsed, &observed, &mut self.progress.condition_since)
             }
-            Some(Phase::Tie(phase)) => self.tie.shown_since.is_some_and(|s| t - s >= phase.hold_s),
-            Some(Phase::Follow(phase)) => {
-                self.tie.shown_since.is_some_and(|s| t - s >= phase.hold_s)
-            }
+            Some(
+                Phase::Tie(TiePhase { hold_s, .. }) | Phase::Follow(FollowPhase { hold_s, .. }),
+            ) => self.tie.shown_since.is_some_and(|s| t - s >= *hold_s),
             None => false,
         }
     }
