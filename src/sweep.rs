@@ -7,7 +7,7 @@
 //!   replicate index and overrides (`PATH=VALUE`, as `hagfish run --set` takes them), written
 //!   by [`Plan::write`];
 //! - `runs/<id>/`: one run directory per run (`docs/outputs.md`);
-//! - `summary.csv`, `intervals.csv` and `plots/`: written by [`collect`] — one row per run,
+//! - `summary.csv`, `intervals.csv` and `plots/`: written by [`crate::sweep_summary::collect`] — one row per run,
 //!   and per grid point each statistic's mean, spread and confidence interval
 //!   ([`crate::sweep_summary`]).
 //!

@@ -8,7 +8,9 @@
 //!    `HAGFISH_CHROMIUM`.
 //! 2. `cargo xtask regress --check` (in this process).
 //! 3. `cargo test --workspace --release`.
-//! 4. The Python package: a virtual environment in the target directory, the package built
+//! 4. The API docs: `cargo doc --no-deps --workspace` with rustdoc's warnings as errors, so
+//!    that a broken link in a doc comment fails here rather than on a reader.
+//! 5. The Python package: a virtual environment in the target directory, the package built
 //!    from `crates/python` and installed there, its pytest suite ([`crate::python`]).
 //!
 //! Each step says what it does on stderr; the first failure stops the command with a non-zero
@@ -43,6 +45,16 @@ pub fn run(root: &Path) -> Result<(), String> {
         .map_err(|e| format!("could not start cargo test: {e}"))?;
     if !status.success() {
         return Err(format!("cargo test --workspace --release failed ({status})"));
+    }
+    eprintln!("xtask test: cargo doc --no-deps --workspace (rustdoc warnings are errors)");
+    let status = Command::new(cargo())
+        .args(["doc", "--no-deps", "--workspace"])
+        .current_dir(root)
+        .env("RUSTDOCFLAGS", "-D warnings")
+        .status()
+        .map_err(|e| format!("could not start cargo doc: {e}"))?;
+    if !status.success() {
+        return Err(format!("cargo doc --no-deps --workspace failed ({status})"));
     }
     let hagfish = python::target_directory(root).join("release").join("hagfish");
     python::test(root, &hagfish)

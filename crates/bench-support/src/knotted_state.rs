@@ -37,7 +37,7 @@ pub const LONG_KNOTTED_TIME_S: f64 = 19.0;
 /// long chain. The body file is written into `scratch` (a directory of the caller's).
 ///
 /// # Errors
-/// The file's I/O error, or the [`SimError`] of loading the scenario or stepping to the state.
+/// The file's I/O error, or the [`ScenarioError`] of loading the scenario or stepping to the state.
 pub fn long_knotted_world(
     workspace_root: &Path,
     scratch: &Path,

@@ -92,7 +92,8 @@ impl KnotTemplate {
     }
 
     /// Whether a knot analysis (a Rolfsen name, agreement over closure directions, the core's
-    /// handedness if known) shows this template's knot ([`crate::tie::shows`]).
+    /// handedness if known) shows this template's knot, as [`crate::TieKnot::is_shown_by`]
+    /// judges a plan's.
     pub fn is_shown_by(&self, name: &str, agreement: f64, right_handed: Option<bool>) -> bool {
         shows(&self.knot, self.shown_handedness(), name, agreement, right_handed)
     }
@@ -115,7 +116,9 @@ impl Default for ServoGains {
     }
 }
 
-/// A follow-the-leader tie ([module docs](self)).
+/// A follow-the-leader tie: the tail's tip runs along [`FollowPhase::template`] at
+/// `speed_cm_s`, the body held to its path by joint servos ([`FollowPhase::actuate`];
+/// docs/physics.md, "Follow-the-leader tie").
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FollowPhase {

@@ -117,7 +117,7 @@ pub enum RunEnd {
     /// A tie phase did not tie its knot in its attempts; the outputs hold every frame.
     TieFailed(hagfish_control::TieFailure),
     /// A step failed or was rejected (non-finite state, failed solve, penetration or limit
-    /// excess beyond [`crate::StepAcceptance`], …) even as substeps down to h/2^k; the
+    /// excess beyond [`hagfish_sim::StepAcceptance`], …) even as substeps down to h/2^k; the
     /// outputs hold every frame before.
     Diverged {
         /// What failed.

@@ -15,7 +15,9 @@ use serde::{Deserialize, Serialize};
 use crate::error::ScenarioError;
 use crate::scenario::Scenario;
 
-/// A curve read from a vertex file ([module docs](self)).
+/// A curve read from a vertex file, another simulator's starting curve: moved so that its
+/// first vertex is the head's joint, turned so that its first segment runs along +X, and
+/// continued straight for 2L past its last vertex ([`PolylineShape::curve`]).
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PolylineShape {
