@@ -91,8 +91,8 @@ impl Actuation {
         self.servo_damping.clear();
     }
 
-    /// Writes the forces, dampers, joint torques and servos into the tree data for the dynamics stage (the
-    /// thigmotaxis requests are rows, built by the pipeline).
+    /// Writes the forces, dampers, joint torques and servos into the tree data for the dynamics
+    /// stage (the thigmotaxis requests are rows, built by the pipeline).
     pub fn apply_to(&self, data: &mut Data) {
         for f in &self.forces {
             data.apply_point_force(f.body, f.point, f.force);

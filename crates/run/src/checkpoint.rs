@@ -69,13 +69,15 @@ impl<'de> Deserialize<'de> for ExactF64s {
 pub struct Checkpoint {
     /// [`CHECKPOINT_FORMAT`].
     pub format: u32,
-    /// Hash of the resolved scenario ([`hagfish_scenario::LoadedScenario::hash`]), to refuse another's.
+    /// Hash of the resolved scenario ([`hagfish_scenario::LoadedScenario::hash`]), to refuse
+    /// another's.
     pub scenario_hash: String,
-    /// Hash of the body file's bytes ([`hagfish_scenario::LoadedScenario::body_hash`]), to refuse a
-    /// resume after the body file was edited.
+    /// Hash of the body file's bytes ([`hagfish_scenario::LoadedScenario::body_hash`]), to
+    /// refuse a resume after the body file was edited.
     pub body_hash: String,
-    /// Hash of the files the phases read ([`hagfish_scenario::LoadedScenario::referenced_files_hash`]),
-    /// to refuse a resume after a knot plan, modal basis or replay was edited; `None` in
+    /// Hash of the files the phases read
+    /// ([`hagfish_scenario::LoadedScenario::referenced_files_hash`]), to refuse a resume after a
+    /// knot plan, template, modal basis or replay was edited; `None` in
     /// checkpoints written before it existed (nothing to compare then).
     #[serde(default)]
     pub referenced_files_hash: Option<String>,

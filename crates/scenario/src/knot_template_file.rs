@@ -24,38 +24,34 @@ pub(crate) fn resolve_knot_templates(
     model: &Model,
     mut phases: Vec<Phase>,
 ) -> Result<Vec<Phase>, ScenarioError> {
+    let length: f64 = model.bodies().iter().map(|b| b.length).sum();
     for phase in &mut phases {
         let Phase::Follow(follow) = phase else { continue };
-        let template = &mut follow.template;
-        let path = directory.join(&template.file);
+        let written = follow.template.file.to_string_lossy().into_owned();
+        let path = directory.join(&follow.template.file);
         let refuse = |reason: String| ScenarioError::KnotTemplateFile {
-            at: file.locate_string("file", &template.file.to_string_lossy()),
+            at: file.locate_string("file", &written),
             reason: format!("{}: {reason}", path.display()),
         };
         let raw = read_vertices(&path, 1.0).map_err(refuse)?;
-        let placed = KnotTemplate::placed(&raw, template.mirror)
+        let placed = KnotTemplate::placed(&raw, follow.template.mirror)
             .ok_or_else(|| refuse("the first two vertices coincide".into()))?;
-        if hagfish_knots::KnotType::from_rolfsen_name(&template.knot).is_none() {
+        if hagfish_knots::KnotType::from_rolfsen_name(&follow.template.knot).is_none() {
             return Err(refuse(format!(
                 "knot {:?} is not one the knot analysis names (0_1, 3_1, 4_1, 5_1, 5_2, 6_1, 6_2, 6_3)",
-                template.knot
+                follow.template.knot
             )));
         }
-        template.file = std::fs::canonicalize(&path).unwrap_or(path.clone());
-        template.vertices = Some(Arc::new(placed));
+        follow.template.vertices = Some(Arc::new(placed));
         let on_body = follow.on_body(model.bodies());
-        let length: f64 = model.bodies().iter().map(|b| b.length).sum();
         if on_body.length_cm() >= length {
-            return Err(ScenarioError::KnotTemplateFile {
-                at: file.locate_string("file", &follow.template.file.to_string_lossy()),
-                reason: format!(
-                    "{}: the template is {:.1} cm long on this body ({:.2} cm per unit), the body {length:.1} cm: use a smaller diameters_per_unit or a longer body",
-                    path.display(),
-                    on_body.length_cm(),
-                    on_body.cm_per_unit
-                ),
-            });
+            return Err(refuse(format!(
+                "the template is {:.1} cm long on this body ({:.2} cm per unit), the body {length:.1} cm: use a smaller diameters_per_unit or a longer body",
+                on_body.length_cm(),
+                on_body.cm_per_unit
+            )));
         }
+        follow.template.file = std::fs::canonicalize(&path).unwrap_or(path);
     }
     Ok(phases)
 }

@@ -125,8 +125,9 @@ impl TreeFactor {
     }
 
     /// Assembles the system of a step of size `h` (s) from the kinematics and the applied
-    /// point dampers in `data`: `Ĩ_i = I_i + h C_i`, `K̃_a = h d_a + h² k_a` (with this step's joint servos, `Data::joint_diagonal`) and the axes
-    /// `s_a`. `model` must be the one given to [`new`](Self::new). O(bodies).
+    /// point dampers in `data`: `Ĩ_i = I_i + h C_i`, `K̃_a = h d_a + h² k_a` (with this step's
+    /// joint servos, `Data::joint_diagonal`) and the axes `s_a`. `model` must be the one given
+    /// to [`new`](Self::new). O(bodies).
     pub fn assemble(&mut self, model: &Model, data: &Data, h: f64) {
         self.axes.copy_from_slice(&data.axes);
         for ((tilde, inertia), damping) in
