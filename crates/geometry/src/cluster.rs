@@ -20,6 +20,7 @@
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
+use crate::contact::SelfContact;
 use crate::narrow_phase::NewtonStatus;
 
 /// A contact before merging: where it is, how deep, and how to rebuild its full record.
@@ -155,6 +156,47 @@ impl DeepestPerCluster {
     }
 }
 
+/// The records a coarser cluster radius keeps of a detector's output: greedy non-maximum
+/// suppression (deepest first, as the detector's own) at `radius` over records already merged
+/// at a finer one. Along a line contact the detector keeps one record per cluster radius, so
+/// the finer the radius the more records stand for the same stretch; a law summed over the
+/// records, such as the skin's springs, is only the same at every resolution on the records one
+/// radius keeps. Nothing allocates after [`reserve`](Self::reserve).
+#[derive(Debug, Clone, Default)]
+pub struct CoarserClusters {
+    clusters: DeepestPerCluster,
+    kept: Vec<bool>,
+}
+
+impl CoarserClusters {
+    /// Room for `records` records.
+    pub fn reserve(&mut self, records: usize) {
+        self.clusters.reserve(records);
+        self.kept.reserve(records);
+    }
+
+    /// One flag per record of `contacts` (sorted head to tail by (u_a, u_b), as
+    /// [`crate::ContactDetector::detect`] writes them): whether suppression at `radius`
+    /// keeps it.
+    pub fn keep(&mut self, contacts: &[SelfContact], radius: f64) -> &[bool] {
+        self.clusters.clear(radius);
+        for contact in contacts {
+            let (u_a, u_b, gap, status) = (contact.u_a, contact.u_b, contact.gap, contact.status);
+            self.clusters.push(Candidate { u_a, u_b, gap, status });
+        }
+        let (kept, _) = self.clusters.finish();
+        // Both lists are in head-to-tail order and the kept records are copies of some of
+        // `contacts`: one walk marks them.
+        let mut next = kept.iter().peekable();
+        self.kept.clear();
+        for contact in contacts {
+            let is_kept = next.next_if(|k| k.u_a == contact.u_a && k.u_b == contact.u_b).is_some();
+            self.kept.push(is_kept);
+        }
+        &self.kept
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -240,5 +282,66 @@ mod tests {
         assert_eq!(kept, all_at_once.as_slice());
         assert_eq!(merged, merged_at_once);
         assert!(merged > 0 && kept.len() > 1, "the case merges some and keeps several");
+    }
+
+    /// A hairpin of 60 unit bodies, radius 0.6: two straight legs 1.1 apart (skins pressed
+    /// 0.1 together) over their length, bent round at body 30 — one long line contact.
+    fn hairpin() -> (crate::Centreline, Vec<f64>) {
+        use glam::DVec3;
+        let centres: Vec<DVec3> = (0..60)
+            .map(|i| {
+                let s = f64::from(i);
+                if i <= 30 {
+                    DVec3::new(s, 0.0, 0.0)
+                } else {
+                    // Back along y = 1.1, converging by 1e-3 per body so the gaps differ.
+                    DVec3::new(60.0 - s, 1.1 - 1e-3 * (s - 30.0), 0.0)
+                }
+            })
+            .collect();
+        let line = crate::Centreline::new(&centres, &[0.6; 60]).expect("a centreline");
+        (line, vec![1.0; 60])
+    }
+
+    fn detect(line: &crate::Centreline, lengths: &[f64], cluster_radius: f64) -> Vec<SelfContact> {
+        let options =
+            crate::DetectorOptions { cluster_radius, ..crate::DetectorOptions::default() };
+        let mut detector = crate::ContactDetector::new(options).expect("a detector");
+        let mut contacts = Vec::new();
+        detector.detect(line, lengths, &mut contacts).expect("detection");
+        contacts
+    }
+
+    #[test]
+    fn coarser_clusters_thin_a_line_contact_to_the_coarse_radius_and_keep_the_deepest() {
+        let (line, lengths) = hairpin();
+        let fine = detect(&line, &lengths, 1.5);
+        let coarse = detect(&line, &lengths, 4.5);
+        assert!(
+            fine.len() > 2 * coarse.len() && coarse.len() > 3,
+            "{} {}",
+            fine.len(),
+            coarse.len()
+        );
+        let mut coarser = CoarserClusters::default();
+        // At the radius they were merged at, every record stays.
+        assert!(coarser.keep(&fine, 1.5).iter().all(|&k| k));
+        // At the coarse radius, about as many as the detector keeps there, the deepest among them.
+        let kept = coarser.keep(&fine, 4.5).to_vec();
+        let count = kept.iter().filter(|&&k| k).count();
+        assert!(count.abs_diff(coarse.len()) <= 1, "{count} kept, the detector {}", coarse.len());
+        let deepest = (0..fine.len()).min_by(|&i, &j| fine[i].gap.total_cmp(&fine[j].gap));
+        assert!(kept[deepest.expect("records")]);
+        // Kept records are more than the radius apart in one parameter or the other.
+        let kept_records: Vec<_> = fine.iter().zip(&kept).filter(|(_, k)| **k).collect();
+        for (i, (x, _)) in kept_records.iter().enumerate() {
+            for (y, _) in &kept_records[i + 1..] {
+                assert!((x.u_a - y.u_a).abs() > 4.5 || (x.u_b - y.u_b).abs() > 4.5);
+            }
+        }
+        // A radius larger than the body keeps the deepest record alone.
+        let one = coarser.keep(&fine, 100.0);
+        assert_eq!(one.iter().filter(|&&k| k).count(), 1);
+        assert!(one[deepest.expect("records")]);
     }
 }

@@ -67,6 +67,7 @@ mod weights;
 
 pub use broad_phase::{BroadPhase, BroadPhaseOptions};
 pub use centreline::Centreline;
+pub use cluster::CoarserClusters;
 pub use contact::SelfContact;
 pub use detector::{ContactDetector, DetectionReport, DetectorOptions, PAIRS_PER_BODY};
 pub use error::GeometryError;

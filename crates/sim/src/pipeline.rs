@@ -108,12 +108,18 @@ pub fn build_rows(model: &Model, options: &StepOptions, state: &State, data: &mu
     add_head_rows(model, state, h, options.head_correction, &mut data.rows);
     add_limit_rows(model, state, h, options.limit_margin, options.push_out, &mut data.rows);
     add_wall_rows(model, &data.tree, &data.wall_contacts, h, options.push_out, &mut data.rows);
+    let skin_carriers = if data.skin.is_present() {
+        let detected_radius = data.detector.options().cluster_radius;
+        data.skin_records.carriers(&data.self_contacts, detected_radius)
+    } else {
+        None
+    };
     add_self_contact_rows(
         model,
         &data.tree,
         &data.self_contacts,
         &data.centreline,
-        &data.skin,
+        (&data.skin, skin_carriers),
         h,
         options.push_out,
         &mut data.rows,

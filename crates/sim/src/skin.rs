@@ -14,8 +14,15 @@
 //!
 //! A body without a skin has t = 0: its contacts get the core row alone, on g_c = g, exactly
 //! as a rigid tube's.
+//!
+//! The springs are one per record at the body-relative cluster radius, which keeps one record
+//! every 0.1875 × `contact_exclusion_diameters` local diameters (0.375 D by default) along a
+//! line contact on every
+//! chain. A step retried with contacts at the chain's finer resolution has several records on
+//! each such stretch: all get core rows, but only those the body-relative radius keeps
+//! ([`SkinRecords`]) get springs, so the skin pushes as hard as in the step it replaces.
 
-use hagfish_geometry::{Centreline, SelfContact, SplineWeights};
+use hagfish_geometry::{Centreline, CoarserClusters, SelfContact, SplineWeights};
 use hagfish_tree::Model;
 
 /// The skins of a model's bodies, per body (thickness 0 and pressure 0 where there is none).
@@ -94,6 +101,33 @@ impl SkinLayer {
             core_gap: contact.gap + thickness,
             stiffness: std::f64::consts::PI * (sum / count) * (r_a * r_b).sqrt(),
         })
+    }
+}
+
+/// Which self contacts carry a skin spring ([module docs](self)): every one detected at the
+/// body-relative cluster radius, and of those detected at a finer radius the ones that radius
+/// keeps (deepest first, [`CoarserClusters`]).
+#[derive(Debug, Clone, Default)]
+pub struct SkinRecords {
+    body_relative_radius: f64,
+    coarser: CoarserClusters,
+}
+
+impl SkinRecords {
+    /// For contacts whose body-relative cluster radius is `body_relative_radius` (bodies),
+    /// with room for `records` contacts.
+    pub fn new(body_relative_radius: f64, records: usize) -> Self {
+        let mut coarser = CoarserClusters::default();
+        coarser.reserve(records);
+        Self { body_relative_radius, coarser }
+    }
+
+    /// One flag per record of `contacts`, detected at cluster radius `detected_radius`:
+    /// whether it carries a spring; `None` when every record does (detected at the
+    /// body-relative radius or a coarser one).
+    pub fn carriers(&mut self, contacts: &[SelfContact], detected_radius: f64) -> Option<&[bool]> {
+        (detected_radius < self.body_relative_radius)
+            .then(|| self.coarser.keep(contacts, self.body_relative_radius))
     }
 }
 

@@ -20,7 +20,7 @@ use crate::memory::check_memory;
 use crate::options::StepOptions;
 use crate::report::StepReport;
 use crate::rows::{RowGroup, twist_dofs};
-use crate::skin::SkinLayer;
+use crate::skin::{SkinLayer, SkinRecords};
 
 /// Rows (and solver buffers) reserved per DOF on the dense backend: 2n rows cover the head,
 /// every limit and more than twice the self contacts of the tightest knots measured (≈ 45), so
@@ -96,6 +96,8 @@ pub struct StepData {
     pub(crate) predictor: ContactPredictor,
     /// The bodies' skins (docs/physics.md, "Skin").
     pub skin: SkinLayer,
+    /// Which self contacts carry a skin spring (stage `build_rows`).
+    pub(crate) skin_records: SkinRecords,
     /// The contacts of the state the last step ended in, for the next step to take over.
     pub(crate) carried: CarriedContacts,
 }
@@ -146,6 +148,11 @@ impl StepData {
         solver.try_reserve(model.dof_count(), reserve).map_err(allocation)?;
         let rows = Rows::try_with_capacity(model.dof_count(), reserve).map_err(allocation)?;
         let skin = SkinLayer::new(model);
+        let skin_radius = options.detector_options(model).cluster_radius;
+        let skin_records = SkinRecords::new(
+            skin_radius,
+            if skin.is_present() { PAIRS_PER_BODY * bodies } else { 0 },
+        );
         let predictor = ContactPredictor::new(model, &centreline, &skin);
         let pairs = PAIRS_PER_BODY * bodies;
         let contacts = || try_vec(pairs, "the self contacts").map_err(allocation);
@@ -184,6 +191,7 @@ impl StepData {
             bounds: try_vec(reserve, "the rows' bounds").map_err(allocation)?,
             predictor,
             skin,
+            skin_records,
             carried,
         })
     }

@@ -166,8 +166,9 @@ fn records_are_as_deep_as_the_search_from_every_start() {
     assert!(contacts > 1000, "the trajectory must be tangled: {contacts}");
 }
 
-/// `form.ron` on ES103 at `body_count` bodies, built as [`forming_world`].
-fn forming_world_of(body_count: usize) -> (World, PhasedController) {
+/// `form.ron` on ES103 at `body_count` bodies with the scenario `overrides` (as
+/// `--set`), built as [`forming_world`].
+pub(crate) fn forming_world_of(body_count: usize, overrides: &[&str]) -> (World, PhasedController) {
     let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
     let text = std::fs::read_to_string(format!("{root}/data/hagfish/es103.ron")).expect("es103");
     assert!(text.contains(" body_count: 100"));
@@ -175,8 +176,12 @@ fn forming_world_of(body_count: usize) -> (World, PhasedController) {
         .join(format!("es103_{body_count}_bodies.ron"));
     let text = text.replace(" body_count: 100", &format!(" body_count: {body_count}"));
     std::fs::write(&body, text).expect("write the body");
-    let set = Override::parse(&format!("body={:?}", body.to_string_lossy())).expect("override");
-    let loaded = LoadedScenario::load_with(format!("{root}/data/scenarios/form.ron"), &[set])
+    let body = format!("body={:?}", body.to_string_lossy());
+    let sets: Vec<Override> = std::iter::once(body.as_str())
+        .chain(overrides.iter().copied())
+        .map(|set| Override::parse(set).expect("an override"))
+        .collect();
+    let loaded = LoadedScenario::load_with(format!("{root}/data/scenarios/form.ron"), &sets)
         .expect("form.ron loads");
     let model = loaded.body.to_model().expect("model");
     let state = State::rest(&model);
@@ -188,11 +193,11 @@ fn forming_world_of(body_count: usize) -> (World, PhasedController) {
 #[test]
 fn a_fine_chain_resolves_its_contacts_every_one_and_a_half_bodies_on_request() {
     // ES103's body-relative cluster radius is already 1.5 bodies: nothing to resolve.
-    let (mut es103, _) = forming_world_of(100);
+    let (mut es103, _) = forming_world_of(100, &[]);
     assert!(!es103.set_contact_resolution(ContactResolution::Chain).expect("ES103"));
     // At 300 bodies it is 4.7 bodies; step the forming knot to 20 s, where strands lie along
     // each other.
-    let (mut world, mut controller) = forming_world_of(300);
+    let (mut world, mut controller) = forming_world_of(300, &[]);
     let coarse_radius = world.options().detector_options(world.model()).cluster_radius;
     assert!((coarse_radius - 4.6875).abs() < 1e-12, "{coarse_radius}");
     while world.state().t < 20.0 {

@@ -67,6 +67,47 @@ fn each_skin_row_pushes_with_the_implicit_spring_of_its_contact() {
     assert!(world.data().report.max_skin_compression > 0.0, "the tied knot presses its skins");
 }
 
+/// A step retried with its contacts at the chain's resolution has several records along each
+/// stretch where two strands lie side by side, where the body-relative radius keeps one: all get
+/// core rows, but only the records that radius keeps get springs, so the skin pushes as hard
+/// as in the step it replaces. With a spring on every record the 300-body figure-eight's
+/// retried steps in its slide penetrated 41–114 % of the radius where the step it replaced
+/// penetrated 8.5 % (docs/physics.md, "Skin").
+#[test]
+fn a_step_retried_at_the_chain_resolution_keeps_the_skin_springs_of_the_body_relative_one() {
+    use hagfish_sim::{Attempt, ContactResolution, World};
+    // At 23 s of the forming knot 53 records touch at the body-relative radius, 412 at the
+    // chain's; with a spring on every one the resolved step's skins pushed 3.2 times as hard.
+    let (mut world, mut controller) = crate::self_contact::forming_world_of(300, &[SKIN]);
+    while world.state().t < 23.0 {
+        world.step(&mut controller).expect("forming step");
+    }
+    let (start, saved) = (world.state().clone(), controller.state());
+    let time_step = world.options().time_step;
+    // (records, skin rows, Σ skin impulse) of one attempt of the step from that state.
+    let mut step_at = |world: &mut World, contacts: ContactResolution| {
+        world.set_state(start.clone()).expect("the start state");
+        controller.restore(&saved).expect("the controller");
+        world.attempt(&mut controller, Attempt { time_step, contacts }).expect("step");
+        let data = world.data();
+        let skin_rows: Vec<usize> = (data.rows.sources().iter().enumerate())
+            .filter(|(_, s)| s.tag == RowGroup::Skin.tag())
+            .map(|(i, _)| i)
+            .collect();
+        let impulse: f64 = skin_rows.iter().map(|&i| data.solver.multipliers()[i]).sum();
+        (data.self_contacts.len(), skin_rows.len(), impulse)
+    };
+    let coarse = step_at(&mut world, ContactResolution::BodyRelative);
+    let resolved = step_at(&mut world, ContactResolution::Chain);
+    println!("(records, springs, Σλ): body-relative {coarse:?}, chain {resolved:?}");
+    assert!(coarse.2 > 0.0, "the skins are pressed");
+    assert!(resolved.0 > 2 * coarse.0, "strands lie side by side: {resolved:?} {coarse:?}");
+    assert!(resolved.1 < resolved.0, "only some resolved records carry a spring");
+    assert!(resolved.1 <= coarse.1, "no more springs than the body-relative step's");
+    let ratio = resolved.2 / coarse.2;
+    assert!((0.8..1.25).contains(&ratio), "Σλ resolved / body-relative = {ratio}");
+}
+
 /// A rod has no skin to give: the scenario's skin on a rod body is refused at its position.
 #[test]
 fn a_skin_on_a_rod_is_refused() {

@@ -17,15 +17,16 @@ use crate::skin::SkinLayer;
 
 /// Appends one row per self contact, id its index in `contacts` (both spline points blended in
 /// one walk to the root): on the core gap, and where `skin` has a skin at the contact (on
-/// `centreline`) the skin's compliant row `ḋ + ελ ≥ −g/h` after it, tagged
-/// [`RowGroup::Skin`].
+/// `centreline`) and the contact carries a spring (`skin_carriers`, one flag per contact;
+/// `None`: all do, [`crate::skin::SkinRecords`]) the skin's compliant row `ḋ + ελ ≥ −g/h`
+/// after it, tagged [`RowGroup::Skin`].
 #[allow(clippy::too_many_arguments)] // the stage's inputs, each read once
 pub fn add_self_contact_rows(
     model: &Model,
     data: &Data,
     contacts: &[SelfContact],
     centreline: &Centreline,
-    skin: &SkinLayer,
+    (skin, skin_carriers): (&SkinLayer, Option<&[bool]>),
     time_step: f64,
     push_out: f64,
     rows: &mut Rows,
@@ -43,7 +44,8 @@ pub fn add_self_contact_rows(
         let core_gap = contact_skin.map_or(contact.gap, |s| s.core_gap);
         let row = push_unilateral_row(rows, RowGroup::Contact, i, core_gap, time_step, push_out);
         add_point_rows(model, data, &points[..count], contact.normal, row);
-        if let Some(contact_skin) = contact_skin {
+        let carries_spring = skin_carriers.is_none_or(|carriers| carriers[i]);
+        if let Some(contact_skin) = contact_skin.filter(|_| carries_spring) {
             let kind = RowKind::Compliant { compliance: contact_skin.compliance(time_step) };
             let spring = rows.push_zeroed(kind, RowGroup::Skin.source(i), -contact.gap / time_step);
             add_point_rows(model, data, &points[..count], contact.normal, spring);
