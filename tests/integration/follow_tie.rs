@@ -7,7 +7,7 @@ use std::path::Path;
 
 use crate::common::{code_and_stderr, csv_rows, fresh_dir, manifest, metrics_table, run_hagfish};
 
-/// The first 15 s of `figure_eight.ron` (its tie ends at 14.4 s), into `out`, with `extra`
+/// The first 15 s of `figure_eight.ron` (its tie ends at 13.1 s), into `out`, with `extra`
 /// arguments.
 fn tie_only(out: &Path, extra: &[&str]) -> std::process::Output {
     let out = out.to_str().expect("a UTF-8 path");
