@@ -230,6 +230,9 @@ impl ActiveSet {
                 RowKind::Equality => (f64::NEG_INFINITY, f64::INFINITY),
                 RowKind::Inequality | RowKind::Compliant { .. } => (0.0, f64::INFINITY),
                 RowKind::SoftInequality { weight } => (0.0, weight),
+                // Never here: the workspace refuses friction cones on this path
+                // (`SolverError::FrictionConeNeedsClarabel`); held at 0 if it were.
+                RowKind::Friction { .. } => (0.0, 0.0),
             };
             let start = if value.is_finite() { *value } else { 0.0 };
             let bound = if start <= lower {

@@ -10,7 +10,11 @@
 //! | soft cᵀq̇ + σₖ ≥ b | (−cᵀ, −eₖᵀ) | −b | nonnegative |
 //! | compliant cᵀq̇ + σₖ ≥ b | (−cᵀ, −eₖᵀ) | −b | nonnegative |
 //! | σₖ ≥ 0 (soft rows only) | −eₖᵀ | 0 | nonnegative |
+//! | friction contact: v_n ≥ μ‖v_t‖ | (−c_nᵀ; −μcₜᵀ…) | (−b_n; −μbₜ…) | second-order |
 //!
+//! A friction contact's normal row and friction rows (`pyramid.rs`) form one second-order
+//! cone s = (v_n, μv_t) ∈ {s₀ ≥ ‖s₁…‖}: the dual cone of Coulomb's, exactly. Its dual z lies
+//! in the same cone and gives λ_n = z₀, λ_t = μ z₁… (so ‖λ_t‖ ≤ μλ_n).
 //! with P = M̃ (upper triangle, CSC) on q̇, 1/εₖ on a compliant row's σₖ (its cost ½σₖ²/εₖ:
 //! at the optimum σₖ = εₖλₖ), zero on a soft row's σₖ, and q = (−f̃, weights or 0); in fact on
 //! x = D⁻¹q̇ with D = diag(M̃ᵢᵢ^(−1/2)) (P = DM̃D, q = −Df̃, A = C D), which brings the hagfish's
@@ -26,12 +30,13 @@
 
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
-    DefaultSettingsBuilder, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus,
-    SupportedConeT, ZeroConeT,
+    DefaultSettingsBuilder, DefaultSolver, IPSolver, NonnegativeConeT, SecondOrderConeT,
+    SolverStatus, SupportedConeT, ZeroConeT,
 };
 
 use crate::mass_operator::{Mass, to_dense};
 use crate::problem::Problem;
+use crate::pyramid::{FrictionContact, friction_contacts};
 use crate::report::SolveStatus;
 use crate::rows::RowKind;
 
@@ -77,8 +82,10 @@ pub(crate) fn solve(
     // Constraint order: equalities (zero cone), then inequality and soft rows, then σ ≥ 0.
     let equalities: Vec<usize> =
         (0..rows.len()).filter(|&i| rows.kinds()[i] == RowKind::Equality).collect();
+    let contacts: Vec<FrictionContact> = friction_contacts(rows.kinds()).collect();
+    let in_cone = |i: usize| contacts.iter().any(|c| c.rows().contains(&i));
     let inequalities: Vec<usize> =
-        (0..rows.len()).filter(|&i| rows.kinds()[i].is_inequality()).collect();
+        (0..rows.len()).filter(|&i| rows.kinds()[i].is_inequality() && !in_cone(i)).collect();
     let (mut ai, mut aj, mut av, mut b) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     let mut slack_rows = Vec::new();
     for (constraint, &row) in equalities.iter().chain(&inequalities).enumerate() {
@@ -101,13 +108,26 @@ pub(crate) fn solve(
         .iter()
         .enumerate()
         .filter(|(_, row)| matches!(rows.kinds()[**row], RowKind::SoftInequality { .. }));
-    for (constraint, (k, _)) in (rows.len()..).zip(soft_slacks) {
+    for (constraint, (k, _)) in (equalities.len() + inequalities.len()..).zip(soft_slacks) {
         ai.push(constraint);
         aj.push(n + k);
         av.push(-1.0);
         b.push(0.0);
     }
-    let a = CscMatrix::new_from_triplets(rows.len() + soft_count, variables, ai, aj, av);
+    let mut constraint = equalities.len() + inequalities.len() + soft_count;
+    for contact in &contacts {
+        for row in contact.rows() {
+            let factor = if row == contact.normal { 1.0 } else { contact.coefficient };
+            for (j, &c) in rows.row(row).iter().enumerate().filter(|(_, c)| **c != 0.0) {
+                ai.push(constraint);
+                aj.push(j);
+                av.push(-factor * c * scale[j]);
+            }
+            b.push(-factor * problem.rhs()[row]);
+            constraint += 1;
+        }
+    }
+    let a = CscMatrix::new_from_triplets(constraint, variables, ai, aj, av);
 
     let (mut pi, mut pj, mut pv) = (Vec::new(), Vec::new(), Vec::new());
     for j in 0..n {
@@ -140,6 +160,7 @@ pub(crate) fn solve(
     if !inequalities.is_empty() || soft_count > 0 {
         cones.push(NonnegativeConeT(inequalities.len() + soft_count));
     }
+    cones.extend(contacts.iter().map(|contact| SecondOrderConeT(1 + contact.count)));
     let failed = ReferenceOutcome { status: SolveStatus::NumericalError, iterations: 0 };
     let Ok(settings) = DefaultSettingsBuilder::default()
         .verbose(false)
@@ -165,6 +186,14 @@ pub(crate) fn solve(
     for (constraint, &row) in equalities.iter().chain(&inequalities).enumerate() {
         let z = solution.z[constraint];
         lambda[row] = if rows.kinds()[row] == RowKind::Equality { -z } else { z };
+    }
+    let mut constraint = equalities.len() + inequalities.len() + soft_count;
+    for contact in &contacts {
+        for row in contact.rows() {
+            let factor = if row == contact.normal { 1.0 } else { contact.coefficient };
+            lambda[row] = factor * solution.z[constraint];
+            constraint += 1;
+        }
     }
     ReferenceOutcome {
         status: match solution.status {

@@ -68,6 +68,27 @@ pub enum SolverError {
         /// The compliance given.
         compliance: f64,
     },
+    /// A friction row is malformed: a coefficient that is not finite and ≥ 0, a normal row
+    /// that does not exist or is not an inequality row, or a third consecutive row of one
+    /// contact.
+    #[error("friction row {row}: {reason}")]
+    InvalidFriction {
+        /// Index of the row.
+        row: usize,
+        /// What is wrong.
+        reason: String,
+    },
+    /// Friction cones are solved by the clarabel backend only: on the contact-space backend a
+    /// contact's friction is its cone's inscribed pyramid, given as inequality rows
+    /// ([`FrictionPyramid`](crate::FrictionPyramid)).
+    #[error(
+        "friction row {row}: the contact-space backend takes friction as the pyramid's \
+         inequality rows (FrictionPyramid); the exact cone needs QpBackend::Clarabel"
+    )]
+    FrictionConeNeedsClarabel {
+        /// Index of the first friction row.
+        row: usize,
+    },
     /// The problem's stop flag ([`Problem::stopping_when`](crate::Problem::stopping_when)) was
     /// set during the solve: it was abandoned, its answer is not usable.
     #[error("stopped on request during the solve")]

@@ -248,6 +248,41 @@ fn first_mass_error(mass: MatRef<'_, f64>, max_diagonal: f64) -> Result<(), Solv
     Ok(())
 }
 
+/// A friction row `row` of `kinds` with normal row `normal` and coefficient μ: μ finite and
+/// ≥ 0, the normal row an inequality row just before the contact's first friction row, at
+/// most two friction rows per contact.
+fn check_friction(
+    kinds: &[RowKind],
+    row: usize,
+    normal: usize,
+    coefficient: f64,
+) -> Result<(), SolverError> {
+    let invalid = |reason: String| Err(SolverError::InvalidFriction { row, reason });
+    if !(coefficient.is_finite() && coefficient >= 0.0) {
+        return invalid(format!("coefficient {coefficient} must be finite and ≥ 0"));
+    }
+    match kinds.get(normal) {
+        Some(RowKind::Inequality) => {}
+        Some(kind) => {
+            return invalid(format!("normal row {normal} is {kind:?}, not an inequality"));
+        }
+        None => {
+            return invalid(format!("normal row {normal} does not exist ({} rows)", kinds.len()));
+        }
+    }
+    let same_contact = |k: usize| matches!(kinds.get(k), Some(RowKind::Friction { normal: n, .. }) if *n == normal);
+    let first = if row >= 1 && same_contact(row - 1) { row - 1 } else { row };
+    if normal + 1 != first {
+        return invalid(format!(
+            "its normal row {normal} is not the row just before its contact's"
+        ));
+    }
+    if row >= 2 && same_contact(row - 1) && same_contact(row - 2) {
+        return invalid(format!("a third consecutive friction row of normal row {normal}"));
+    }
+    Ok(())
+}
+
 /// Finite coefficients, valid soft weights and compliances (the right-hand sides are checked with f̃). The
 /// coefficients are checked in one branch-free pass; only when it fails are they searched for
 /// the first offending entry.
@@ -264,6 +299,9 @@ fn check_rows(rows: &Rows) -> Result<(), SolverError> {
             && !(compliance.is_finite() && compliance > 0.0)
         {
             return Err(SolverError::InvalidCompliance { row: i, compliance });
+        }
+        if let RowKind::Friction { normal, coefficient } = kind {
+            check_friction(rows.kinds(), i, normal, coefficient)?;
         }
         if !finite {
             for j in 0..transposed.nrows() {

@@ -12,6 +12,7 @@ use faer::{Accum, Par};
 
 use crate::linalg::{column, column_mut, dot_and_magnitude, norm_max};
 use crate::problem::Problem;
+use crate::pyramid::{FrictionContact, friction_contacts};
 use crate::report::{Residuals, SlackUsage};
 use crate::rows::{PerTag, RowKind};
 
@@ -138,12 +139,18 @@ pub(crate) fn evaluate(
     let rows = problem.rows();
     let mut worst = out.residuals.stationarity_relative;
     let each_row = rows.kinds().iter().zip(rows.sources()).zip(row_residuals).zip(lambda);
-    for (((&kind, &source), &(v, s)), &l) in each_row {
+    for (i, (((&kind, &source), &(v, s)), &l)) in each_row.enumerate() {
         let (primal, dual, complementarity) = match kind {
             RowKind::Equality => (v.abs(), 0.0, 0.0),
+            // A cone's normal row: its complementarity is the contact's (below).
+            RowKind::Inequality if cone_normal(rows.kinds(), i) => {
+                ((-v).max(0.0), (-l).max(0.0), 0.0)
+            }
             RowKind::Inequality | RowKind::Compliant { .. } => {
                 ((-v).max(0.0), (-l).max(0.0), (l * v).abs())
             }
+            // Judged per contact below.
+            RowKind::Friction { .. } => (0.0, 0.0, 0.0),
             RowKind::SoftInequality { weight } => {
                 let sigma = (-v).max(0.0);
                 if sigma > acceptance * s {
@@ -166,8 +173,47 @@ pub(crate) fn evaluate(
             out.active_per_tag[source.tag] += 1;
         }
     }
+    for contact in friction_contacts(rows.kinds()) {
+        let (primal, dual, complementarity) = cone_residuals(&contact, lambda, row_residuals);
+        let s = contact.rows().map(|i| row_residuals[i].1).fold(0.0, f64::max);
+        let r = &mut out.residuals;
+        r.primal = r.primal.max(primal);
+        r.dual = r.dual.max(dual);
+        r.complementarity = r.complementarity.max(complementarity);
+        worst = worst
+            .max(primal / s)
+            .max(dual / lambda_scale)
+            .max(complementarity / (s * lambda_scale));
+    }
     out.residuals.worst_relative = worst;
     out
+}
+
+/// True when row `i` of `kinds` is a friction cone's normal row (a friction row naming it
+/// follows).
+fn cone_normal(kinds: &[RowKind], i: usize) -> bool {
+    matches!(kinds.get(i + 1), Some(RowKind::Friction { normal, .. }) if *normal == i)
+}
+
+/// The cone's residuals of a friction contact (`pyramid.rs`) at multipliers `lambda` and row
+/// residuals `row_residuals` ((vᵢ, sᵢ): v_n on the normal row, the slip on the friction
+/// rows): primal (μ‖v_t‖ − v_n)⁺, dual (‖λ_t‖ − μλ_n)⁺ and complementarity
+/// |λ_n v_n + λ_t·v_t|.
+pub(crate) fn cone_residuals(
+    contact: &FrictionContact,
+    lambda: &[f64],
+    row_residuals: &[(f64, f64)],
+) -> (f64, f64, f64) {
+    let (v_n, l_n) = (row_residuals[contact.normal].0, lambda[contact.normal]);
+    let (mut slip, mut force, mut power) = (0.0_f64, 0.0_f64, l_n * v_n);
+    for i in contact.tangents() {
+        let (v, l) = (row_residuals[i].0, lambda[i]);
+        slip = slip.hypot(v);
+        force = force.hypot(l);
+        power += l * v;
+    }
+    let mu = contact.coefficient;
+    ((mu * slip - v_n).max(0.0), (force - mu * l_n.max(0.0)).max(0.0), power.abs())
 }
 
 #[cfg(test)]

@@ -9,6 +9,7 @@
 //! | `Inequality` | cᵢᵀq̇ ≥ bᵢ | λᵢ ≥ 0 |
 //! | `SoftInequality { weight }` | cᵢᵀq̇ + σᵢ ≥ bᵢ, σᵢ ≥ 0, cost weight·σᵢ | 0 ≤ λᵢ ≤ weight |
 //! | `Compliant { compliance }` | cᵢᵀq̇ + εᵢλᵢ ≥ bᵢ, complementary to λᵢ | λᵢ ≥ 0 |
+//! | `Friction { normal, coefficient }` | with its contact's normal row: v_n ≥ μ‖v_t‖ | ‖λ_t‖ ≤ μλ_n |
 //!
 //! For all rows the solve satisfies M̃q̇ = f̃ + Cᵀλ, so an inequality row *pushes* along +cᵢ.
 //! The soft penalty is exact: whenever the hard problem is feasible with λᵢ < weight the
@@ -21,6 +22,15 @@
 //! (εᵢ ≲ 1e-6·cᵢᵀM̃⁻¹cᵢ) on a row that depends on others has a pivot εᵢ that cancels against
 //! Wᵢᵢ and loses digits; the solve then reports `SolvedInexact` (a skin's ε is ≈ 0.3–3 times
 //! its row's mobility at h = 0.01 s).
+//!
+//! A friction row is one tangent direction of a contact whose normal row is `normal`: with
+//! v_n = c_nᵀq̇ − b_n and v_t the tangent rows' cₜᵀq̇ − bₜ, the contact's impulse lies in
+//! Coulomb's cone ‖λ_t‖ ≤ μλ_n and its velocity in the dual cone v_n ≥ μ‖v_t‖, complementary
+//! (λ_n v_n + λ_t·v_t = 0): Anitescu's convex relaxation of Coulomb's law, whose sliding
+//! contacts take the force −μλ_n v_t/‖v_t‖ (maximal dissipation) and a normal velocity μ‖v_t‖
+//! (`pyramid.rs`). The clarabel backend solves the cone exactly; the contact-space backend
+//! refuses it, and takes the cone's inscribed pyramid as plain inequality rows instead
+//! ([`crate::FrictionPyramid`]).
 //!
 //! Storage: the coefficients sit in one column-major n × capacity matrix whose column i is
 //! cᵢ, i.e. the columns form Cᵀ. That is the layout the contact-space solve needs (it copies
@@ -52,11 +62,20 @@ pub enum RowKind {
         /// ε (1/g for a point row: velocity per impulse), finite and > 0.
         compliance: f64,
     },
+    /// One tangent direction of a contact's friction cone (see the module docs): a contact is
+    /// its normal row followed by its one or two friction rows, which name it, and the cone
+    /// is ‖λ_t‖ ≤ μλ_n. Solved exactly by the clarabel backend only.
+    Friction {
+        /// Index of the contact's normal row (an `Inequality` row).
+        normal: usize,
+        /// The friction coefficient μ, finite and ≥ 0.
+        coefficient: f64,
+    },
 }
 
 impl RowKind {
-    /// True for rows with a sign-constrained multiplier (hard, soft or compliant
-    /// inequalities); their presence selects the QP path.
+    /// True for rows with a constrained multiplier (hard, soft or compliant inequalities and
+    /// friction); their presence selects the QP path.
     pub fn is_inequality(self) -> bool {
         !matches!(self, RowKind::Equality)
     }

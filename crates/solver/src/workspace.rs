@@ -43,7 +43,7 @@ use crate::problem::Problem;
 use crate::refine::{FactoredSystem, Refined, Refinement};
 use crate::report::{SolvePath, SolveReport, SolveStatus};
 use crate::residuals::{Evaluation, Stationarity, evaluate, row_residuals};
-use crate::rows::{PerTag, RowTag, Rows};
+use crate::rows::{PerTag, RowKind, RowTag, Rows};
 
 /// How often a refined answer may send a violated bound row back to the active-set method.
 const VERIFICATION_PASSES: usize = 4;
@@ -173,6 +173,12 @@ impl SolverWorkspace {
             (_, true) => SolvePath::Qp,
         };
         let backend = (path == SolvePath::Qp).then_some(self.options.backend);
+        if backend == Some(QpBackend::ContactSpace) {
+            let friction = rows.kinds().iter().position(|k| matches!(k, RowKind::Friction { .. }));
+            if let Some(row) = friction {
+                return Err(SolverError::FrictionConeNeedsClarabel { row });
+            }
+        }
         let warm_started = backend == Some(QpBackend::ContactSpace)
             && self.options.warm_start == WarmStart::PreviousMultipliers
             && !self.multipliers.is_empty();

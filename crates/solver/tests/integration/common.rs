@@ -136,7 +136,7 @@ pub fn scenario(rng: &mut Rng, mass: Mat<f64>, shape: Shape) -> Scenario {
             let row = random_row(rng, n);
             let at_target = dot(&row, &target);
             let rhs = match kind {
-                RowKind::Equality => at_target,
+                RowKind::Equality | RowKind::Friction { .. } => at_target,
                 RowKind::Inequality if rng.uniform() < shape.tight => at_target,
                 RowKind::Inequality => at_target - rng.uniform() * 2.0 * dot(&row, &row).sqrt(),
                 RowKind::SoftInequality { .. } | RowKind::Compliant { .. } => {

@@ -8,6 +8,7 @@ mod common;
 
 mod allocations;
 mod compliant_rows;
+mod friction;
 mod own_row_kinds;
 mod random_problems;
 mod signs;

@@ -89,6 +89,8 @@ pub(crate) fn check_kkt(s: &Scenario, qdot: &[f64], lambda: &[f64]) -> Outcome {
         }
         let (v, l) = (dot(c, qdot) - s.rows.rhs()[i], lambda[i]);
         match *kind {
+            // These problems have no friction rows (tests/integration/friction.rs has them).
+            RowKind::Friction { .. } => prop_assert!(false, "row {i}: a friction row"),
             RowKind::Equality => prop_assert!(v.abs() < 1e-9, "equality {i}: |Gq̇ − b| = {v:e}"),
             RowKind::Inequality => {
                 prop_assert!(v > -1e-9, "inequality {i}: Cq̇ − b = {v:e}");
@@ -148,6 +150,7 @@ fn check_kkt_relative(s: &Scenario, qdot: &[f64], lambda: &[f64]) -> Outcome {
         let v = (dot(c, qdot) - s.rows.rhs()[i]) / (1.0 + s.rows.rhs()[i].abs() + size);
         let l = lambda[i] / lambda_scale;
         match *kind {
+            RowKind::Friction { .. } => prop_assert!(false, "row {i}: a friction row"),
             RowKind::Equality => prop_assert!(v.abs() < 1e-9, "equality {i}: {v:e}"),
             RowKind::Compliant { compliance } => {
                 let v = v + compliance * lambda[i] / (1.0 + s.rows.rhs()[i].abs() + size);
