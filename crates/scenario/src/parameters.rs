@@ -54,6 +54,9 @@ pub const PARAMETERS: &[Parameter] = &[
     p("skin.thickness_fraction", "-", "required in skin", "the compressible layer's thickness, fraction of the local radius, in (0, 1)"),
     p("skin.pressure_dyn_per_cm2", "dyn/cm²", "required in skin", "pressure under the skin: a crossing compressed by δ pushes π·p·√(r_a r_b)·δ"),
     p("phases", "-", "required", "the phases of control, in order; passive after the last"),
+    p("friction", "-", "None", "Coulomb friction on the self contacts' cores and the wall: Some((coefficient: μ)) or None (frictionless)"),
+    p("friction.coefficient", "-", "required in friction", "μ, static = kinetic, ≥ 0 (0: frictionless, bit for bit)"),
+    p("friction.edges", "-", "8", "edges E of the friction cone's inscribed pyramid, 3 to 16: the limit within 1 − cos(π/E) of Coulomb's"),
     p("backend", "-", "SparseMaximal", "velocity-step linear algebra: SparseMaximal (linear in the bodies), or DenseReduced"),
     p("acceptance", "-", "(...)", "when a step's result is kept; a rejected step is retried with substeps"),
     p("acceptance.max_self_penetration_relative", "-", "0.1", "deepest self penetration at a step's end, fraction of the local radius"),
@@ -193,6 +196,7 @@ mod tests {
             })),
             backend: hagfish_sim::DynamicsBackend::DenseReduced,
             acceptance: hagfish_sim::StepAcceptance::default(),
+            friction: Some(hagfish_sim::rows::Friction { coefficient: 0.1, edges: 8 }),
             phases: vec![
                 Phase::Form(FormingScript {
                     gains: TailGains::default(),

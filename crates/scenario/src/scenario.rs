@@ -20,6 +20,7 @@ use hagfish_control::{Phase, PhasedController, WaterDrag, diameters_tail_ward};
 use hagfish_tree::{Model, State};
 use serde::{Deserialize, Serialize};
 
+use hagfish_sim::rows::Friction;
 use hagfish_sim::{DynamicsBackend, StepAcceptance, StepOptions, World, fnv1a64};
 
 use crate::error::ScenarioError;
@@ -82,6 +83,11 @@ pub struct Scenario {
     /// ([`StepAcceptance`]; defaults suit any body).
     #[serde(default)]
     pub acceptance: StepAcceptance,
+    /// Coulomb friction on the self contacts and the wall (docs/physics.md, "Friction: the
+    /// cone and its pyramid"): `Some((coefficient: 0.1))`, optionally `edges: E` (default 8);
+    /// `None` (default): frictionless, as the thesis.
+    #[serde(default)]
+    pub friction: Option<Friction>,
 }
 
 /// The smallest time step a scenario may ask for (s): below it a run cannot make progress in
@@ -243,6 +249,7 @@ impl LoadedScenario {
             time_step: self.scenario.time_step_s,
             backend: self.scenario.backend,
             acceptance: self.scenario.acceptance,
+            friction: self.scenario.friction,
             ..StepOptions::default()
         };
         let phases = self.phases_on(&model);

@@ -15,7 +15,7 @@ use hagfish_geometry::SplineWeights;
 use hagfish_tree::{Model, Spatial, State};
 
 use crate::options::StepOptions;
-use crate::rows::thigmo_strands;
+use crate::rows::{Friction, MAX_FRICTION_EDGES, contact_directions, thigmo_strands};
 use crate::step_data::StepData;
 
 /// The internal load at one joint: the force (dyn) and moment (dyn·cm) that the part of the
@@ -72,7 +72,7 @@ impl InternalForces {
 /// step from `state` (still the step's start) to the solved velocities.
 pub fn internal_forces(model: &Model, options: &StepOptions, state: &State, data: &mut StepData) {
     let h = options.time_step;
-    collect_row_wrenches(data, h);
+    collect_row_wrenches(data, h, options.friction);
     let internal = &mut data.internal;
     hagfish_tree::joint_wrenches(
         model,
@@ -103,38 +103,69 @@ pub fn internal_forces(model: &Model, options: &StepOptions, state: &State, data
 
 /// Sums the forces of the self-contact, wall and thigmotaxis rows on the body centres into
 /// `data.internal.external`, each row's object found by its source id (a wall or self
-/// contact, a thigmotaxis request and its contact).
-fn collect_row_wrenches(data: &mut StepData, h: f64) {
+/// contact, a thigmotaxis request and its contact). With `friction` a contact's consecutive
+/// rows push along its pyramid's edges, in the order `rows::contact_directions` gives them,
+/// and a wall contact's at its contact point.
+fn collect_row_wrenches(data: &mut StepData, h: f64, friction: Option<Friction>) {
     let external = &mut data.internal.external;
     external.fill(Spatial::ZERO);
     let centres = &data.centres;
-    let mut push = |weights: &SplineWeights, sign: f64, direction: DVec3, force: f64| {
-        for (body, w) in weights.iter() {
-            external[body] += Spatial::point_force(centres[body], direction * (sign * w * force));
-        }
-    };
+    let mut push =
+        |weights: &SplineWeights, sign: f64, (direction, offset): (DVec3, DVec3), force: f64| {
+            for (body, w) in weights.iter() {
+                // The centre itself, bit for bit, where there is no offset.
+                let at = if offset == DVec3::ZERO { centres[body] } else { centres[body] + offset };
+                external[body] += Spatial::point_force(at, direction * (sign * w * force));
+            }
+        };
     let (contacts, requests) = (&data.self_contacts, &data.actuation.thigmo);
     let multipliers = data.solver.multipliers();
+    let mut directions = [DVec3::ZERO; MAX_FRICTION_EDGES];
+    // The contact whose rows are being read and the index of the next one among them.
+    let (mut current, mut edge) = (None, 0);
     for (source, &lambda) in data.rows.sources().iter().zip(multipliers) {
         let force = lambda / h;
-        match RowGroup::of(source.tag) {
+        let group = RowGroup::of(source.tag);
+        if current == Some((source.tag, source.id)) {
+            edge += 1;
+        } else {
+            (current, edge) = (Some((source.tag, source.id)), 0);
+        }
+        match group {
             Some(RowGroup::Wall) => {
                 if let Some(c) = data.wall_contacts.get(source.id) {
-                    push(&SplineWeights::single(c.body), 1.0, c.normal, force);
+                    if edge == 0 {
+                        contact_directions(c.normal, DVec3::X, friction, &mut directions);
+                    }
+                    let edges = friction.filter(|f| f.coefficient > 0.0).map_or(1, |f| f.edges);
+                    let offset =
+                        if edges == 1 { DVec3::ZERO } else { -data.radii[c.body] * c.normal };
+                    let along = (directions[edge.min(edges - 1)], offset);
+                    push(&SplineWeights::single(c.body), 1.0, along, force);
                 }
             }
-            Some(RowGroup::Contact | RowGroup::Skin) => {
+            Some(RowGroup::Contact) => {
                 if let Some(c) = contacts.get(source.id) {
-                    push(&c.weights_b, 1.0, c.normal, force);
-                    push(&c.weights_a, -1.0, c.normal, force);
+                    if edge == 0 {
+                        contact_directions(c.normal, c.tangent_a, friction, &mut directions);
+                    }
+                    let along = (directions[edge.min(MAX_FRICTION_EDGES - 1)], DVec3::ZERO);
+                    push(&c.weights_b, 1.0, along, force);
+                    push(&c.weights_a, -1.0, along, force);
+                }
+            }
+            Some(RowGroup::Skin) => {
+                if let Some(c) = contacts.get(source.id) {
+                    push(&c.weights_b, 1.0, (c.normal, DVec3::ZERO), force);
+                    push(&c.weights_a, -1.0, (c.normal, DVec3::ZERO), force);
                 }
             }
             Some(RowGroup::Thigmo) => {
                 let request = requests.get(source.id);
                 let strands = request.and_then(|r| contacts.get(r.contact).map(|c| (r, c)));
                 if let Some((this, other, tangent)) = strands.map(|(r, c)| thigmo_strands(r, c)) {
-                    push(this, 1.0, tangent, force);
-                    push(other, -1.0, tangent, force);
+                    push(this, 1.0, (tangent, DVec3::ZERO), force);
+                    push(other, -1.0, (tangent, DVec3::ZERO), force);
                 }
             }
             Some(RowGroup::Head | RowGroup::Limit) | None => {}

@@ -8,6 +8,7 @@ use hagfish_tree::Model;
 use crate::acceptance::StepAcceptance;
 use crate::backend::DynamicsBackend;
 use crate::error::SimError;
+use crate::rows::Friction;
 
 /// Cluster radius, in bodies, of self contacts at the chain's resolution: 1.5, the
 /// body-relative radius of the 100-body ES103 (`contact_exclusion_diameters`). A finer chain
@@ -74,6 +75,10 @@ pub struct StepOptions {
     pub contact_prediction: Option<f64>,
     /// When a step's result is accepted ([`StepAcceptance`]).
     pub acceptance: StepAcceptance,
+    /// Coulomb friction on the self contacts (their cores) and the wall, by the inscribed
+    /// pyramid of the friction cone (docs/physics.md, "Friction: the cone and its pyramid");
+    /// `None` (default) or μ = 0: frictionless, as the thesis.
+    pub friction: Option<Friction>,
 }
 
 impl Default for StepOptions {
@@ -93,6 +98,7 @@ impl Default for StepOptions {
             backend: DynamicsBackend::default(),
             contact_prediction: Some(0.001),
             acceptance: StepAcceptance::default(),
+            friction: None,
         }
     }
 }
@@ -146,6 +152,9 @@ impl StepOptions {
             "finite and > 0",
         )?;
         self.acceptance.validate()?;
+        if let Some(friction) = &self.friction {
+            friction.validate()?;
+        }
         match self.contact_prediction {
             Some(tolerance) => {
                 check("contact_prediction", tolerance, tolerance >= 0.0, "finite and ≥ 0 (cm)")

@@ -107,7 +107,9 @@ pub fn build_rows(model: &Model, options: &StepOptions, state: &State, data: &mu
     data.rows.clear();
     add_head_rows(model, state, h, options.head_correction, &mut data.rows);
     add_limit_rows(model, state, h, options.limit_margin, options.push_out, &mut data.rows);
-    add_wall_rows(model, &data.tree, &data.wall_contacts, h, options.push_out, &mut data.rows);
+    let stabilisation = (h, options.push_out, options.friction);
+    let wall_contacts = (data.wall_contacts.as_slice(), data.radii.as_slice());
+    add_wall_rows(model, &data.tree, wall_contacts, stabilisation, &mut data.rows);
     let skin_carriers = if data.skin.is_present() {
         let detected_radius = data.detector.options().cluster_radius;
         data.skin_records.carriers(&data.self_contacts, detected_radius)
@@ -120,8 +122,7 @@ pub fn build_rows(model: &Model, options: &StepOptions, state: &State, data: &mu
         &data.self_contacts,
         &data.centreline,
         (&data.skin, skin_carriers),
-        h,
-        options.push_out,
+        stabilisation,
         &mut data.rows,
     );
     add_thigmo_rows(

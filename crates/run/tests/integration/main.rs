@@ -10,6 +10,7 @@ mod common;
 mod checkpoint_corruption;
 mod forming;
 mod freshly_tied;
+mod friction;
 mod modal_space;
 mod no_allocation;
 mod recorded_loads;

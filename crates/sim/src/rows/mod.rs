@@ -2,6 +2,7 @@
 //! solver's convention (`cᵀq̇ = b` or `cᵀq̇ ≥ b`, multipliers pushing along +c) straight into
 //! the solver's [`hagfish_solver::Rows`] container, so building rows does not allocate.
 
+mod friction;
 mod group;
 mod head;
 mod limits;
@@ -10,6 +11,7 @@ mod stabilisation;
 mod thigmo;
 mod wall;
 
+pub use friction::{Friction, MAX_FRICTION_EDGES, contact_directions};
 pub use group::RowGroup;
 pub use head::add_head_rows;
 pub use limits::{add_limit_rows, add_overshooting_limit_rows, overshoots_limit};

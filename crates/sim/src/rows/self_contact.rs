@@ -12,11 +12,13 @@ use hagfish_tree::jacobian::add_point_rows;
 use hagfish_tree::{Data, Model};
 
 use super::RowGroup;
+use super::friction::{Friction, MAX_FRICTION_EDGES, contact_directions};
 use super::stabilisation::push_unilateral_row;
 use crate::skin::SkinLayer;
 
-/// Appends one row per self contact, id its index in `contacts` (both spline points blended in
-/// one walk to the root): on the core gap, and where `skin` has a skin at the contact (on
+/// Appends the rows of each self contact, id its index in `contacts` (both spline points
+/// blended in one walk to the root): on the core gap, one along the normal, or with
+/// `friction` one along each edge of its friction pyramid (`friction.rs`); and where `skin` has a skin at the contact (on
 /// `centreline`) and the contact carries a spring (`skin_carriers`, one flag per contact;
 /// `None`: all do, [`crate::skin::SkinRecords`]) the skin's compliant row `ḋ + ελ ≥ −g/h`
 /// after it, tagged [`RowGroup::Skin`].
@@ -27,10 +29,10 @@ pub fn add_self_contact_rows(
     contacts: &[SelfContact],
     centreline: &Centreline,
     (skin, skin_carriers): (&SkinLayer, Option<&[bool]>),
-    time_step: f64,
-    push_out: f64,
+    (time_step, push_out, friction): (f64, f64, Option<Friction>),
     rows: &mut Rows,
 ) {
+    let mut directions = [DVec3::ZERO; MAX_FRICTION_EDGES];
     for (i, contact) in contacts.iter().enumerate() {
         let mut points = [(0, DVec3::ZERO, 0.0); 2 * SplineWeights::CAPACITY];
         let mut count = 0;
@@ -42,8 +44,13 @@ pub fn add_self_contact_rows(
         }
         let contact_skin = skin.at(contact, centreline);
         let core_gap = contact_skin.map_or(contact.gap, |s| s.core_gap);
-        let row = push_unilateral_row(rows, RowGroup::Contact, i, core_gap, time_step, push_out);
-        add_point_rows(model, data, &points[..count], contact.normal, row);
+        let edges =
+            contact_directions(contact.normal, contact.tangent_a, friction, &mut directions);
+        for &direction in &directions[..edges] {
+            let row =
+                push_unilateral_row(rows, RowGroup::Contact, i, core_gap, time_step, push_out);
+            add_point_rows(model, data, &points[..count], direction, row);
+        }
         let carries_spring = skin_carriers.is_none_or(|carriers| carriers[i]);
         if let Some(contact_skin) = contact_skin.filter(|_| carries_spring) {
             let kind = RowKind::Compliant { compliance: contact_skin.compliance(time_step) };

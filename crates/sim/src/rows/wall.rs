@@ -1,28 +1,38 @@
 //! Wall contact (`docs/physics.md` D10, "Constraint rows"): a body near the wall, seen as a sphere of radius
 //! r_k at its centre c_k, gets the row `n_wᵀ ċ_k ≥ b(d)` with `d = n_w·(c_k − p_w) − r_k`.
-//! Only the centre's velocity enters: the contact point is `c_k − r_k n_w` and
-//! `n_w·(ω × (−r_k n_w)) = 0`.
+//! Only the centre's velocity enters the normal row: the contact point is `c_k − r_k n_w` and
+//! `n_w·(ω × (−r_k n_w)) = 0`. With friction the rows push along the pyramid's edges
+//! (`friction.rs`) at the contact point, whose tangential velocity the body's spin does move.
 
+use glam::DVec3;
 use hagfish_geometry::WallContact;
 use hagfish_solver::Rows;
 use hagfish_tree::jacobian::add_point_row;
 use hagfish_tree::{Data, Model};
 
 use super::RowGroup;
+use super::friction::{Friction, MAX_FRICTION_EDGES, contact_directions};
 use super::stabilisation::push_unilateral_row;
 
-/// Appends one row per wall contact, id its index in `contacts`.
+/// Appends the rows of each wall contact, id its index in `contacts`: one along the normal, or
+/// with `friction` one along each edge of its friction pyramid; `radii` are the bodies' radii.
 pub fn add_wall_rows(
     model: &Model,
     data: &Data,
-    contacts: &[WallContact],
-    time_step: f64,
-    push_out: f64,
+    (contacts, radii): (&[WallContact], &[f64]),
+    (time_step, push_out, friction): (f64, f64, Option<Friction>),
     rows: &mut Rows,
 ) {
+    let mut directions = [DVec3::ZERO; MAX_FRICTION_EDGES];
     for (i, contact) in contacts.iter().enumerate() {
-        let row = push_unilateral_row(rows, RowGroup::Wall, i, contact.gap, time_step, push_out);
         let centre = data.body_centre(contact.body);
-        add_point_row(model, data, contact.body, centre, contact.normal, 1.0, row);
+        let edges = contact_directions(contact.normal, DVec3::X, friction, &mut directions);
+        // Without friction the centre (the row as it always was); with it the contact point.
+        let point = if edges == 1 { centre } else { centre - radii[contact.body] * contact.normal };
+        for &direction in &directions[..edges] {
+            let row =
+                push_unilateral_row(rows, RowGroup::Wall, i, contact.gap, time_step, push_out);
+            add_point_row(model, data, contact.body, point, direction, 1.0, row);
+        }
     }
 }

@@ -5,7 +5,7 @@
 use crate::common::SweepingTailForce;
 use glam::DVec3;
 use hagfish_control::{Actuation, ControlContext, Controller, Passive, PointForce};
-use hagfish_sim::rows::RowGroup;
+use hagfish_sim::rows::{Friction, MAX_FRICTION_EDGES, RowGroup, contact_directions};
 use hagfish_sim::{StepOptions, World};
 use hagfish_solver::SolvePath;
 use hagfish_tree::{BodySpec, Data, DofParams, JointKind, Model, ModelBuilder, State, Transform};
@@ -154,7 +154,7 @@ fn wall_row_stops_a_body_pushed_into_the_wall() {
         ..StepOptions::default()
     };
     let mut world = World::new(model, options, state).expect("world");
-    let mut push = ConstantForce(2, DVec3::new(-50.0, 0.0, 0.0));
+    let mut push = ConstantForce(2, DVec3::new(-50.0, 30.0, 0.0));
     let mut saw_wall = false;
     for _ in 0..100 {
         world.step(&mut push).expect("step");
@@ -181,4 +181,72 @@ fn centre_x(world: &World, body: usize) -> f64 {
         &mut data,
     );
     data.body_centre(body).x
+}
+
+/// A three-rod chain (rod 0 held, hinges at x = 1 and 2), bent (q₁ = −0.3, q₂ = 0.6) so that
+/// rod 2's sphere rests on a wall y = const below it (normal +y), pressed by 50 dyn and pushed
+/// along the wall (−x) by 10: frictionless the chain folds and rod 2 slides along the wall;
+/// with μ = 0.5 (limit 25 dyn) friction holds it, and each wall contact's impulse lies in the
+/// cone ‖λ_t‖ ≤ μλ_n (summed over its pyramid's edges). With μ = 0 the run is the frictionless
+/// one, bit for bit.
+#[test]
+fn wall_friction_holds_a_body_that_the_frictionless_wall_lets_slide() {
+    let (q1, q2) = (-0.3_f64, 0.6_f64);
+    let rest_y = q1.sin() + 0.5 * (q1 + q2).sin();
+    let run = |friction: Option<Friction>| {
+        let model = planar_chain(3, 3.0);
+        let mut state = State::rest(&model);
+        (state.q[1], state.q[2]) = (q1, q2);
+        let options = StepOptions {
+            self_contact: false,
+            wall: Some((DVec3::new(0.0, rest_y - 0.2, 0.0), DVec3::Y)),
+            wall_options: hagfish_geometry::WallOptions { margin: 0.1, first_body: 2 },
+            friction,
+            ..StepOptions::default()
+        };
+        let mut world = World::new(model, options, state).expect("world");
+        let mut push = ConstantForce(2, DVec3::new(-10.0, -50.0, 0.0));
+        let start = centre(&world, 2);
+        let mut worst_cone = 0.0_f64;
+        let mu = friction.map_or(0.0, |f| f.coefficient);
+        for _ in 0..100 {
+            world.step(&mut push).expect("step");
+            let data = world.data();
+            let mut directions = [DVec3::ZERO; MAX_FRICTION_EDGES];
+            let (mut normal, mut tangent, mut edge) = (0.0, DVec3::ZERO, 0);
+            for i in 0..data.rows.len() {
+                if data.rows.sources()[i].tag != RowGroup::Wall.tag() {
+                    continue;
+                }
+                let contact = &data.wall_contacts[data.rows.sources()[i].id];
+                let edges = contact_directions(contact.normal, DVec3::X, friction, &mut directions);
+                let impulse = data.solver.multipliers()[i] * directions[edge % edges];
+                edge += 1;
+                normal += impulse.dot(contact.normal);
+                tangent += impulse - impulse.dot(contact.normal) * contact.normal;
+            }
+            worst_cone = worst_cone.max(tangent.length() - mu * normal);
+        }
+        (centre(&world, 2) - start, world.state().clone(), worst_cone)
+    };
+    let (frictionless, plain, _) = run(None);
+    let (held, _, cone) = run(Some(Friction { coefficient: 0.5, edges: 8 }));
+    let (zero, zero_state, _) = run(Some(Friction { coefficient: 0.0, edges: 8 }));
+    println!("displacement of rod 2: frictionless {frictionless}, μ = 0.5 {held}");
+    assert!(frictionless.x < -0.2, "frictionless, rod 2 slides along the wall: {frictionless}");
+    assert!(held.x.abs() < 0.1 * frictionless.x.abs(), "friction holds it: {held}");
+    assert!(cone <= 1e-9, "a wall impulse outside the cone by {cone}");
+    assert_eq!(zero, frictionless);
+    assert_eq!(zero_state.q, plain.q, "μ = 0 is the frictionless run, bit for bit");
+}
+
+fn centre(world: &World, body: usize) -> DVec3 {
+    let mut data = Data::new(world.model());
+    hagfish_tree::forward_kinematics(
+        world.model(),
+        &world.state().q,
+        &world.state().qdot,
+        &mut data,
+    );
+    data.body_centre(body)
 }

@@ -1,0 +1,123 @@
+//! Friction at a contact (docs/physics.md, "Friction: the cone and its pyramid"): the rows of
+//! a contact push along the edges of its friction cone's inscribed pyramid instead of along
+//! the normal alone.
+//!
+//! With unit normal n̂ and tangents t̂₁ (the reference direction made normal to n̂) and
+//! t̂₂ = n̂ × t̂₁, edge k pushes along dₖ = n̂ + μ(cos θₖ t̂₁ + sin θₖ t̂₂), θₖ = 2πk/E: its row is
+//! the contact's normal row with n̂ replaced by dₖ and the same right-hand side (the tangent
+//! targets are 0, the surfaces being still). Its multiplier βₖ ≥ 0; the contact's impulse is
+//! λ_n = Σβₖ along n̂ and μΣβₖ(cos θₖ, sin θₖ) along the tangents, inside Coulomb's cone and
+//! short of it by at most 1 − cos(π/E).
+
+use glam::DVec3;
+use hagfish_solver::FrictionPyramid;
+use serde::{Deserialize, Serialize};
+
+use crate::error::SimError;
+
+/// Most edges of a pyramid (the directions of one contact live in a fixed array).
+pub const MAX_FRICTION_EDGES: usize = 16;
+
+/// Coulomb friction on the self contacts and the wall (static = kinetic).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Friction {
+    /// μ, finite and ≥ 0.
+    pub coefficient: f64,
+    /// Edges E of the inscribed pyramid, 3 ≤ E ≤ [`MAX_FRICTION_EDGES`] (default 8: the
+    /// friction limit within 7.6 % of Coulomb's in every direction).
+    #[serde(default = "default_edges")]
+    pub edges: usize,
+}
+
+fn default_edges() -> usize {
+    8
+}
+
+impl Friction {
+    /// Checks μ and the number of edges.
+    pub fn validate(&self) -> Result<(), SimError> {
+        let mu = self.coefficient;
+        if !(mu.is_finite() && mu >= 0.0) {
+            let expected = "finite and ≥ 0";
+            return Err(SimError::InvalidOption {
+                name: "friction.coefficient",
+                value: mu,
+                expected,
+            });
+        }
+        if !(3..=MAX_FRICTION_EDGES).contains(&self.edges) {
+            let (name, value) = ("friction.edges", self.edges as f64);
+            return Err(SimError::InvalidOption { name, value, expected: "3 to 16" });
+        }
+        Ok(())
+    }
+}
+
+/// The directions along which a contact's rows push, into `out`; returns how many: n̂ alone
+/// without friction (`None` or μ = 0, so that such runs are the frictionless ones bit for
+/// bit), else the pyramid's E edges about n̂ with t̂₁ from `reference` (any direction not
+/// along n̂; another is taken if it is).
+pub fn contact_directions(
+    normal: DVec3,
+    reference: DVec3,
+    friction: Option<Friction>,
+    out: &mut [DVec3; MAX_FRICTION_EDGES],
+) -> usize {
+    let Some(friction) = friction.filter(|f| f.coefficient > 0.0) else {
+        out[0] = normal;
+        return 1;
+    };
+    let first = (reference - normal * reference.dot(normal))
+        .try_normalize()
+        .unwrap_or_else(|| normal.any_orthonormal_vector());
+    let second = normal.cross(first);
+    let pyramid = FrictionPyramid {
+        coefficient: friction.coefficient,
+        edges: friction.edges,
+        first_angle: 0.0,
+    };
+    for (k, direction) in out.iter_mut().enumerate().take(friction.edges) {
+        let (c, s) = pyramid.direction(k);
+        *direction = normal + friction.coefficient * (c * first + s * second);
+    }
+    friction.edges
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_edges_tilt_the_normal_by_mu_around_it() {
+        let mut out = [DVec3::ZERO; MAX_FRICTION_EDGES];
+        let n = DVec3::Z;
+        assert_eq!(contact_directions(n, DVec3::X, None, &mut out), 1);
+        assert_eq!(out[0], n);
+        let off = Friction { coefficient: 0.0, edges: 8 };
+        assert_eq!(contact_directions(n, DVec3::X, Some(off), &mut out), 1);
+        let friction = Friction { coefficient: 0.3, edges: 8 };
+        assert_eq!(contact_directions(n, DVec3::new(1.0, 0.0, 0.4), Some(friction), &mut out), 8);
+        for d in &out[..8] {
+            assert!((d.dot(n) - 1.0).abs() < 1e-15, "the normal part is n̂");
+            assert!(((*d - n).length() - 0.3).abs() < 1e-15, "the tangential part is μ");
+        }
+        assert!((out[0] - (n + 0.3 * DVec3::X)).length() < 1e-15, "the first edge along t̂₁");
+        // A reference along the normal still gives a tangent frame.
+        assert_eq!(contact_directions(n, n, Some(friction), &mut out), 8);
+        assert!(out[..8].iter().all(|d| ((*d - n).length() - 0.3).abs() < 1e-15));
+    }
+
+    #[test]
+    fn bad_friction_is_refused_with_its_field() {
+        for (friction, name) in [
+            (Friction { coefficient: -0.1, edges: 8 }, "friction.coefficient"),
+            (Friction { coefficient: f64::NAN, edges: 8 }, "friction.coefficient"),
+            (Friction { coefficient: 0.1, edges: 2 }, "friction.edges"),
+            (Friction { coefficient: 0.1, edges: 17 }, "friction.edges"),
+        ] {
+            let refused = friction.validate();
+            assert!(matches!(refused, Err(SimError::InvalidOption { name: n, .. }) if n == name));
+        }
+    }
+}
