@@ -161,14 +161,7 @@ pub(crate) fn evaluate(
                 (0.0, dual, (l * (v + sigma)).abs() + (sigma * (weight - l)).abs())
             }
         };
-        let r = &mut out.residuals;
-        r.primal = r.primal.max(primal);
-        r.dual = r.dual.max(dual);
-        r.complementarity = r.complementarity.max(complementarity);
-        worst = worst
-            .max(primal / s)
-            .max(dual / lambda_scale)
-            .max(complementarity / (s * lambda_scale));
+        worst = worst.max(out.residuals.include((primal, dual, complementarity), s, lambda_scale));
         if l.abs() > acceptance * lambda_scale {
             out.active_per_tag[source.tag] += 1;
         }
@@ -176,17 +169,27 @@ pub(crate) fn evaluate(
     for contact in friction_contacts(rows.kinds()) {
         let (primal, dual, complementarity) = cone_residuals(&contact, lambda, row_residuals);
         let s = contact.rows().map(|i| row_residuals[i].1).fold(0.0, f64::max);
-        let r = &mut out.residuals;
-        r.primal = r.primal.max(primal);
-        r.dual = r.dual.max(dual);
-        r.complementarity = r.complementarity.max(complementarity);
-        worst = worst
-            .max(primal / s)
-            .max(dual / lambda_scale)
-            .max(complementarity / (s * lambda_scale));
+        worst = worst.max(out.residuals.include((primal, dual, complementarity), s, lambda_scale));
     }
     out.residuals.worst_relative = worst;
     out
+}
+
+impl Residuals {
+    /// Takes one row's (or one friction contact's) primal, dual and complementarity
+    /// residuals into the maxima, and returns their worst relative value: primal over the
+    /// row's scale `s`, dual over 1 + ‖λ‖∞ (`lambda_scale`), complementarity over both.
+    fn include(
+        &mut self,
+        (primal, dual, complementarity): (f64, f64, f64),
+        s: f64,
+        lambda_scale: f64,
+    ) -> f64 {
+        self.primal = self.primal.max(primal);
+        self.dual = self.dual.max(dual);
+        self.complementarity = self.complementarity.max(complementarity);
+        (primal / s).max(dual / lambda_scale).max(complementarity / (s * lambda_scale))
+    }
 }
 
 /// True when row `i` of `kinds` is a friction cone's normal row (a friction row naming it

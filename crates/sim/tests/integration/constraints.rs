@@ -166,21 +166,10 @@ fn wall_row_stops_a_body_pushed_into_the_wall() {
             assert!(lambda >= 0.0);
             saw_wall |= lambda > 0.0;
         }
-        let x = centre_x(&world, 2);
+        let x = centre(&world, 2).x;
         assert!(x > 0.2 * (1.0 - 0.02), "body 2 entered the wall: centre x = {x}");
     }
     assert!(saw_wall, "the wall never pushed");
-}
-
-fn centre_x(world: &World, body: usize) -> f64 {
-    let mut data = Data::new(world.model());
-    hagfish_tree::forward_kinematics(
-        world.model(),
-        &world.state().q,
-        &world.state().qdot,
-        &mut data,
-    );
-    data.body_centre(body).x
 }
 
 /// A three-rod chain (rod 0 held, hinges at x = 1 and 2), bent (q₁ = −0.3, q₂ = 0.6) so that
