@@ -57,6 +57,7 @@ mod detector;
 mod error;
 mod narrow_phase;
 mod nearby;
+mod obstacle;
 mod pair_queue;
 mod sampled_segment;
 mod seeds;
@@ -76,6 +77,7 @@ pub use narrow_phase::{
     closest_points_within,
 };
 pub use nearby::{NearbyClosestPoints, closest_points_near};
+pub use obstacle::Obstacle;
 pub use segment::Segment;
 pub use wall::{Wall, WallContact, WallOptions};
 pub use weights::SplineWeights;

@@ -10,14 +10,14 @@ use glam::DVec3;
 use crate::centreline::Centreline;
 use crate::error::GeometryError;
 
-/// One body near or inside the wall.
+/// One body near or inside the wall (or an obstacle, `obstacle.rs`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WallContact {
     /// Body index k.
     pub body: usize,
     /// Signed gap d = n_w·(c_k − p_w) − r_k (cm); negative when the body penetrates.
     pub gap: f64,
-    /// The wall's unit normal n_w (pointing to the body side).
+    /// The unit normal n_w of the surface at the body (pointing to the body side).
     pub normal: DVec3,
 }
 

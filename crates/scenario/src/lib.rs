@@ -30,6 +30,7 @@ mod initial_shape;
 mod knot_plan_file;
 mod knot_template_file;
 mod modal_space;
+mod obstacles;
 mod override_value;
 mod overrides;
 mod parameters;
@@ -42,6 +43,7 @@ mod scenario_check;
 
 pub use error::{ECHO_HEAD, ECHO_TAIL, ScenarioError, echo};
 pub use initial_shape::{InitialShape, OpenTorusKnot};
+pub use obstacles::ObstacleSpec;
 pub use overrides::{Override, apply_overrides};
 pub use parameters::{PARAMETERS, Parameter};
 pub use polyline_shape::PolylineShape;

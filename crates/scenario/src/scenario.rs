@@ -21,6 +21,8 @@ use hagfish_tree::{Model, State};
 use serde::{Deserialize, Serialize};
 
 use hagfish_sim::rows::Friction;
+
+use crate::obstacles::ObstacleSpec;
 use hagfish_sim::{DynamicsBackend, StepAcceptance, StepOptions, World, fnv1a64};
 
 use crate::error::ScenarioError;
@@ -88,6 +90,10 @@ pub struct Scenario {
     /// `None` (default): frictionless, as the thesis.
     #[serde(default)]
     pub friction: Option<Friction>,
+    /// Rigid obstacles the body touches as it touches the wall (docs/physics.md,
+    /// "Obstacles"; default none).
+    #[serde(default)]
+    pub obstacles: Vec<ObstacleSpec>,
 }
 
 /// The smallest time step a scenario may ask for (s): below it a run cannot make progress in
@@ -245,8 +251,12 @@ impl LoadedScenario {
         if let Some(shape) = &self.scenario.initial_shape {
             state.q = shape.pose(&model, self.body.length_cm());
         }
+        let obstacles = (self.scenario.obstacles.iter().map(ObstacleSpec::to_obstacle))
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(|source| hagfish_sim::SimError::Geometry { step: 0, time: 0.0, source })?;
         let options = StepOptions {
             time_step: self.scenario.time_step_s,
+            obstacles,
             backend: self.scenario.backend,
             acceptance: self.scenario.acceptance,
             friction: self.scenario.friction,

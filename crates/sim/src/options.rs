@@ -1,7 +1,7 @@
 //! Options of the step: time step, constraint stabilisation, margins, contact and wall set-up.
 
 use glam::DVec3;
-use hagfish_geometry::{DetectorOptions, WallOptions};
+use hagfish_geometry::{DetectorOptions, Obstacle, WallOptions};
 use hagfish_solver::SolverOptions;
 use hagfish_tree::Model;
 
@@ -79,6 +79,10 @@ pub struct StepOptions {
     /// pyramid of the friction cone (docs/physics.md, "Friction: the cone and its pyramid");
     /// `None` (default) or μ = 0: frictionless, as the thesis.
     pub friction: Option<Friction>,
+    /// Rigid obstacles (planes, spheres, cylinders) the bodies touch as they touch the wall:
+    /// their contacts join the wall's (`StepData::wall_contacts`), with the wall's margin,
+    /// rows, friction and acceptance bound (docs/physics.md, "Obstacles"). Default none.
+    pub obstacles: Vec<Obstacle>,
 }
 
 impl Default for StepOptions {
@@ -99,6 +103,7 @@ impl Default for StepOptions {
             contact_prediction: Some(0.001),
             acceptance: StepAcceptance::default(),
             friction: None,
+            obstacles: Vec::new(),
         }
     }
 }

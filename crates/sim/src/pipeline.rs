@@ -42,7 +42,7 @@ pub fn kinematics(model: &Model, state: &State, data: &mut StepData) {
     hagfish_tree::forward_kinematics(model, &state.q, &state.qdot, &mut data.tree);
 }
 
-/// Stage 2: centreline through the body centres, self contacts and wall contacts; returns
+/// Stage 2: centreline through the body centres, self contacts and wall and obstacle contacts; returns
 /// the self-contact detection's counts.
 pub fn detect_contacts(
     model: &Model,
@@ -63,6 +63,10 @@ pub fn detect_contacts(
     data.wall_contacts.clear();
     if let Some(wall) = &data.wall {
         wall.contacts(&data.centreline, &mut data.wall_contacts);
+    }
+    let margin = options.wall_options.margin;
+    for obstacle in &options.obstacles {
+        obstacle.contacts(&data.centreline, margin, &mut data.wall_contacts);
     }
     Ok(detection)
 }

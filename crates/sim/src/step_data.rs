@@ -60,7 +60,7 @@ pub struct StepData {
     pub centreline: Centreline,
     /// Self contacts, sorted head to tail by the anterior parameter (stage `detect_contacts`).
     pub self_contacts: Vec<SelfContact>,
-    /// Bodies touching the wall (stage `detect_contacts`).
+    /// Bodies touching the wall or an obstacle (stage `detect_contacts`).
     pub wall_contacts: Vec<WallContact>,
     /// What the controller asked for this step (stage `control`).
     pub actuation: Actuation,

@@ -239,3 +239,42 @@ fn centre(world: &World, body: usize) -> DVec3 {
     );
     data.body_centre(body)
 }
+
+/// Rod 2 of a straight chain pushed down (−y, 50 dyn) onto an obstacle just below it — a
+/// plane, a sphere, an infinite and a finite cylinder across the chain — is stopped by it: its
+/// sphere never sinks more than 2 % of its radius into the obstacle, and the obstacle pushes.
+#[test]
+fn obstacles_stop_a_body_pushed_into_them() {
+    use hagfish_geometry::Obstacle;
+    let below = DVec3::new(2.5, -0.25, 0.0); // rod 2's centre is (2.5, 0, 0), radius 0.2
+    let obstacles = [
+        Obstacle::plane(below, DVec3::Y),
+        Obstacle::sphere(below - DVec3::new(0.0, 1.0, 0.0), 1.0),
+        Obstacle::cylinder(below - DVec3::new(0.0, 0.5, 0.0), DVec3::Z, 0.5, None),
+        Obstacle::cylinder(below - DVec3::new(0.0, 0.5, 0.0), DVec3::Z, 0.5, Some(0.3)),
+    ];
+    for obstacle in obstacles {
+        let obstacle = obstacle.expect("a valid obstacle");
+        let model = planar_chain(3, 3.0);
+        let state = State::rest(&model);
+        let options = StepOptions {
+            self_contact: false,
+            wall: None,
+            obstacles: vec![obstacle],
+            ..StepOptions::default()
+        };
+        let mut world = World::new(model, options, state).expect("world");
+        let mut push = ConstantForce(2, DVec3::new(0.0, -50.0, 0.0));
+        let mut pushed = false;
+        for _ in 0..100 {
+            world.step(&mut push).expect("step");
+            let data = world.data();
+            for (i, source) in data.rows.sources().iter().enumerate() {
+                pushed |= source.tag == RowGroup::Wall.tag() && data.solver.multipliers()[i] > 0.0;
+            }
+            let (distance, _) = obstacle.distance(centre(&world, 2));
+            assert!(distance - 0.2 > -0.02 * 0.2, "{obstacle:?}: rod 2 sank {}", 0.2 - distance);
+        }
+        assert!(pushed, "{obstacle:?} never pushed");
+    }
+}

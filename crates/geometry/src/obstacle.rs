@@ -1,0 +1,188 @@
+//! Rigid obstacles: planes, spheres and cylinders posed in space, touched by the body as the
+//! wall is, each body a sphere of its radius at its centre.
+//!
+//! For a body centre c the obstacle gives the signed distance d(c) from its surface (positive
+//! outside) and the outward unit normal n(c) at the nearest surface point; the contact record
+//! is the wall's, gap d(c) − r_k and normal n(c), so the wall's rows (and their friction) serve
+//! every obstacle:
+//! - plane through p with normal n: d = n·(c − p);
+//! - sphere of centre C and radius R: d = |c − C| − R, n = (c − C)/|c − C|;
+//! - cylinder of axis point P, unit axis a and radius R, infinite or of half-length H about P:
+//!   with c − P = s a + ρ (ρ ⊥ a), d = |ρ| − R and n = ρ/|ρ| on the mantle; past a cap
+//!   (|s| > H) d = |s| − H with n = sign(s) a over the cap's disc (|ρ| ≤ R), and beyond its rim
+//!   the distance to the rim circle.
+
+use glam::DVec3;
+
+use crate::centreline::Centreline;
+use crate::error::GeometryError;
+use crate::wall::WallContact;
+
+/// A rigid obstacle (module docs). Built by [`Obstacle::plane`], [`Obstacle::sphere`] or
+/// [`Obstacle::cylinder`], which check their numbers.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Obstacle {
+    /// The half-space behind a plane.
+    Plane {
+        /// A point of the plane (cm).
+        point: DVec3,
+        /// Unit normal toward the free side.
+        normal: DVec3,
+    },
+    /// A solid sphere.
+    Sphere {
+        /// Centre (cm).
+        centre: DVec3,
+        /// Radius (cm).
+        radius: f64,
+    },
+    /// A solid circular cylinder.
+    Cylinder {
+        /// A point of the axis, the middle of a finite cylinder (cm).
+        point: DVec3,
+        /// Unit axis.
+        axis: DVec3,
+        /// Radius (cm).
+        radius: f64,
+        /// Half of the length (cm), `None` for an infinite cylinder.
+        half_length: Option<f64>,
+    },
+}
+
+impl Obstacle {
+    /// The plane through `point` with normal `normal` (normalised here) toward the free side.
+    pub fn plane(point: DVec3, normal: DVec3) -> Result<Self, GeometryError> {
+        Ok(Obstacle::Plane { point: finite_point(point)?, normal: unit(normal, "plane normal")? })
+    }
+
+    /// The sphere of centre `centre` and radius `radius` (> 0).
+    pub fn sphere(centre: DVec3, radius: f64) -> Result<Self, GeometryError> {
+        Ok(Obstacle::Sphere { centre: finite_point(centre)?, radius: positive(radius, "radius")? })
+    }
+
+    /// The cylinder about the axis through `point` along `axis` (normalised here) of radius
+    /// `radius` (> 0), infinite or of half-length `half_length` (> 0).
+    pub fn cylinder(
+        point: DVec3,
+        axis: DVec3,
+        radius: f64,
+        half_length: Option<f64>,
+    ) -> Result<Self, GeometryError> {
+        let half_length = half_length.map(|h| positive(h, "half length")).transpose()?;
+        Ok(Obstacle::Cylinder {
+            point: finite_point(point)?,
+            axis: unit(axis, "cylinder axis")?,
+            radius: positive(radius, "radius")?,
+            half_length,
+        })
+    }
+
+    /// The signed distance of `c` from the surface (cm, negative inside) and the outward unit
+    /// normal at the nearest surface point (module docs).
+    pub fn distance(&self, c: DVec3) -> (f64, DVec3) {
+        match *self {
+            Obstacle::Plane { point, normal } => (normal.dot(c - point), normal),
+            Obstacle::Sphere { centre, radius } => {
+                let v = c - centre;
+                (v.length() - radius, v.try_normalize().unwrap_or(DVec3::Z))
+            }
+            Obstacle::Cylinder { point, axis, radius, half_length } => {
+                let v = c - point;
+                let along = v.dot(axis);
+                let radial = v - along * axis;
+                let out = radial.try_normalize().unwrap_or_else(|| axis.any_orthonormal_vector());
+                let beyond = half_length.map_or(0.0, |h| along.abs() - h);
+                if beyond <= 0.0 {
+                    return (radial.length() - radius, out);
+                }
+                let cap = along.signum() * axis;
+                if radial.length() <= radius {
+                    return (beyond, cap);
+                }
+                let rim = point + (along - along.signum() * beyond) * axis + radius * out;
+                let to_rim = c - rim;
+                (to_rim.length(), to_rim.try_normalize().unwrap_or(cap))
+            }
+        }
+    }
+
+    /// Appends to `out` a contact record for every body of `centreline` whose sphere lies
+    /// within `margin` of the obstacle: gap d(c_k) − r_k and normal n(c_k), in body order.
+    pub fn contacts(&self, centreline: &Centreline, margin: f64, out: &mut Vec<WallContact>) {
+        let bodies = centreline.centres().iter().zip(centreline.radii()).enumerate();
+        for (body, (&centre, &radius)) in bodies {
+            let (distance, normal) = self.distance(centre);
+            let gap = distance - radius;
+            if gap < margin {
+                out.push(WallContact { body, gap, normal });
+            }
+        }
+    }
+}
+
+fn finite_point(point: DVec3) -> Result<DVec3, GeometryError> {
+    GeometryError::require_option(point.is_finite(), "obstacle point", "finite", point.length())?;
+    Ok(point)
+}
+
+fn unit(v: DVec3, name: &'static str) -> Result<DVec3, GeometryError> {
+    v.try_normalize().ok_or(GeometryError::InvalidOption {
+        name,
+        requirement: "finite and non-zero",
+        value: v.length(),
+    })
+}
+
+fn positive(value: f64, name: &'static str) -> Result<f64, GeometryError> {
+    GeometryError::require_option(value.is_finite() && value > 0.0, name, "finite and > 0", value)?;
+    Ok(value)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn distances_and_normals_of_each_shape() {
+        let plane =
+            Obstacle::plane(DVec3::new(0.0, -1.0, 0.0), DVec3::new(0.0, 2.0, 0.0)).expect("plane");
+        assert_eq!(plane.distance(DVec3::new(5.0, 1.0, 3.0)), (2.0, DVec3::Y));
+        let sphere = Obstacle::sphere(DVec3::ZERO, 2.0).expect("sphere");
+        let (d, n) = sphere.distance(DVec3::new(0.0, 0.0, 3.0));
+        assert!((d - 1.0).abs() < 1e-15 && n == DVec3::Z);
+        let infinite = Obstacle::cylinder(DVec3::ZERO, DVec3::Z, 1.0, None).expect("cylinder");
+        let (d, n) = infinite.distance(DVec3::new(3.0, 0.0, 100.0));
+        assert!((d - 2.0).abs() < 1e-15 && (n - DVec3::X).length() < 1e-15);
+        let finite = Obstacle::cylinder(DVec3::ZERO, DVec3::Z, 1.0, Some(2.0)).expect("cylinder");
+        // Mantle, cap, rim.
+        let (d, n) = finite.distance(DVec3::new(0.0, 1.5, 1.0));
+        assert!((d - 0.5).abs() < 1e-15 && (n - DVec3::Y).length() < 1e-15);
+        let (d, n) = finite.distance(DVec3::new(0.5, 0.0, -3.0));
+        assert!((d - 1.0).abs() < 1e-15 && n == -DVec3::Z);
+        let (d, n) = finite.distance(DVec3::new(4.0, 0.0, 6.0));
+        assert!((d - 5.0).abs() < 1e-14 && (n - DVec3::new(0.6, 0.0, 0.8)).length() < 1e-14);
+        // Inside: negative.
+        assert!(finite.distance(DVec3::new(0.2, 0.0, 0.5)).0 < 0.0);
+    }
+
+    #[test]
+    fn bodies_within_the_margin_are_reported_in_order() {
+        let centres: Vec<DVec3> = (0..6).map(|k| DVec3::new(f64::from(k), 0.0, 0.0)).collect();
+        let line = Centreline::new(&centres, &[0.2; 6]).expect("a centreline");
+        let sphere = Obstacle::sphere(DVec3::new(3.0, 0.7, 0.0), 0.5).expect("sphere");
+        let mut out = Vec::new();
+        sphere.contacts(&line, 0.05, &mut out);
+        let bodies: Vec<_> = out.iter().map(|c| c.body).collect();
+        assert_eq!(bodies, vec![3]);
+        assert!((out[0].gap - 0.0).abs() < 1e-15 && (out[0].normal + DVec3::Y).length() < 1e-15);
+    }
+
+    #[test]
+    fn bad_obstacles_are_refused() {
+        assert!(Obstacle::plane(DVec3::ZERO, DVec3::ZERO).is_err());
+        assert!(Obstacle::sphere(DVec3::ZERO, 0.0).is_err());
+        assert!(Obstacle::sphere(DVec3::splat(f64::NAN), 1.0).is_err());
+        assert!(Obstacle::cylinder(DVec3::ZERO, DVec3::X, 1.0, Some(-1.0)).is_err());
+        assert!(Obstacle::cylinder(DVec3::ZERO, DVec3::ZERO, 1.0, None).is_err());
+    }
+}
