@@ -81,6 +81,15 @@ pub enum ScenarioError {
         /// The failed check.
         source: Box<ScenarioError>,
     },
+    /// An obstacle of the scenario's `obstacles` list has a bad number (a zero normal or
+    /// axis, a radius or half-length not > 0, a point not finite).
+    #[error("obstacles[{index}]: {source}")]
+    Obstacle {
+        /// Its position in the list, from 0.
+        index: usize,
+        /// What is wrong.
+        source: hagfish_geometry::GeometryError,
+    },
     /// Building the scenario's world, or stepping it (`LoadedScenario::build_at`), failed.
     #[error(transparent)]
     Sim(#[from] SimError),

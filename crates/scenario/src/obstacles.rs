@@ -5,7 +5,8 @@ use hagfish_geometry::{GeometryError, Obstacle};
 use serde::{Deserialize, Serialize};
 
 /// One obstacle of a scenario's `obstacles` list, e.g.
-/// `Cylinder(point: [10.0, -3.0, 0.0], axis: [0.0, 0.0, 1.0], radius: 2.0)`.
+/// `Cylinder(point: (10.0, -3.0, 0.0), axis: (0.0, 0.0, 1.0), radius: 2.0)` (points and
+/// directions are RON tuples).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub enum ObstacleSpec {
@@ -48,5 +49,25 @@ impl ObstacleSpec {
                 Obstacle::cylinder(point.into(), axis.into(), radius, half_length)
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn specs_become_their_obstacles_and_bad_numbers_are_refused() {
+        let cylinder: ObstacleSpec =
+            ron::from_str("Cylinder(point: (1.0, 2.0, 3.0), axis: (0.0, 0.0, 2.0), radius: 0.5)")
+                .expect("a cylinder");
+        let Ok(Obstacle::Cylinder { axis, half_length: None, .. }) = cylinder.to_obstacle() else {
+            panic!("an infinite cylinder: {cylinder:?}")
+        };
+        assert_eq!(axis, glam::DVec3::Z, "the axis is normalised");
+        let plane = ObstacleSpec::Plane { point: [0.0; 3], normal: [0.0; 3] };
+        assert!(plane.to_obstacle().is_err(), "a zero normal");
+        let sphere = ObstacleSpec::Sphere { centre: [0.0; 3], radius: -1.0 };
+        assert!(sphere.to_obstacle().is_err(), "a negative radius");
     }
 }

@@ -251,9 +251,11 @@ impl LoadedScenario {
         if let Some(shape) = &self.scenario.initial_shape {
             state.q = shape.pose(&model, self.body.length_cm());
         }
-        let obstacles = (self.scenario.obstacles.iter().map(ObstacleSpec::to_obstacle))
-            .collect::<Result<Vec<_>, _>>()
-            .map_err(|source| hagfish_sim::SimError::Geometry { step: 0, time: 0.0, source })?;
+        let obstacles = (self.scenario.obstacles.iter().enumerate())
+            .map(|(index, spec)| {
+                spec.to_obstacle().map_err(|source| ScenarioError::Obstacle { index, source })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
         let options = StepOptions {
             time_step: self.scenario.time_step_s,
             obstacles,
