@@ -7,7 +7,9 @@
 //!   SIGKILL arrives), frame counts that agree across files (up to that frame) and cover the
 //!   checkpoint, and resumed from there it again ends bit for bit as the straight run;
 //! - stopped by SIGTERM, it ends after a frame with exit code 130, status `interrupted`, and
-//!   resumes bit for bit.
+//!   resumes bit for bit;
+//! - `thesis.ron` with friction and an obstacle, stopped after frame 120 and resumed, gives the
+//!   straight run's bytes.
 
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
@@ -207,4 +209,34 @@ fn sigterm_stops_after_a_frame_with_a_resumable_run() {
 
     resume(&dir);
     assert_same_as_straight(&dir);
+}
+
+#[test]
+fn a_run_with_friction_and_an_obstacle_resumes_bit_for_bit() {
+    let scenario = format!("{ROOT}/data/scenarios/thesis.ron");
+    let sets = [
+        "--set",
+        "friction=Some((coefficient: 0.1))",
+        "--set",
+        "obstacles=[Sphere(centre: (20.0, -3.0, 0.0), radius: 1.5)]",
+    ];
+    let run = |name: &str, extra: &[&str]| {
+        let dir = fresh_dir(name);
+        let out = dir.to_string_lossy().into_owned();
+        let mut args = vec!["run", &scenario, "--quiet", "--out", &out];
+        args.extend(sets);
+        args.extend(extra);
+        let output = run_hagfish(args);
+        assert!(output.status.success(), "{}", code_and_stderr(&output).1);
+        dir
+    };
+    let straight = run("friction_straight", &[]);
+    let stopped = run("friction_stopped", &["--stop-after-frames", "120"]);
+    assert_eq!(manifest(&stopped)["status"], "interrupted");
+    resume(&stopped);
+    for file in ["metrics.csv", "centreline.csv", "contacts.csv", "q.npy"] {
+        let (a, b) = (std::fs::read(straight.join(file)), std::fs::read(stopped.join(file)));
+        assert!(a.expect(file) == b.expect(file), "{file} differs after the resume");
+    }
+    assert_eq!(manifest(&straight)["final_state_hash"], manifest(&stopped)["final_state_hash"]);
 }
