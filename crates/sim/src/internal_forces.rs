@@ -15,7 +15,9 @@ use hagfish_geometry::SplineWeights;
 use hagfish_tree::{Model, Spatial, State};
 
 use crate::options::StepOptions;
-use crate::rows::{Friction, MAX_FRICTION_EDGES, contact_directions, thigmo_strands};
+use crate::rows::{
+    Friction, MAX_FRICTION_EDGES, contact_directions, thigmo_strands, wall_contact_offset,
+};
 use crate::step_data::StepData;
 
 /// The internal load at one joint: the force (dyn) and moment (dyn·cm) that the part of the
@@ -121,8 +123,8 @@ fn collect_row_wrenches(data: &mut StepData, h: f64, friction: Option<Friction>)
     let (contacts, requests) = (&data.self_contacts, &data.actuation.thigmo);
     let multipliers = data.solver.multipliers();
     let mut directions = [DVec3::ZERO; MAX_FRICTION_EDGES];
-    // The contact whose rows are being read and the index of the next one among them.
-    let (mut current, mut edge) = (None, 0);
+    // The contact whose rows are being read, its number of edges, and the row's among them.
+    let (mut current, mut edges, mut edge) = (None, 1, 0);
     for (source, &lambda) in data.rows.sources().iter().zip(multipliers) {
         let force = lambda / h;
         let group = RowGroup::of(source.tag);
@@ -135,11 +137,9 @@ fn collect_row_wrenches(data: &mut StepData, h: f64, friction: Option<Friction>)
             Some(RowGroup::Wall) => {
                 if let Some(c) = data.wall_contacts.get(source.id) {
                     if edge == 0 {
-                        contact_directions(c.normal, DVec3::X, friction, &mut directions);
+                        edges = contact_directions(c.normal, DVec3::X, friction, &mut directions);
                     }
-                    let edges = friction.filter(|f| f.coefficient > 0.0).map_or(1, |f| f.edges);
-                    let offset =
-                        if edges == 1 { DVec3::ZERO } else { -data.radii[c.body] * c.normal };
+                    let offset = wall_contact_offset(edges, data.radii[c.body], c.normal);
                     let along = (directions[edge.min(edges - 1)], offset);
                     push(&SplineWeights::single(c.body), 1.0, along, force);
                 }
@@ -147,9 +147,10 @@ fn collect_row_wrenches(data: &mut StepData, h: f64, friction: Option<Friction>)
             Some(RowGroup::Contact) => {
                 if let Some(c) = contacts.get(source.id) {
                     if edge == 0 {
-                        contact_directions(c.normal, c.tangent_a, friction, &mut directions);
+                        edges =
+                            contact_directions(c.normal, c.tangent_a, friction, &mut directions);
                     }
-                    let along = (directions[edge.min(MAX_FRICTION_EDGES - 1)], DVec3::ZERO);
+                    let along = (directions[edge.min(edges - 1)], DVec3::ZERO);
                     push(&c.weights_b, 1.0, along, force);
                     push(&c.weights_a, -1.0, along, force);
                 }

@@ -84,6 +84,13 @@ pub fn contact_directions(
     friction.edges
 }
 
+/// Where a wall (or obstacle) contact's rows act, as an offset from the body's centre: the
+/// centre itself along the normal alone (`edges` = 1; the rows as they were without friction),
+/// else the contact point c − r n̂, whose tangential velocity the body's spin moves.
+pub fn wall_contact_offset(edges: usize, radius: f64, normal: DVec3) -> DVec3 {
+    if edges == 1 { DVec3::ZERO } else { -radius * normal }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

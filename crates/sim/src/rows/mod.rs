@@ -11,7 +11,7 @@ mod stabilisation;
 mod thigmo;
 mod wall;
 
-pub use friction::{Friction, MAX_FRICTION_EDGES, contact_directions};
+pub use friction::{Friction, MAX_FRICTION_EDGES, contact_directions, wall_contact_offset};
 pub use group::RowGroup;
 pub use head::add_head_rows;
 pub use limits::{add_limit_rows, add_overshooting_limit_rows, overshoots_limit};

@@ -11,7 +11,7 @@ use hagfish_tree::jacobian::add_point_row;
 use hagfish_tree::{Data, Model};
 
 use super::RowGroup;
-use super::friction::{Friction, MAX_FRICTION_EDGES, contact_directions};
+use super::friction::{Friction, MAX_FRICTION_EDGES, contact_directions, wall_contact_offset};
 use super::stabilisation::push_unilateral_row;
 
 /// Appends the rows of each wall contact, id its index in `contacts`: one along the normal, or
@@ -27,8 +27,9 @@ pub fn add_wall_rows(
     for (i, contact) in contacts.iter().enumerate() {
         let centre = data.body_centre(contact.body);
         let edges = contact_directions(contact.normal, DVec3::X, friction, &mut directions);
-        // Without friction the centre (the row as it always was); with it the contact point.
-        let point = if edges == 1 { centre } else { centre - radii[contact.body] * contact.normal };
+        let offset = wall_contact_offset(edges, radii[contact.body], contact.normal);
+        // The centre itself, bit for bit, where there is no offset.
+        let point = if edges == 1 { centre } else { centre + offset };
         for &direction in &directions[..edges] {
             let row =
                 push_unilateral_row(rows, RowGroup::Wall, i, contact.gap, time_step, push_out);
