@@ -24,8 +24,11 @@
 //!   by `HARRIS` to find the step, then the blocking row with the largest |z_p| among those
 //!   reached, which keeps the new pivot large; rows overshooting by less than the relaxation
 //!   are clamped). The blocked row leaves F and i takes its place, so F stays independent and
-//!   φ strictly falls (no cycling between near-parallel rows). Should i still be dependent
-//!   after the swap (rounding in z) the step is undone and i skipped. If λᵢ's own other bound
+//!   φ strictly falls (no cycling between near-parallel rows). The new pivot is
+//!   z_p²·(pivot of c_p against the rest of F): it may be tiny against W_ii (rows of sizes
+//!   100 apart, z_p = 5.5e-5 gave 8e-14·W_ii, and the true multipliers were 5e7) and is
+//!   accepted when it matches that product to `AGREEMENT`. Should i still be dependent after
+//!   the swap (z_p rounding noise) the step is undone and i skipped. If λᵢ's own other bound
 //!   (a soft weight) comes first, it moves there.
 //! - Nothing blocks (exact dependence, every inequality z_p ≤ 0): φ is unbounded below and d
 //!   is a Farkas ray (Σ dⱼcⱼ ≈ 0, dᵀb = s·ρ > 0, d ≥ 0 on inequalities), so the hard rows are
@@ -45,6 +48,10 @@ const CONSISTENCY: f64 = 1e-9;
 
 /// Harris relaxation of the bounds in the ratio test, relative to 1 + max_p |λ_p|.
 const HARRIS: f64 = 1e-12;
+
+/// A swapped-in row's pivot that is small against W_rr is real when it agrees with
+/// z_p²·(pivot of c_p against the rest) to this relative tolerance.
+const AGREEMENT: f64 = 0.1;
 
 /// A Farkas ray must exclude every q̇ up to this many times the current ‖q̇‖_M.
 const RADIUS: f64 = 1e3;
@@ -203,11 +210,16 @@ impl ActiveSet {
             lambda[i] = (lambda[i] - s * step * zp).clamp(self.lower[i], self.upper[i]);
         }
         let version = self.version;
+        let zp = self.z[position];
         let blocked = self.free.remove(position);
         self.version += 1;
-        // The span of c_F is unchanged; the new pivot z_p²·dist²(c_p, rest) only has to be
-        // clear of rounding.
-        if self.try_join(w, row, ROUNDING) == Join::Joined {
+        // The span of c_F is unchanged and c_row = z_p c_p + (rows of the rest), so the new
+        // pivot is z_p²·(the pivot of c_p against the rest): real when clear of rounding, or
+        // when it matches that product (a z_p of rounding noise leaves a pivot that does not).
+        let expected = zp * zp * self.free.border(w, blocked, &mut self.border);
+        let pivot = self.free.border(w, row, &mut self.border);
+        if pivot > ROUNDING * w[(row, row)] || (pivot - expected).abs() <= AGREEMENT * expected {
+            self.join(row, pivot);
             self.fix(lambda, blocked, side);
             return;
         }
