@@ -75,6 +75,8 @@ def joint_axes(kind):
         return [[0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
     if kind == "fixed":
         return []
+    if kind == "translation":
+        raise ValueError("a translation joint has no hinge axes; MJCF export covers hinges only")
     return [kind["revolute"]]
 
 

@@ -209,13 +209,14 @@ struct JointJson {
     dof_start: usize,
 }
 
-/// A joint's kind: `"fixed"`, `{"revolute": axis}` or `"universal_yz"`.
+/// A joint's kind: `"fixed"`, `{"revolute": axis}`, `"universal_yz"` or `"translation"`.
 #[derive(Serialize)]
 #[serde(rename_all = "snake_case")]
 enum KindJson {
     Fixed,
     Revolute([f64; 3]),
     UniversalYz,
+    Translation,
 }
 
 /// One DOF of [`Export`]; an infinite limit is written as `null` (serde_json's way).
@@ -248,6 +249,7 @@ fn export(world: &mut World) -> Export {
                 JointKind::Fixed => KindJson::Fixed,
                 JointKind::Revolute { axis } => KindJson::Revolute(axis.to_array()),
                 JointKind::UniversalYz => KindJson::UniversalYz,
+                JointKind::Translation => KindJson::Translation,
             },
             parent: j.parent,
             offset: j.offset.translation.to_array(),
@@ -264,7 +266,7 @@ fn export(world: &mut World) -> Export {
     });
     Export {
         source: format!("{KNOTTED_SCENARIO} at t = {KNOTTED_TIME_S} s (cargo xtask knotted)"),
-        units: "cm, g, s, rad; joint rotation matrices column-major (x, y, z axes)",
+        units: "cm, g, s, rad (cm for a translation); joint rotation matrices column-major (x, y, z axes)",
         gravity: model.gravity().to_array(),
         bodies: bodies.collect(),
         joints: joints.collect(),

@@ -24,9 +24,10 @@ pub struct StepAcceptance {
     /// Largest relative KKT residual accepted from a `SolvedInexact` velocity solve (the
     /// solver's `worst_relative`; `Solved` means below its acceptance, 1e-9). Default 1e-4.
     pub max_inexact_residual: f64,
-    /// Largest joint rate |q̇ᵢ| allowed at the end of a step (rad/s). Default 100: the valid
-    /// runs measured stay below 30 rad/s (ES103 family, drag down to ×0.1), while an unstable
-    /// chain passes 500 rad/s within 0.2 s without any contact or limit to reject it.
+    /// Largest rotation rate |q̇ᵢ| of a joint allowed at the end of a step (rad/s; translations
+    /// are not bounded). Default 100: the valid runs measured stay below 30 rad/s (ES103
+    /// family, drag down to ×0.1), while an unstable chain passes 500 rad/s within 0.2 s
+    /// without any contact or limit to reject it.
     pub max_joint_rate_rad_s: f64,
     /// How many times a rejected step is halved before the run stops as diverged: h/2, h/4,
     /// …, h/2^k (default 4: down to h/16).
@@ -156,7 +157,7 @@ pub struct EndOfStep {
     pub wall_penetration_relative: f64,
     /// Largest excess of a joint over its limits (rad).
     pub limit_excess: f64,
-    /// Largest joint rate |q̇ᵢ| (rad/s; NaN if one is not finite).
+    /// Largest rotation rate |q̇ᵢ| of a joint (rad/s; NaN if any rate is not finite).
     pub joint_rate: f64,
     /// The worst relative KKT residual of the velocity solve, if it was `SolvedInexact`.
     pub inexact_residual: Option<f64>,

@@ -69,7 +69,7 @@ pub use maxima::IntervalMaxima;
 pub use memory::{
     MemoryBound, MemoryHeadroom, available_memory, check_memory, step_memory_estimate,
 };
-pub use options::{FINEST_RESOLVED_CHAIN, RESOLVED_CLUSTER_BODIES, StepOptions};
+pub use options::{FINEST_RESOLVED_CHAIN, RESOLVED_CLUSTER_BODIES, RootHold, StepOptions};
 pub use report::{Stage, StageTimings, StepReport};
 pub use retry::{Attempt, ContactResolution, RetryableController, StepOutcome, StepTally};
 pub use skin::{ContactSkin, SkinLayer};

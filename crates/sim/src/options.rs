@@ -83,6 +83,20 @@ pub struct StepOptions {
     /// their contacts join the wall's (`StepData::wall_contacts`), with the wall's margin,
     /// rows, friction and acceptance bound (docs/physics.md, "Obstacles"). Default none.
     pub obstacles: Vec<Obstacle>,
+    /// Whether the head rows hold the root joints at their rest values (default
+    /// [`RootHold::Held`], the hagfish's head at the wall) or leave them free.
+    pub root: RootHold,
+}
+
+/// What the head rows (`docs/physics.md` D9) do with the root joints' DOFs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum RootHold {
+    /// Every root DOF is held at its rest value: the head fixed at the wall.
+    #[default]
+    Held,
+    /// No head rows: a root free to move as its joint allows (a
+    /// [`Translation`](hagfish_tree::JointKind::Translation) root sliding down an incline).
+    Free,
 }
 
 impl Default for StepOptions {
@@ -104,6 +118,7 @@ impl Default for StepOptions {
             acceptance: StepAcceptance::default(),
             friction: None,
             obstacles: Vec::new(),
+            root: RootHold::Held,
         }
     }
 }

@@ -24,7 +24,7 @@ use crate::backend;
 use crate::carried_contacts::Carried;
 use crate::error::{InStep, SimError, StepAt};
 pub use crate::internal_forces::internal_forces;
-use crate::options::StepOptions;
+use crate::options::{RootHold, StepOptions};
 use crate::report::{Stage, StageClock, StepReport};
 use crate::rows::{
     add_head_rows, add_limit_rows, add_overshooting_limit_rows, add_self_contact_rows,
@@ -105,11 +105,14 @@ pub fn dynamics(model: &Model, options: &StepOptions, state: &State, data: &mut 
     hagfish_tree::assemble_effective_momentum(&mut data.tree, h);
 }
 
-/// Stage 5: the rows of this step: head, joint limits, wall, self contact, thigmotaxis.
+/// Stage 5: the rows of this step: head (unless the root is free), joint limits, wall, self
+/// contact, thigmotaxis.
 pub fn build_rows(model: &Model, options: &StepOptions, state: &State, data: &mut StepData) {
     let h = options.time_step;
     data.rows.clear();
-    add_head_rows(model, state, h, options.head_correction, &mut data.rows);
+    if options.root == RootHold::Held {
+        add_head_rows(model, state, h, options.head_correction, &mut data.rows);
+    }
     add_limit_rows(model, state, h, options.limit_margin, options.push_out, &mut data.rows);
     let stabilisation = (h, options.push_out, options.friction);
     let wall_contacts = (data.wall_contacts.as_slice(), data.radii.as_slice());
@@ -254,7 +257,7 @@ pub fn check_result(
         self_penetration_relative: penetration.self_relative,
         wall_penetration_relative: penetration.wall_relative,
         limit_excess: limit_excess(model, &state.q),
-        joint_rate: max_or_nan(state.qdot.iter().map(|r| r.abs())),
+        joint_rate: rotation_rate(model, &state.qdot),
         inexact_residual: inexact.then_some(solve.residuals.worst_relative),
     })
 }
@@ -263,6 +266,21 @@ pub fn check_result(
 /// NaN for a non-finite angle).
 pub fn limit_excess(model: &Model, q: &[f64]) -> f64 {
     max_or_nan(model.dofs().iter().zip(q).map(|(d, q)| (d.lower - q).max(q - d.upper)))
+}
+
+/// The largest rotation rate |q̇ᵢ| in `qdot` (rad/s, 0 without rotations; NaN for a
+/// non-finite rate). A translation's rate (cm/s) is not a sign of a chain's instability and
+/// is left out, unless it is not finite.
+fn rotation_rate(model: &Model, qdot: &[f64]) -> f64 {
+    let rates = model.joints().iter().flat_map(|joint| {
+        let translates = joint.kind.translates();
+        joint.dofs().map(move |a| match translates {
+            true if qdot[a].is_finite() => 0.0,
+            true => f64::NAN,
+            false => qdot[a].abs(),
+        })
+    });
+    max_or_nan(rates)
 }
 
 /// The largest of `values` and 0, or NaN if any is NaN (`f64::max` would drop it, and a

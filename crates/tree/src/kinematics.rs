@@ -4,7 +4,8 @@
 //! each DOF `a` of the joint in turn contributes the world axis `s_a = (R_F e_a; p_F × R_F e_a)`
 //! (a rotation about the line through the joint origin), its rate `ṡ_a = V_F ×ₘ s_a` where
 //! `V_F` is the twist of the frame the axis is fixed in, and then rotates the frame:
-//! `F ← F · Rot(e_a, q_a)`. Twists add along the path: `V_i = V_p + Σ s_a q̇_a`, and so do
+//! `F ← F · Rot(e_a, q_a)`. A translation DOF has `s_a = (0; R_F e_a)` and moves the frame:
+//! `p_F ← p_F + q_a R_F e_a`. Twists add along the path: `V_i = V_p + Σ s_a q̇_a`, and so do
 //! the velocity-product accelerations `A_i = A_p + Σ ṡ_a q̇_a`.
 
 use crate::data::Data;
@@ -42,8 +43,14 @@ pub fn frame_kinematics(model: &Model, q: &[f64], data: &mut Data) {
         let mut frame = parent_frame.mul(&joint.offset);
         for (k, a) in joint.dofs().enumerate() {
             let local_axis = joint.kind.axis(k);
-            data.axes[a] = Spatial::revolute_axis(frame.rotation * local_axis, frame.translation);
-            frame = frame.rotated(local_axis, q[a]);
+            let world_axis = frame.rotation * local_axis;
+            if joint.kind.translates() {
+                data.axes[a] = Spatial::prismatic_axis(world_axis);
+                frame.translation += world_axis * q[a];
+            } else {
+                data.axes[a] = Spatial::revolute_axis(world_axis, frame.translation);
+                frame = frame.rotated(local_axis, q[a]);
+            }
         }
         data.joint_frames[i] = frame;
         data.body_frames[i] = frame.mul(&model.bodies()[i].offset);

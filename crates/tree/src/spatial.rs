@@ -144,6 +144,11 @@ impl Spatial {
         Self { angular: axis, linear: point.cross(axis) }
     }
 
+    /// The unit twist of a translation along the unit `direction`: `(0; direction)`.
+    pub fn prismatic_axis(direction: DVec3) -> Self {
+        Self { angular: DVec3::ZERO, linear: direction }
+    }
+
     /// The wrench at the world origin of a force `f` applied at the point `x`: `(x × f; f)`.
     pub fn point_force(x: DVec3, f: DVec3) -> Self {
         Self { angular: x.cross(f), linear: f }

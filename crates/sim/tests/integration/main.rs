@@ -7,4 +7,5 @@
 mod common;
 
 mod constraints;
+mod incline;
 mod linear_memory;

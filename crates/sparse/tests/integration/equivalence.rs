@@ -21,7 +21,7 @@ use proptest::prelude::*;
 type TreeSpec = Vec<(usize, u8, f64, f64, f64)>;
 
 fn tree_spec(max: usize) -> impl Strategy<Value = TreeSpec> {
-    prop::collection::vec((0usize..1000, 0u8..4, 0.2f64..1.5, 0.1f64..3.0, -0.6f64..0.6), 1..=max)
+    prop::collection::vec((0usize..1000, 0u8..5, 0.2f64..1.5, 0.1f64..3.0, -0.6f64..0.6), 1..=max)
 }
 
 fn build(spec: &TreeSpec, chain: bool, damping: f64, stiffness: f64) -> Model {
@@ -36,6 +36,7 @@ fn build(spec: &TreeSpec, chain: bool, damping: f64, stiffness: f64) -> Model {
             0 => JointKind::Revolute { axis: DVec3::X },
             1 => JointKind::UniversalYz,
             2 => JointKind::Revolute { axis: DVec3::new(tilt, 1.0, 0.3).normalize() },
+            3 => JointKind::Translation,
             _ => JointKind::Fixed,
         };
         let radius = 0.3 + 0.2 * tilt.abs();

@@ -10,12 +10,12 @@ pub struct ChainSpec {
 }
 
 pub fn chain_spec(min: usize, max: usize) -> impl Strategy<Value = ChainSpec> {
-    prop::collection::vec((0u8..3, 0.2f64..2.0, 0.1f64..1.0, 0.1f64..3.0, -0.5f64..0.5), min..=max)
+    prop::collection::vec((0u8..4, 0.2f64..2.0, 0.1f64..1.0, 0.1f64..3.0, -0.5f64..0.5), min..=max)
         .prop_map(|bodies| ChainSpec { bodies })
 }
 
 /// Builds a chain: code 0 = revolute about +X, 1 = universal YZ, 2 = revolute about a tilted
-/// axis. Joint offsets carry a small rotation so that frames are not all aligned.
+/// axis, 3 = translation. Joint offsets carry a small rotation so that frames are not all aligned.
 pub fn build_chain(spec: &ChainSpec, gravity: DVec3, damping: f64, stiffness: f64) -> Model {
     let parents: Vec<Option<usize>> = (0..spec.bodies.len()).map(|i| i.checked_sub(1)).collect();
     build_tree(spec, &parents, gravity, damping, stiffness)
@@ -36,7 +36,8 @@ pub fn build_tree(
         let joint = match code {
             0 => JointKind::Revolute { axis: DVec3::X },
             1 => JointKind::UniversalYz,
-            _ => JointKind::Revolute { axis: DVec3::new(tilt, 1.0, 0.3).normalize() },
+            2 => JointKind::Revolute { axis: DVec3::new(tilt, 1.0, 0.3).normalize() },
+            _ => JointKind::Translation,
         };
         let dofs =
             vec![DofParams { stiffness, damping, ..DofParams::default() }; joint.dof_count()];

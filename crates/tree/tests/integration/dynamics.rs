@@ -267,3 +267,53 @@ proptest! {
         }
     }
 }
+
+/// A cart–pendulum built from a translation root (mass m₁, free in x, y, z; it never turns, so
+/// its own inertia and centre do not enter) and a rod of
+/// mass m₂ hinged about +Z at the cart, its centre at distance ℓ along +X at θ = 0. In closed
+/// form, with the rod's centre at ℓ(cos θ, sin θ): M_xx = M_yy = M_zz = m₁ + m₂,
+/// M_xθ = −m₂ℓ sin θ, M_yθ = m₂ℓ cos θ, M_θθ = m₂ℓ² + I_zz; under gravity g along −y the
+/// bias is C_x = −m₂ℓθ̇² cos θ, C_y = −m₂ℓθ̇² sin θ + (m₁ + m₂)g, C_θ = m₂gℓ cos θ.
+#[test]
+fn a_pendulum_on_a_translating_cart_has_the_closed_form_dynamics() {
+    let (m1, m2, length, radius, g) = (2.0, 0.7, 1.6, 0.1, 980.0);
+    let cart = Cylinder { mass: m1, length: 0.5, radius };
+    let rod = Cylinder { mass: m2, length: 2.0 * length, radius };
+    let mut builder = hagfish_tree::ModelBuilder::new().gravity(DVec3::new(0.0, -g, 0.0));
+    let free = vec![hagfish_tree::DofParams::default(); 3];
+    let hinge = vec![hagfish_tree::DofParams::default()];
+    let identity = hagfish_tree::Transform::IDENTITY;
+    builder.add_body(cart.spec(None, hagfish_tree::JointKind::Translation, identity, free));
+    let about_z = hagfish_tree::JointKind::Revolute { axis: DVec3::Z };
+    builder.add_body(rod.spec(Some(0), about_z, identity, hinge));
+    let model = builder.build().expect("cart and pendulum");
+    let (theta, rate) = (0.7_f64, 1.3_f64);
+    let (q, qdot) = ([0.4, -0.2, 0.3, theta], [0.5, -0.1, 0.2, rate]);
+    let mut data = Data::new(&model);
+    forward_kinematics(&model, &q, &qdot, &mut data);
+    mass_matrix(&model, &mut data);
+    let mut bias = vec![0.0; 4];
+    inverse_dynamics(&model, &mut data, None, &mut bias);
+    let inertia = cylinder_inertia(m2, radius, 2.0 * length).z;
+    let (sin, cos) = theta.sin_cos();
+    let total = m1 + m2;
+    let expected_mass = [
+        [total, 0.0, 0.0, -m2 * length * sin],
+        [0.0, total, 0.0, m2 * length * cos],
+        [0.0, 0.0, total, 0.0],
+        [-m2 * length * sin, m2 * length * cos, 0.0, m2 * length * length + inertia],
+    ];
+    let expected_bias = [
+        -m2 * length * rate * rate * cos,
+        -m2 * length * rate * rate * sin + total * g,
+        0.0,
+        m2 * g * length * cos,
+    ];
+    for (a, row) in expected_mass.iter().enumerate() {
+        for (b, want) in row.iter().enumerate() {
+            let got = data.mass_matrix[(a, b)];
+            assert!((got - want).abs() < 1e-12, "M[{a}][{b}] = {got}, expected {want}");
+        }
+        assert!((bias[a] - expected_bias[a]).abs() < 1e-9, "C[{a}] = {}", bias[a]);
+    }
+}
