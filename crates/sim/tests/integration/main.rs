@@ -6,6 +6,7 @@
 
 mod common;
 
+mod capstan;
 mod constraints;
 mod incline;
 mod linear_memory;
