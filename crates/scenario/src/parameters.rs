@@ -57,6 +57,7 @@ pub const PARAMETERS: &[Parameter] = &[
     p("friction", "-", "None", "Coulomb friction on the self contacts' cores and the wall: Some((coefficient: μ)) or None (frictionless)"),
     p("friction.coefficient", "-", "required in friction", "μ, static = kinetic, ≥ 0 (0: frictionless, bit for bit)"),
     p("friction.edges", "-", "8", "edges E of the friction cone's inscribed pyramid, 3 to 16: the limit within 1 − cos(π/E) of Coulomb's"),
+    p("friction.cone", "-", "Pyramid", "Pyramid (the fast path) or Exact: the cone itself, solved by the clarabel backend (the run switches to it; 7–40 ms a step): the reference"),
     p("obstacles", "-", "[]", "rigid obstacles the body touches like the wall (their contacts, rows and friction are the wall's)"),
     p("obstacles.Plane", "-", "-", "the half-space behind a plane"),
     p("obstacles.Plane.point", "cm", "required", "a point of the plane, (x, y, z)"),
@@ -208,7 +209,7 @@ mod tests {
             })),
             backend: hagfish_sim::DynamicsBackend::DenseReduced,
             acceptance: hagfish_sim::StepAcceptance::default(),
-            friction: Some(hagfish_sim::rows::Friction { coefficient: 0.1, edges: 8 }),
+            friction: Some(hagfish_sim::rows::Friction::pyramid(0.1, 8)),
             obstacles: vec![
                 crate::ObstacleSpec::Plane { point: [0.0, -5.0, 0.0], normal: [0.0, 1.0, 0.0] },
                 crate::ObstacleSpec::Sphere { centre: [10.0, 0.0, 3.0], radius: 1.0 },

@@ -20,7 +20,8 @@ use hagfish_control::{Phase, PhasedController, WaterDrag, diameters_tail_ward};
 use hagfish_tree::{Model, State};
 use serde::{Deserialize, Serialize};
 
-use hagfish_sim::rows::Friction;
+use hagfish_sim::rows::{ConeForm, Friction};
+use hagfish_solver::QpBackend;
 
 use crate::obstacles::ObstacleSpec;
 use hagfish_sim::{DynamicsBackend, StepAcceptance, StepOptions, World, fnv1a64};
@@ -256,7 +257,7 @@ impl LoadedScenario {
                 spec.to_obstacle().map_err(|source| ScenarioError::Obstacle { index, source })
             })
             .collect::<Result<Vec<_>, _>>()?;
-        let options = StepOptions {
+        let mut options = StepOptions {
             time_step: self.scenario.time_step_s,
             obstacles,
             backend: self.scenario.backend,
@@ -264,6 +265,10 @@ impl LoadedScenario {
             friction: self.scenario.friction,
             ..StepOptions::default()
         };
+        // The exact friction cone is solved by the reference backend only.
+        if self.scenario.friction.is_some_and(|f| f.cone == ConeForm::Exact) {
+            options.solver.backend = QpBackend::Clarabel;
+        }
         let phases = self.phases_on(&model);
         let world = World::new(model, options, state)?;
         let controller = PhasedController::new(self.scenario.drag, phases);

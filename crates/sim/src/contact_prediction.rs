@@ -22,7 +22,7 @@
 
 use glam::DVec3;
 use hagfish_geometry::{Centreline, SelfContact, closest_points_near};
-use hagfish_solver::Rows;
+use hagfish_solver::{RowKind, Rows};
 use hagfish_tree::{Data, Model, State};
 
 use crate::options::StepOptions;
@@ -91,6 +91,8 @@ impl ContactPredictor {
         let mut raised_count = 0;
         for (row, source) in rows.sources().iter().enumerate() {
             let contact = match contacts.get(source.id) {
+                // An exact cone's friction rows bound the slip, not the gap.
+                _ if matches!(rows.kinds()[row], RowKind::Friction { .. }) => continue,
                 Some(contact) if source.tag == contact_tag => contact,
                 _ => continue,
             };

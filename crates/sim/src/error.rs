@@ -68,6 +68,12 @@ pub enum SimError {
         /// What is expected.
         expected: &'static str,
     },
+    /// The exact friction cone asks for a backend that cannot solve it.
+    #[error(
+        "friction.cone = Exact needs the clarabel backend (solver.backend = Clarabel); the \
+         contact-space backend solves the pyramid (cone = Pyramid)"
+    )]
+    ExactConeNeedsClarabel,
     /// The kinematic tree rejected the state or could not factor M̃.
     #[error("step {step} (t = {time} s): {source}")]
     Tree {

@@ -2,13 +2,13 @@
 
 use glam::DVec3;
 use hagfish_geometry::{DetectorOptions, Obstacle, WallOptions};
-use hagfish_solver::SolverOptions;
+use hagfish_solver::{QpBackend, SolverOptions};
 use hagfish_tree::Model;
 
 use crate::acceptance::StepAcceptance;
 use crate::backend::DynamicsBackend;
 use crate::error::SimError;
-use crate::rows::Friction;
+use crate::rows::{ConeForm, Friction};
 
 /// Cluster radius, in bodies, of self contacts at the chain's resolution: 1.5, the
 /// body-relative radius of the 100-body ES103 (`contact_exclusion_diameters`). A finer chain
@@ -174,6 +174,9 @@ impl StepOptions {
         self.acceptance.validate()?;
         if let Some(friction) = &self.friction {
             friction.validate()?;
+            if friction.cone == ConeForm::Exact && self.solver.backend != QpBackend::Clarabel {
+                return Err(SimError::ExactConeNeedsClarabel);
+            }
         }
         match self.contact_prediction {
             Some(tolerance) => {
@@ -217,5 +220,13 @@ mod tests {
         let (coarse, resolved) = radii(1000);
         assert!(coarse > 15.0, "{coarse}");
         assert_eq!(resolved, 5.0);
+    }
+
+    #[test]
+    fn the_exact_cone_is_refused_without_the_reference_backend() {
+        let exact = StepOptions { friction: Some(Friction::exact(0.2)), ..StepOptions::default() };
+        assert!(matches!(exact.validate(), Err(SimError::ExactConeNeedsClarabel)));
+        let solver = SolverOptions { backend: QpBackend::Clarabel, ..SolverOptions::default() };
+        assert!(StepOptions { solver, ..exact }.validate().is_ok());
     }
 }

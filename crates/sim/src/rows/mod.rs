@@ -11,7 +11,9 @@ mod stabilisation;
 mod thigmo;
 mod wall;
 
-pub use friction::{Friction, MAX_FRICTION_EDGES, contact_directions, wall_contact_offset};
+pub use friction::{
+    ConeForm, Friction, MAX_FRICTION_EDGES, contact_directions, wall_contact_offset,
+};
 pub use group::RowGroup;
 pub use head::add_head_rows;
 pub use limits::{add_limit_rows, add_overshooting_limit_rows, overshoots_limit};

@@ -12,13 +12,13 @@ use hagfish_tree::jacobian::add_point_rows;
 use hagfish_tree::{Data, Model};
 
 use super::RowGroup;
-use super::friction::{Friction, MAX_FRICTION_EDGES, contact_directions};
-use super::stabilisation::push_unilateral_row;
+use super::friction::{Friction, MAX_FRICTION_EDGES, contact_directions, push_contact_row};
 use crate::skin::SkinLayer;
 
 /// Appends the rows of each self contact, id its index in `contacts` (both spline points
 /// blended in one walk to the root): on the core gap, one along the normal, or with
-/// `friction` one along each edge of its friction pyramid (`friction.rs`); and where `skin` has a skin at the contact (on
+/// `friction` one along each edge of its friction pyramid (or the exact cone's normal and
+/// friction rows; `friction.rs`); and where `skin` has a skin at the contact (on
 /// `centreline`) and the contact carries a spring (`skin_carriers`, one flag per contact;
 /// `None`: all do, [`crate::skin::SkinRecords`]) the skin's compliant row `ḋ + ελ ≥ −g/h`
 /// after it, tagged [`RowGroup::Skin`].
@@ -46,9 +46,11 @@ pub fn add_self_contact_rows(
         let core_gap = contact_skin.map_or(contact.gap, |s| s.core_gap);
         let edges =
             contact_directions(contact.normal, contact.tangent_a, friction, &mut directions);
-        for &direction in &directions[..edges] {
-            let row =
-                push_unilateral_row(rows, RowGroup::Contact, i, core_gap, time_step, push_out);
+        let first = rows.len();
+        for (k, &direction) in directions[..edges].iter().enumerate() {
+            let stabilisation = (time_step, push_out);
+            let place = (RowGroup::Contact, i);
+            let row = push_contact_row(rows, place, core_gap, stabilisation, friction, (k, first));
             add_point_rows(model, data, &points[..count], direction, row);
         }
         let carries_spring = skin_carriers.is_none_or(|carriers| carriers[i]);

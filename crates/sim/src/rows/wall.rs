@@ -11,11 +11,13 @@ use hagfish_tree::jacobian::add_point_row;
 use hagfish_tree::{Data, Model};
 
 use super::RowGroup;
-use super::friction::{Friction, MAX_FRICTION_EDGES, contact_directions, wall_contact_offset};
-use super::stabilisation::push_unilateral_row;
+use super::friction::{
+    Friction, MAX_FRICTION_EDGES, contact_directions, push_contact_row, wall_contact_offset,
+};
 
 /// Appends the rows of each wall contact, id its index in `contacts`: one along the normal, or
-/// with `friction` one along each edge of its friction pyramid; `radii` are the bodies' radii.
+/// with `friction` one along each edge of its friction pyramid (or the normal and two friction
+/// rows of the exact cone); `radii` are the bodies' radii.
 pub fn add_wall_rows(
     model: &Model,
     data: &Data,
@@ -30,9 +32,12 @@ pub fn add_wall_rows(
         let offset = wall_contact_offset(edges, radii[contact.body], contact.normal);
         // The centre itself, bit for bit, where there is no offset.
         let point = if edges == 1 { centre } else { centre + offset };
-        for &direction in &directions[..edges] {
+        let first = rows.len();
+        for (k, &direction) in directions[..edges].iter().enumerate() {
+            let stabilisation = (time_step, push_out);
+            let place = (RowGroup::Wall, i);
             let row =
-                push_unilateral_row(rows, RowGroup::Wall, i, contact.gap, time_step, push_out);
+                push_contact_row(rows, place, contact.gap, stabilisation, friction, (k, first));
             add_point_row(model, data, contact.body, point, direction, 1.0, row);
         }
     }

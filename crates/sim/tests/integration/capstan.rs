@@ -104,7 +104,7 @@ fn slips(pegs: usize, alpha: f64, mu: f64, ratio: f64) -> bool {
         self_contact: false,
         wall: None,
         root: RootHold::Free,
-        friction: Some(Friction { coefficient: mu, edges: 8 }),
+        friction: Some(Friction::pyramid(mu, 8)),
         obstacles: vec![
             Obstacle::cylinder(DVec3::ZERO, DVec3::Z, CYLINDER, None).expect("cylinder"),
         ],

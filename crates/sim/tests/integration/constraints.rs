@@ -219,8 +219,8 @@ fn wall_friction_holds_a_body_that_the_frictionless_wall_lets_slide() {
         (centre(&world, 2) - start, world.state().clone(), worst_cone)
     };
     let (frictionless, plain, _) = run(None);
-    let (held, _, cone) = run(Some(Friction { coefficient: 0.5, edges: 8 }));
-    let (zero, zero_state, _) = run(Some(Friction { coefficient: 0.0, edges: 8 }));
+    let (held, _, cone) = run(Some(Friction::pyramid(0.5, 8)));
+    let (zero, zero_state, _) = run(Some(Friction::pyramid(0.0, 8)));
     println!("displacement of rod 2: frictionless {frictionless}, μ = 0.5 {held}");
     assert!(frictionless.x < -0.2, "frictionless, rod 2 slides along the wall: {frictionless}");
     assert!(held.x.abs() < 0.1 * frictionless.x.abs(), "friction holds it: {held}");

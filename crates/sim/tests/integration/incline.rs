@@ -4,28 +4,28 @@
 use glam::{DMat3, DVec3};
 use hagfish_control::Passive;
 use hagfish_geometry::Obstacle;
-use hagfish_sim::rows::Friction;
+use hagfish_sim::rows::{ConeForm, Friction};
 use hagfish_sim::{RootHold, StepOptions, World};
+use hagfish_solver::{QpBackend, SolverOptions};
 use hagfish_tree::{BodySpec, DofParams, JointKind, Model, ModelBuilder, State, Transform};
 
 const G: f64 = 980.0;
 const RADIUS: f64 = 0.2;
-const BODIES: usize = 5;
 
 /// The plane's unit normal for slope θ, turned by ψ about the vertical.
 fn normal(angle: f64, turn: f64) -> DVec3 {
     DMat3::from_rotation_z(turn) * DVec3::new(angle.sin(), 0.0, angle.cos())
 }
 
-/// A rigid rod of five 1 cm, 1 g bodies (radius 0.2 cm) welded together on a translation root,
+/// A rigid rod of `bodies` 1 cm, 1 g bodies (radius 0.2 cm) welded together on a translation root,
 /// lying straight down the slope of the plane through the origin with normal
 /// n = Rz(ψ)(sin θ, 0, cos θ) and touching it; gravity −g ẑ. The root's DOFs move it down the
 /// slope (q₀), across it (q₁) and off the plane (q₂).
-fn rod_on_incline(angle: f64, turn: f64) -> Model {
+fn rod_on_incline(bodies: usize, angle: f64, turn: f64) -> Model {
     let mut builder = ModelBuilder::new().gravity(DVec3::new(0.0, 0.0, -G));
     let length = 1.0;
     let transverse = (3.0 * RADIUS * RADIUS + length * length) / 12.0;
-    for i in 0..BODIES {
+    for i in 0..bodies {
         let (joint, joint_offset, dofs) = if i == 0 {
             let rotation = DMat3::from_rotation_z(turn) * DMat3::from_rotation_y(angle);
             let offset = Transform { rotation, translation: RADIUS * normal(angle, turn) };
@@ -49,15 +49,22 @@ fn rod_on_incline(angle: f64, turn: f64) -> Model {
     builder.build().expect("a valid rod")
 }
 
-/// Where the rod is after `steps` steps from rest at h = 0.01 s: (q, q̇) of its root.
+/// Where the rod is after `steps` steps from rest at h = 0.01 s: (q, q̇) of its root. Five
+/// bodies on the pyramid; two on the exact cone, whose reference solver stalls on five cones
+/// on three DOFs (see [`on_the_exact_cone_a_block_follows_coulomb_in_every_direction`]).
 fn slide(angle: f64, turn: f64, friction: Friction, steps: usize) -> (Vec<f64>, Vec<f64>) {
-    let model = rod_on_incline(angle, turn);
+    let (backend, bodies) = match friction.cone {
+        ConeForm::Pyramid => (QpBackend::ContactSpace, 5),
+        ConeForm::Exact => (QpBackend::Clarabel, 2),
+    };
+    let model = rod_on_incline(bodies, angle, turn);
     let options = StepOptions {
         self_contact: false,
         wall: None,
         root: RootHold::Free,
         friction: Some(friction),
         obstacles: vec![Obstacle::plane(DVec3::ZERO, normal(angle, turn)).expect("a plane")],
+        solver: SolverOptions { backend, ..SolverOptions::default() },
         ..StepOptions::default()
     };
     let state = State::rest(&model);
@@ -70,8 +77,7 @@ fn slide(angle: f64, turn: f64, friction: Friction, steps: usize) -> (Vec<f64>, 
 
 /// The root's acceleration down the slope between steps 5 and 20 (cm/s²), the lift rate
 /// off the plane at step 20 (cm/s) and the drift across the slope (cm).
-fn measured(angle: f64, turn: f64, mu: f64) -> (f64, f64, f64) {
-    let friction = Friction { coefficient: mu, edges: 8 };
+fn measured(angle: f64, turn: f64, friction: Friction) -> (f64, f64, f64) {
     let (_, early) = slide(angle, turn, friction, 5);
     let (q, late) = slide(angle, turn, friction, 20);
     ((late[0] - early[0]) / 0.15, late[2], q[1])
@@ -89,13 +95,13 @@ fn a_rod_on_an_incline_sticks_below_the_friction_angle_and_slides_at_coulombs_ra
     for mu in [0.1_f64, 0.3, 0.6] {
         for ratio in [0.5, 0.95, 1.05, 1.25] {
             let angle = (ratio * mu).atan();
-            let (a, lift, _) = measured(angle, 0.0, mu);
+            let (a, lift, _) = measured(angle, 0.0, Friction::pyramid(mu, 8));
             let coulomb = G * (angle.sin() - mu * angle.cos());
             println!(
                 "μ {mu}, tan θ = {ratio} μ: a = {a:.6} cm/s², Coulomb {coulomb:.6}; lift {lift:.6} cm/s"
             );
             if ratio < 1.0 {
-                let (q, qdot) = slide(angle, 0.0, Friction { coefficient: mu, edges: 8 }, 20);
+                let (q, qdot) = slide(angle, 0.0, Friction::pyramid(mu, 8), 20);
                 let moved = q.iter().chain(&qdot).fold(0.0_f64, |m, v| m.max(v.abs()));
                 assert!(
                     moved < 1e-12,
@@ -121,7 +127,7 @@ fn between_two_edges_the_pyramid_is_coulomb_at_the_inscribed_coefficient() {
     for mu in [0.1_f64, 0.3, 0.6] {
         for ratio in [0.5, 0.95, 1.05, 1.25] {
             let angle = (ratio * mu).atan();
-            let (a, _, drift) = measured(angle, turn, mu);
+            let (a, _, drift) = measured(angle, turn, Friction::pyramid(mu, 8));
             let coulomb = (G * (angle.sin() - mu * angle.cos())).max(0.0);
             let inscribed = (G * (angle.sin() - mu * turn.cos() * angle.cos())).max(0.0);
             println!(
@@ -129,6 +135,44 @@ fn between_two_edges_the_pyramid_is_coulomb_at_the_inscribed_coefficient() {
             );
             assert!(a >= coulomb - 1e-9 && a <= inscribed + 1e-9, "μ {mu}, tan θ = {ratio} μ: {a}");
             assert!(ratio < 0.924 || a > 0.0, "μ {mu}, tan θ = {ratio} μ: the rod should slide");
+        }
+    }
+}
+
+/// On the exact cone (the clarabel backend, the reference) Coulomb's law holds in every
+/// direction: with the slope along the pyramid's edge and halfway between two edges alike,
+/// a block of two welded bodies does not move below the friction angle (tan θ = 0.5 and
+/// 0.95 μ) and slides at a = g(sin θ − μ cos θ) within 1 % above it (tan θ = 1.05 and 1.25 μ;
+/// measured within 3·10⁻⁵), for μ = 0.1, 0.3 and 0.6. The five-body rod of the pyramid's tests is five cones on three
+/// DOFs, a degenerate problem on which clarabel stalls (complementarity 1.3·10⁻⁴, reported
+/// inexact) and lets the sticking rod creep at 0.002 cm/s.
+#[test]
+fn on_the_exact_cone_a_block_follows_coulomb_in_every_direction() {
+    for turn in [0.0, std::f64::consts::PI / 8.0] {
+        for mu in [0.1_f64, 0.3, 0.6] {
+            for ratio in [0.5, 0.95, 1.05, 1.25] {
+                let angle = (ratio * mu).atan();
+                let exact = Friction::exact(mu);
+                let (a, _, drift) = measured(angle, turn, exact);
+                let coulomb = G * (angle.sin() - mu * angle.cos());
+                println!(
+                    "ψ {turn:.3}, μ {mu}, tan θ = {ratio} μ: a = {a:.6}, Coulomb {coulomb:.6}, drift {drift:.1e}"
+                );
+                if ratio < 1.0 {
+                    let (q, qdot) = slide(angle, turn, exact, 20);
+                    let moved = q.iter().chain(&qdot).fold(0.0_f64, |m, v| m.max(v.abs()));
+                    assert!(
+                        moved < 1e-9,
+                        "ψ {turn}, μ {mu}, tan θ = {ratio} μ: moved {moved:e} {q:?} {qdot:?}"
+                    );
+                } else {
+                    let error = (a / coulomb - 1.0).abs();
+                    assert!(
+                        error < 0.01,
+                        "ψ {turn}, μ {mu}, tan θ = {ratio} μ: a = {a}, {coulomb}"
+                    );
+                }
+            }
         }
     }
 }
