@@ -1,6 +1,6 @@
 //! The animated GIF: the body as shaded tubes (spheres swept along the centreline, radius
 //! per body, coloured by arc length) in a top view (x–y) and a side view (x–z) side by
-//! side, with the wall x = 0 and a time bar. Frames are subsampled to at most
+//! side, with the wall x = 0, the obstacles' wireframes and a time bar. Frames are subsampled to at most
 //! [`MAX_FRAMES`]; it plays at [`SPEED_UP`] × real time.
 
 use std::borrow::Cow;
@@ -8,6 +8,7 @@ use std::path::Path;
 
 use crate::colour::{Rgb, sequential};
 use crate::error::ReportError;
+use crate::obstacles::{self, Wireframe};
 use crate::raster::{Raster, SHADES, Sphere};
 use crate::run_dir::RunDir;
 
@@ -60,11 +61,12 @@ fn palette() -> Vec<u8> {
 }
 
 /// Pixel mapping shared by all frames: one scale for both views, each centred on the run's
-/// bounding box.
-#[derive(Clone, Copy, Debug)]
+/// bounding box; and the obstacles' wireframes around it.
+#[derive(Clone, Debug)]
 struct Projection {
     scale: f64,
     centre: [f64; 3],
+    obstacles: Wireframe,
 }
 
 impl Projection {
@@ -77,7 +79,8 @@ impl Projection {
             .iter()
             .map(|v| (w / extent(v.right)).min(h / extent(v.up)))
             .fold(f64::INFINITY, f64::min);
-        Self { scale, centre: [0, 1, 2].map(|a| 0.5 * (low[a] + high[a])) }
+        let centre = [0, 1, 2].map(|a| 0.5 * (low[a] + high[a]));
+        Self { scale, centre, obstacles: obstacles::of_run_wireframe(run) }
     }
 
     /// (column, row, depth) in pixels of world point `p` in `view`.
@@ -96,6 +99,12 @@ fn draw_view(run: &RunDir, projection: &Projection, view: View, f: usize) -> Ras
     let wall = 0.5 * VIEW.0 as f64 - projection.centre[0] * projection.scale;
     if wall >= 0.0 && wall < VIEW.0 as f64 {
         image.fill((wall as usize, wall as usize + 2), (0, VIEW.1), LINE);
+    }
+    for polyline in &projection.obstacles {
+        for pair in polyline.windows(2) {
+            let (a, b) = (projection.project(view, pair[0]), projection.project(view, pair[1]));
+            image.line((a.0, a.1), (b.0, b.1), LINE);
+        }
     }
     let points = run.centreline.frame(f);
     let radii = &run.radii.values;

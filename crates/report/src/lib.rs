@@ -7,10 +7,11 @@
 //!   the knotted core and the contact span against time, contact counts against time; PNG and SVG
 //!   (plotters, with an embedded subset of DejaVu Sans).
 //! - `animation.gif`: the body as shaded tubes, top and side view (`raster` is a small
-//!   software rasteriser with a depth buffer).
+//!   software rasteriser with a depth buffer), with the obstacles as wireframes.
 //! - `report.html`: one offline page with the summary, the plots, the animation, the
 //!   scenario and manifest, and a WebGL view scrubbed by a time slider.
-//! - `vtk/`: ParaView legacy polylines per frame with a `.vtk.series` index; `run.glb`:
+//! - `vtk/`: ParaView legacy polylines per frame with a `.vtk.series` index (and the
+//!   obstacles' wireframes in `obstacles.vtk`); `run.glb`:
 //!   glTF 2.0 binary, one animated node per body.
 //!
 //! The required inputs are `centreline.csv`, `metrics.csv` and `forces.csv`;
@@ -56,6 +57,7 @@ mod knot_run;
 mod loosen_tighten;
 mod metrics;
 mod metrics_table;
+mod obstacles;
 mod outputs;
 mod plots;
 mod radii;

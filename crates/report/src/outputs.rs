@@ -7,7 +7,7 @@ use std::time::Instant;
 use crate::error::ReportError;
 use crate::run_dir::RunDir;
 use crate::section::Section;
-use crate::{animation, glb, html, plots, vtk};
+use crate::{animation, glb, html, obstacles, plots, vtk};
 
 /// Name of the animated GIF in the run directory.
 pub const ANIMATION: &str = "animation.gif";
@@ -123,8 +123,9 @@ fn make(dir: &Path, parts: Parts, sections: &[Section]) -> Result<Written, Repor
         written.files.push(gif_path);
     }
     if parts.exports {
+        let (obstacles, radii) = (obstacles::of_run_wireframe(&run), &run.radii.values);
         let (series, frames) =
-            written.time("vtk", || vtk::write(&run.centreline, &run.radii.values, &vtk_dir))?;
+            written.time("vtk", || vtk::write(&run.centreline, radii, &obstacles, &vtk_dir))?;
         written.files.push(series);
         written.vtk_frames = frames;
         let path = dir.join(GLB);

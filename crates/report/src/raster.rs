@@ -92,6 +92,19 @@ impl Raster {
         }
     }
 
+    /// Draws the line from pixel position `from` to `to` (column, row; clipped) with `index`,
+    /// behind anything already drawn with a depth.
+    pub fn line(&mut self, from: (f32, f32), to: (f32, f32), index: u8) {
+        let steps = (to.0 - from.0).abs().max((to.1 - from.1).abs()).ceil().max(1.0) as usize;
+        for k in 0..=steps {
+            let w = k as f32 / steps as f32;
+            let (x, y) = (from.0 + w * (to.0 - from.0), from.1 + w * (to.1 - from.1));
+            if x >= 0.0 && y >= 0.0 {
+                self.fill((x as usize, x as usize + 1), (y as usize, y as usize + 1), index);
+            }
+        }
+    }
+
     /// Copies `other` into this image with its left edge at column `x` (clipped).
     pub fn paste(&mut self, other: &Raster, x: usize) {
         for row in 0..other.height.min(self.height) {
@@ -118,6 +131,16 @@ mod tests {
         assert_eq!(at(0, 0), 0, "background outside both");
         // The light comes from the upper left: that side is brighter.
         assert!(at(16, 16) > at(24, 24), "{} vs {}", at(16, 16), at(24, 24));
+    }
+
+    #[test]
+    fn a_line_joins_its_ends_and_is_clipped() {
+        let mut r = Raster::new(10, 10, 0);
+        r.line((1.0, 1.0), (8.0, 8.0), 3);
+        assert!((1..=8).all(|k| r.pixels[k * 10 + k] == 3), "the diagonal");
+        assert_eq!(r.pixels[10 + 8], 0, "off the line");
+        r.line((-5.0, 5.0), (20.0, 5.0), 4);
+        assert!((0..10).all(|x| r.pixels[50 + x] == 4), "clipped to the image");
     }
 
     #[test]

@@ -3,12 +3,15 @@
 
 use std::path::{Path, PathBuf};
 
+use hagfish_geometry::Obstacle;
+
 use crate::centreline::Centreline;
 use crate::csv::CsvFile;
 use crate::error::ReportError;
 use crate::forces::ThigmoForces;
 use crate::frame_selection::{BODY_FRAME_BUDGET, FrameSelection};
 use crate::metrics::Metrics;
+use crate::obstacles;
 use crate::radii::Radii;
 use crate::tension::Tension;
 
@@ -25,6 +28,8 @@ pub struct RunDir {
     pub forces: ThigmoForces,
     /// The body radii (from `scenario.ron` if it gives them).
     pub radii: Radii,
+    /// The obstacles of `scenario.ron` (none without it).
+    pub obstacles: Vec<Obstacle>,
     /// The text of `scenario.ron`, if present.
     pub scenario: Option<String>,
     /// The text of `manifest.json`, if present.
@@ -67,6 +72,7 @@ impl RunDir {
             metrics,
             forces,
             radii,
+            obstacles: obstacles::of_run(&dir.join("scenario.ron")),
             scenario: read_optional(&dir.join("scenario.ron"))?,
             manifest: read_optional(&dir.join("manifest.json"))?,
             contacts,

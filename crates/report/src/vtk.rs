@@ -1,16 +1,43 @@
 //! ParaView export: one legacy VTK file per frame (`vtk/frame_NNNN.vtk`, POLYDATA: the body
-//! centres as one LINES cell with a `radius_cm` point field, cm) and the series index
-//! `vtk/centreline.vtk.series` (ParaView's JSON file-series format, times in s).
+//! centres as one LINES cell with a `radius_cm` point field, cm), the series index
+//! `vtk/centreline.vtk.series` (ParaView's JSON file-series format, times in s) and, when the
+//! run has obstacles, their wireframes in `vtk/obstacles.vtk` (POLYDATA LINES, cm).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use crate::centreline::Centreline;
 use crate::error::ReportError;
+use crate::obstacles::Wireframe;
 use crate::outputs::write_file;
 
 /// Name of the series index inside the VTK directory.
 pub const SERIES: &str = "centreline.vtk.series";
+/// Name of the obstacles' file inside the VTK directory.
+pub const OBSTACLES: &str = "obstacles.vtk";
+
+/// The legacy VTK text of the obstacles' wireframes: one LINES cell per polyline.
+pub fn obstacles_text(wireframe: &Wireframe) -> String {
+    let n: usize = wireframe.iter().map(Vec::len).sum();
+    let mut text = format!(
+        "# vtk DataFile Version 3.0\nhagfish obstacles (cm)\nASCII\nDATASET POLYDATA\n\
+         POINTS {n} float\n"
+    );
+    for p in wireframe.iter().flatten() {
+        let _ = writeln!(text, "{} {} {}", p[0] as f32, p[1] as f32, p[2] as f32);
+    }
+    let _ = writeln!(text, "LINES {} {}", wireframe.len(), n + wireframe.len());
+    let mut first = 0;
+    for polyline in wireframe {
+        let _ = write!(text, "{}", polyline.len());
+        for i in first..first + polyline.len() {
+            let _ = write!(text, " {i}");
+        }
+        let _ = writeln!(text);
+        first += polyline.len();
+    }
+    text
+}
 
 /// The legacy VTK text of frame `f`.
 pub fn frame_text(centreline: &Centreline, radii: &[f64], f: usize) -> String {
@@ -56,15 +83,17 @@ pub fn series_text(centreline: &Centreline) -> String {
 pub fn is_own_file(name: &str) -> bool {
     let frame = name.strip_prefix("frame_").and_then(|rest| rest.strip_suffix(".vtk"));
     let digits = |d: &str| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit());
-    name == SERIES || frame.is_some_and(digits)
+    name == SERIES || name == OBSTACLES || frame.is_some_and(digits)
 }
 
-/// Writes every frame and the series index into `dir` (created if missing), after removing
-/// the frames of an earlier run (so that none of a longer run lingers); other files in `dir`
-/// are left alone. Returns the series index's path and the number of frame files.
+/// Writes every frame, the series index and the obstacles (if `obstacles` has any) into
+/// `dir` (created if missing), after removing the files of an earlier run (so that none of a
+/// longer run lingers); other files in `dir` are left alone. Returns the series index's path
+/// and the number of frame files.
 pub fn write(
     centreline: &Centreline,
     radii: &[f64],
+    obstacles: &Wireframe,
     dir: &Path,
 ) -> Result<(PathBuf, usize), ReportError> {
     std::fs::create_dir_all(dir).map_err(ReportError::write(dir))?;
@@ -74,6 +103,10 @@ pub fn write(
     for f in 0..centreline.frames() {
         let path = dir.join(frame_name(f));
         write_file(&path, frame_text(centreline, radii, f).as_bytes())?;
+    }
+    if !obstacles.is_empty() {
+        let path = dir.join(OBSTACLES);
+        write_file(&path, obstacles_text(obstacles).as_bytes())?;
     }
     let path = dir.join(SERIES);
     write_file(&path, series_text(centreline).as_bytes())?;
@@ -100,10 +133,22 @@ mod tests {
     #[test]
     fn only_frames_and_the_series_are_own_files() {
         assert!(is_own_file("frame_0000.vtk") && is_own_file("frame_12345.vtk"));
-        assert!(is_own_file(SERIES));
+        assert!(is_own_file(SERIES) && is_own_file(OBSTACLES));
         for other in ["frame_.vtk", "frame_01a.vtk", "mine.vtk", "frame_0001.vtk.bak", "notes"] {
             assert!(!is_own_file(other), "{other}");
         }
+    }
+
+    #[test]
+    fn the_obstacles_are_one_lines_cell_per_polyline() {
+        let wireframe = vec![
+            vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]],
+            vec![[0.0; 3], [0.0, 1.0, 0.0], [0.0, 1.0, 1.0]],
+        ];
+        let text = obstacles_text(&wireframe);
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(&lines[2..5], &["ASCII", "DATASET POLYDATA", "POINTS 5 float"]);
+        assert_eq!(&lines[10..], &["LINES 2 7", "2 0 1", "3 2 3 4"]);
     }
 
     #[test]
