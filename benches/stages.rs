@@ -33,7 +33,7 @@ fn run_to_rows(
     controller: &mut dyn Controller,
 ) {
     pipeline::kinematics(model, state, data);
-    pipeline::detect_contacts(model, options, data).expect("detect");
+    pipeline::detect_contacts(model, options, state.t, data).expect("detect");
     pipeline::control(model, options, state, data, controller);
     pipeline::dynamics(model, options, state, data);
     pipeline::build_rows(model, options, state, data);
@@ -48,7 +48,7 @@ fn print_state(name: &str, state: &State, data: &StepData) {
 /// `broad_phase`, `narrow_phase` and `detect_contacts` on the centreline in `data`.
 fn bench_detection(
     group: &mut BenchmarkGroup<'_, WallTime>,
-    (model, options): (&Model, &StepOptions),
+    (model, options, state): (&Model, &StepOptions, &State),
     data: &mut StepData,
 ) {
     let lengths: Vec<f64> = model.bodies().iter().map(|body| body.length).collect();
@@ -67,7 +67,7 @@ fn bench_detection(
         })
     });
     group.bench_function("detect_contacts", |b| {
-        b.iter(|| pipeline::detect_contacts(model, options, data).expect("detect"))
+        b.iter(|| pipeline::detect_contacts(model, options, state.t, data).expect("detect"))
     });
 }
 
@@ -120,7 +120,7 @@ fn stages(c: &mut Criterion) {
     group.bench_function("dynamics", |b| {
         b.iter(|| pipeline::dynamics(model, options, &state, &mut data))
     });
-    bench_detection(&mut group, (model, options), &mut data);
+    bench_detection(&mut group, (model, options, &state), &mut data);
     run_to_rows(step, &mut data, &mut drag);
     group.bench_function("rows", |b| {
         b.iter(|| pipeline::build_rows(model, options, &state, &mut data))
@@ -174,7 +174,7 @@ fn long_stages(c: &mut Criterion) {
     run_to_rows(step, &mut data, &mut controller);
     print_state("long knotted state", &state, &data);
     let mut group = c.benchmark_group("knotted_1000");
-    bench_detection(&mut group, (model, options), &mut data);
+    bench_detection(&mut group, (model, options, &state), &mut data);
     run_to_rows(step, &mut data, &mut controller);
     bench_contact_solve(&mut group, step, &mut data, &mut controller);
     group.finish();

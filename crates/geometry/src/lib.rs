@@ -58,6 +58,7 @@ mod error;
 mod narrow_phase;
 mod nearby;
 mod obstacle;
+mod obstacle_path;
 mod pair_queue;
 mod sampled_segment;
 mod seeds;
@@ -78,6 +79,7 @@ pub use narrow_phase::{
 };
 pub use nearby::{NearbyClosestPoints, closest_points_near};
 pub use obstacle::Obstacle;
+pub use obstacle_path::{MovingObstacle, ObstaclePath};
 pub use segment::Segment;
 pub use wall::{Wall, WallContact, WallOptions};
 pub use weights::SplineWeights;

@@ -77,6 +77,19 @@ impl Obstacle {
         })
     }
 
+    /// The obstacle moved by `offset` (cm): its point or centre shifted, its directions kept.
+    pub fn translated(&self, offset: DVec3) -> Obstacle {
+        match *self {
+            Obstacle::Plane { point, normal } => Obstacle::Plane { point: point + offset, normal },
+            Obstacle::Sphere { centre, radius } => {
+                Obstacle::Sphere { centre: centre + offset, radius }
+            }
+            Obstacle::Cylinder { point, axis, radius, half_length } => {
+                Obstacle::Cylinder { point: point + offset, axis, radius, half_length }
+            }
+        }
+    }
+
     /// The signed distance of `c` from the surface (cm, negative inside) and the outward unit
     /// normal at the nearest surface point (module docs).
     pub fn distance(&self, c: DVec3) -> (f64, DVec3) {
@@ -114,7 +127,7 @@ impl Obstacle {
             let (distance, normal) = self.distance(centre);
             let gap = distance - radius;
             if gap < margin {
-                out.push(WallContact { body, gap, normal });
+                out.push(WallContact { body, gap, normal, surface_velocity: DVec3::ZERO });
             }
         }
     }

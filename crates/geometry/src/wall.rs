@@ -19,6 +19,10 @@ pub struct WallContact {
     pub gap: f64,
     /// The unit normal n_w of the surface at the body (pointing to the body side).
     pub normal: DVec3,
+    /// The velocity of the surface (cm/s): zero for the wall and still obstacles, the path's
+    /// for a moving one (`obstacle_path.rs`). The contact's rows bound the body's velocity
+    /// relative to it.
+    pub surface_velocity: DVec3,
 }
 
 /// Options of a [`Wall`].
@@ -104,6 +108,7 @@ impl Wall {
                     body,
                     gap: self.gap(c, r),
                     normal: self.normal,
+                    surface_velocity: DVec3::ZERO,
                 })
                 .filter(|contact| contact.gap < self.options.margin),
         );

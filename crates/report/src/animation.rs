@@ -8,7 +8,7 @@ use std::path::Path;
 
 use crate::colour::{Rgb, sequential};
 use crate::error::ReportError;
-use crate::obstacles::{self, Wireframe};
+use crate::obstacles;
 use crate::raster::{Raster, SHADES, Sphere};
 use crate::run_dir::RunDir;
 
@@ -61,12 +61,11 @@ fn palette() -> Vec<u8> {
 }
 
 /// Pixel mapping shared by all frames: one scale for both views, each centred on the run's
-/// bounding box; and the obstacles' wireframes around it.
-#[derive(Clone, Debug)]
+/// bounding box.
+#[derive(Clone, Copy, Debug)]
 struct Projection {
     scale: f64,
     centre: [f64; 3],
-    obstacles: Wireframe,
 }
 
 impl Projection {
@@ -79,8 +78,7 @@ impl Projection {
             .iter()
             .map(|v| (w / extent(v.right)).min(h / extent(v.up)))
             .fold(f64::INFINITY, f64::min);
-        let centre = [0, 1, 2].map(|a| 0.5 * (low[a] + high[a]));
-        Self { scale, centre, obstacles: obstacles::of_run_wireframe(run) }
+        Self { scale, centre: [0, 1, 2].map(|a| 0.5 * (low[a] + high[a])) }
     }
 
     /// (column, row, depth) in pixels of world point `p` in `view`.
@@ -100,7 +98,7 @@ fn draw_view(run: &RunDir, projection: &Projection, view: View, f: usize) -> Ras
     if wall >= 0.0 && wall < VIEW.0 as f64 {
         image.fill((wall as usize, wall as usize + 2), (0, VIEW.1), LINE);
     }
-    for polyline in &projection.obstacles {
+    for polyline in &obstacles::of_run_wireframe(run, run.centreline.times[f]) {
         for pair in polyline.windows(2) {
             let (a, b) = (projection.project(view, pair[0]), projection.project(view, pair[1]));
             image.line((a.0, a.1), (b.0, b.1), LINE);

@@ -1,13 +1,14 @@
 //! The run's obstacles (the `obstacles` of its `scenario.ron`) as wireframes: a few circles
 //! and lines per obstacle that show its shape in the animation and in ParaView
-//! (`vtk/obstacles.vtk`). Planes and infinite cylinders are cut to the run's surroundings.
+//! (`vtk/obstacles.vtk`, per frame when one moves). Planes and infinite cylinders are cut to
+//! the run's surroundings.
 
 use std::f64::consts::TAU;
 use std::path::Path;
 
 use glam::DVec3;
 use hagfish_anatomy::DataFile;
-use hagfish_geometry::Obstacle;
+use hagfish_geometry::{MovingObstacle, Obstacle, ObstaclePath};
 use hagfish_scenario::Scenario;
 
 use crate::run_dir::RunDir;
@@ -22,19 +23,24 @@ pub type Wireframe = Vec<Vec<[f64; 3]>>;
 
 /// The obstacles of the run whose scenario file is `scenario`: none when it does not exist,
 /// cannot be read or names an obstacle that is not one (`hagfish run` refused such a run).
-pub fn of_run(scenario: &Path) -> Vec<Obstacle> {
+pub fn of_run(scenario: &Path) -> Vec<MovingObstacle> {
     let Ok(file) = DataFile::<Scenario>::read(scenario) else { return Vec::new() };
     file.value.obstacles.iter().filter_map(|spec| spec.to_obstacle().ok()).collect()
 }
 
-/// The wireframes of every obstacle of `run` around the region its body sweeps (its
-/// centreline's bounding box grown by the largest radius).
-pub fn of_run_wireframe(run: &RunDir) -> Wireframe {
+/// The wireframes of every obstacle of `run` where it is at time `t` (s), around the region
+/// the body sweeps (its centreline's bounding box grown by the largest radius).
+pub fn of_run_wireframe(run: &RunDir, t: f64) -> Wireframe {
     let (low, high) = run.centreline.bounds();
     let margin = run.radii.values.iter().fold(0.0, |m: f64, r| m.max(*r));
     let centre = DVec3::from_array([0, 1, 2].map(|a| 0.5 * (low[a] + high[a])));
     let extent = (0..3).map(|a| 0.5 * (high[a] - low[a]) + margin).fold(1e-6, f64::max);
-    run.obstacles.iter().flat_map(|o| wireframe(o, centre, extent)).collect()
+    run.obstacles.iter().flat_map(|o| wireframe(&o.at(t), centre, extent)).collect()
+}
+
+/// Whether any obstacle of `run` moves.
+pub fn any_moves(run: &RunDir) -> bool {
+    run.obstacles.iter().any(|o| o.path != ObstaclePath::default())
 }
 
 /// The wireframe of `obstacle` around the region of centre `centre` and half-size `extent`
@@ -136,7 +142,7 @@ mod tests {
         let path = dir.join("scenario.ron");
         std::fs::write(&path, with).expect("write");
         let sphere = Obstacle::sphere(DVec3::new(1.0, 2.0, 3.0), 0.5).expect("valid");
-        assert_eq!(of_run(&path), vec![sphere]);
+        assert_eq!(of_run(&path), vec![sphere.into()]);
         std::fs::remove_dir_all(&dir).expect("clean up");
     }
 }

@@ -123,7 +123,17 @@ fn make(dir: &Path, parts: Parts, sections: &[Section]) -> Result<Written, Repor
         written.files.push(gif_path);
     }
     if parts.exports {
-        let (obstacles, radii) = (obstacles::of_run_wireframe(&run), &run.radii.values);
+        let obstacles = match obstacles::any_moves(&run) {
+            false => vtk::ObstacleFrames::Still(obstacles::of_run_wireframe(&run, 0.0)),
+            true => vtk::ObstacleFrames::Moving(
+                run.centreline
+                    .times
+                    .iter()
+                    .map(|&t| obstacles::of_run_wireframe(&run, t))
+                    .collect(),
+            ),
+        };
+        let radii = &run.radii.values;
         let (series, frames) =
             written.time("vtk", || vtk::write(&run.centreline, radii, &obstacles, &vtk_dir))?;
         written.files.push(series);

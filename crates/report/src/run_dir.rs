@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use hagfish_geometry::Obstacle;
+use hagfish_geometry::MovingObstacle;
 
 use crate::centreline::Centreline;
 use crate::csv::CsvFile;
@@ -28,8 +28,8 @@ pub struct RunDir {
     pub forces: ThigmoForces,
     /// The body radii (from `scenario.ron` if it gives them).
     pub radii: Radii,
-    /// The obstacles of `scenario.ron` (none without it).
-    pub obstacles: Vec<Obstacle>,
+    /// The obstacles of `scenario.ron`, with their paths (none without it).
+    pub obstacles: Vec<MovingObstacle>,
     /// The text of `scenario.ron`, if present.
     pub scenario: Option<String>,
     /// The text of `manifest.json`, if present.

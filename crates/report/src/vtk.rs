@@ -1,7 +1,9 @@
 //! ParaView export: one legacy VTK file per frame (`vtk/frame_NNNN.vtk`, POLYDATA: the body
 //! centres as one LINES cell with a `radius_cm` point field, cm), the series index
 //! `vtk/centreline.vtk.series` (ParaView's JSON file-series format, times in s) and, when the
-//! run has obstacles, their wireframes in `vtk/obstacles.vtk` (POLYDATA LINES, cm).
+//! run has obstacles, their wireframes (POLYDATA LINES, cm): `vtk/obstacles.vtk` when they
+//! stand still, else one `vtk/obstacles_NNNN.vtk` per frame indexed by
+//! `vtk/obstacles.vtk.series`.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -13,8 +15,10 @@ use crate::outputs::write_file;
 
 /// Name of the series index inside the VTK directory.
 pub const SERIES: &str = "centreline.vtk.series";
-/// Name of the obstacles' file inside the VTK directory.
+/// Name of the still obstacles' file inside the VTK directory.
 pub const OBSTACLES: &str = "obstacles.vtk";
+/// Name of the moving obstacles' series index inside the VTK directory.
+pub const OBSTACLE_SERIES: &str = "obstacles.vtk.series";
 
 /// The legacy VTK text of the obstacles' wireframes: one LINES cell per polyline.
 pub fn obstacles_text(wireframe: &Wireframe) -> String {
@@ -67,13 +71,18 @@ pub fn frame_name(f: usize) -> String {
     format!("frame_{f:04}.vtk")
 }
 
-/// The `.vtk.series` JSON naming every frame's file and time.
-pub fn series_text(centreline: &Centreline) -> String {
+/// The file name of the obstacles at frame `f` (when they move).
+pub fn obstacle_frame_name(f: usize) -> String {
+    format!("obstacles_{f:04}.vtk")
+}
+
+/// The `.vtk.series` JSON naming every frame's file (as `name` names it) and time.
+pub fn series_text(centreline: &Centreline, name: fn(usize) -> String) -> String {
     let files: Vec<serde_json::Value> = centreline
         .times
         .iter()
         .enumerate()
-        .map(|(f, t)| serde_json::json!({ "name": frame_name(f), "time": t }))
+        .map(|(f, t)| serde_json::json!({ "name": name(f), "time": t }))
         .collect();
     let series = serde_json::json!({ "file-series-version": "1.0", "files": files });
     format!("{series:#}\n")
@@ -81,19 +90,33 @@ pub fn series_text(centreline: &Centreline) -> String {
 
 /// Whether `name` is one of the files this module writes (a frame or the series index).
 pub fn is_own_file(name: &str) -> bool {
-    let frame = name.strip_prefix("frame_").and_then(|rest| rest.strip_suffix(".vtk"));
-    let digits = |d: &str| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit());
-    name == SERIES || name == OBSTACLES || frame.is_some_and(digits)
+    let numbered = |prefix: &str| {
+        let digits = name.strip_prefix(prefix).and_then(|rest| rest.strip_suffix(".vtk"));
+        digits.is_some_and(|d| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit()))
+    };
+    [SERIES, OBSTACLES, OBSTACLE_SERIES].contains(&name)
+        || numbered("frame_")
+        || numbered("obstacles_")
 }
 
-/// Writes every frame, the series index and the obstacles (if `obstacles` has any) into
-/// `dir` (created if missing), after removing the files of an earlier run (so that none of a
+/// The obstacles' wireframes of a run for [`write`]: one for the whole run, or one per frame
+/// when an obstacle moves.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ObstacleFrames {
+    /// They stand still (an empty wireframe: the run has none).
+    Still(Wireframe),
+    /// Where they are at each frame.
+    Moving(Vec<Wireframe>),
+}
+
+/// Writes every frame, the series index and the obstacles (if there are any) into `dir`
+/// (created if missing), after removing the files of an earlier run (so that none of a
 /// longer run lingers); other files in `dir` are left alone. Returns the series index's path
 /// and the number of frame files.
 pub fn write(
     centreline: &Centreline,
     radii: &[f64],
-    obstacles: &Wireframe,
+    obstacles: &ObstacleFrames,
     dir: &Path,
 ) -> Result<(PathBuf, usize), ReportError> {
     std::fs::create_dir_all(dir).map_err(ReportError::write(dir))?;
@@ -104,12 +127,22 @@ pub fn write(
         let path = dir.join(frame_name(f));
         write_file(&path, frame_text(centreline, radii, f).as_bytes())?;
     }
-    if !obstacles.is_empty() {
-        let path = dir.join(OBSTACLES);
-        write_file(&path, obstacles_text(obstacles).as_bytes())?;
+    match obstacles {
+        ObstacleFrames::Still(wireframe) if wireframe.is_empty() => {}
+        ObstacleFrames::Still(wireframe) => {
+            write_file(&dir.join(OBSTACLES), obstacles_text(wireframe).as_bytes())?;
+        }
+        ObstacleFrames::Moving(frames) => {
+            for (f, wireframe) in frames.iter().enumerate() {
+                let path = dir.join(obstacle_frame_name(f));
+                write_file(&path, obstacles_text(wireframe).as_bytes())?;
+            }
+            let series = series_text(centreline, obstacle_frame_name);
+            write_file(&dir.join(OBSTACLE_SERIES), series.as_bytes())?;
+        }
     }
     let path = dir.join(SERIES);
-    write_file(&path, series_text(centreline).as_bytes())?;
+    write_file(&path, series_text(centreline, frame_name).as_bytes())?;
     Ok((path, centreline.frames()))
 }
 
@@ -133,7 +166,8 @@ mod tests {
     #[test]
     fn only_frames_and_the_series_are_own_files() {
         assert!(is_own_file("frame_0000.vtk") && is_own_file("frame_12345.vtk"));
-        assert!(is_own_file(SERIES) && is_own_file(OBSTACLES));
+        assert!(is_own_file(SERIES) && is_own_file(OBSTACLES) && is_own_file(OBSTACLE_SERIES));
+        assert!(is_own_file("obstacles_0003.vtk") && !is_own_file("obstacles_.vtk"));
         for other in ["frame_.vtk", "frame_01a.vtk", "mine.vtk", "frame_0001.vtk.bak", "notes"] {
             assert!(!is_own_file(other), "{other}");
         }
@@ -152,9 +186,27 @@ mod tests {
     }
 
     #[test]
+    fn still_obstacles_get_one_file_and_moving_ones_a_series_that_replaces_it() {
+        let dir = crate::test_files::dir("vtk-obstacles");
+        let (centreline, radii) = (two_frames(), [0.5, 0.75, 0.25]);
+        let line = |y: f64| vec![vec![[0.0, y, 0.0], [1.0, y, 0.0]]];
+        write(&centreline, &radii, &ObstacleFrames::Still(line(0.0)), &dir).expect("writes");
+        assert!(dir.join(OBSTACLES).exists() && !dir.join(OBSTACLE_SERIES).exists());
+        let moving = ObstacleFrames::Moving(vec![line(0.0), line(1.0)]);
+        write(&centreline, &radii, &moving, &dir).expect("writes");
+        assert!(!dir.join(OBSTACLES).exists(), "the still file of the earlier run is gone");
+        let second = std::fs::read_to_string(dir.join(obstacle_frame_name(1))).expect("frame 1");
+        assert!(second.contains("\n0 1 0\n1 1 0\n"), "{second}");
+        let series = std::fs::read_to_string(dir.join(OBSTACLE_SERIES)).expect("series");
+        assert!(series.contains("obstacles_0001.vtk"), "{series}");
+        write(&centreline, &radii, &ObstacleFrames::Still(Vec::new()), &dir).expect("writes");
+        assert!(!dir.join(OBSTACLE_SERIES).exists() && !dir.join(obstacle_frame_name(0)).exists());
+    }
+
+    #[test]
     fn the_series_names_each_frame_with_its_time() {
         let series: serde_json::Value =
-            serde_json::from_str(&series_text(&two_frames())).expect("valid JSON");
+            serde_json::from_str(&series_text(&two_frames(), frame_name)).expect("valid JSON");
         assert_eq!(series["file-series-version"], "1.0");
         assert_eq!(series["files"][1]["name"], "frame_0001.vtk");
         assert_eq!(series["files"][1]["time"], 0.5);

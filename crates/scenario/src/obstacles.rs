@@ -1,7 +1,8 @@
 //! Obstacles as a scenario writes them (docs/physics.md, "Obstacles"): rigid planes, spheres
-//! and cylinders posed in space, in cm.
+//! and cylinders posed in space, in cm, still or moving on a path.
 
-use hagfish_geometry::{GeometryError, Obstacle};
+use glam::DVec3;
+use hagfish_geometry::{GeometryError, MovingObstacle, Obstacle, ObstaclePath};
 use serde::{Deserialize, Serialize};
 
 /// One obstacle of a scenario's `obstacles` list, e.g.
@@ -37,17 +38,45 @@ pub enum ObstacleSpec {
         #[serde(default)]
         half_length: Option<f64>,
     },
+    /// A still obstacle `shape` moved along `path`: (time s, offset cm) waypoints at
+    /// increasing times, linear between them and held beyond the ends, e.g.
+    /// `Moving(shape: Sphere(centre: (5.0, 3.0, 0.0), radius: 1.0), path: [(0.0, (0.0, 0.0,
+    /// 0.0)), (10.0, (20.0, 0.0, 0.0))])` (2 cm/s along x for 10 s).
+    Moving {
+        /// The obstacle at offset zero (not itself a moving one).
+        shape: Box<ObstacleSpec>,
+        /// The waypoints.
+        path: Vec<(f64, [f64; 3])>,
+    },
 }
 
 impl ObstacleSpec {
-    /// The obstacle, its numbers checked.
-    pub fn to_obstacle(&self) -> Result<Obstacle, GeometryError> {
+    /// The obstacle and its path (empty for a still one), its numbers checked.
+    pub fn to_obstacle(&self) -> Result<MovingObstacle, GeometryError> {
+        match self {
+            ObstacleSpec::Moving { shape, path } => {
+                let waypoints = path.iter().map(|&(t, offset)| (t, DVec3::from(offset))).collect();
+                let path = ObstaclePath::new(waypoints)?;
+                Ok(MovingObstacle { shape: shape.to_still_obstacle()?, path })
+            }
+            still => still.to_still_obstacle().map(MovingObstacle::from),
+        }
+    }
+
+    /// The plane, sphere or cylinder as posed; a `Moving` one is refused (the shape of a
+    /// moving obstacle must be still).
+    fn to_still_obstacle(&self) -> Result<Obstacle, GeometryError> {
         match *self {
             ObstacleSpec::Plane { point, normal } => Obstacle::plane(point.into(), normal.into()),
             ObstacleSpec::Sphere { centre, radius } => Obstacle::sphere(centre.into(), radius),
             ObstacleSpec::Cylinder { point, axis, radius, half_length } => {
                 Obstacle::cylinder(point.into(), axis.into(), radius, half_length)
             }
+            ObstacleSpec::Moving { .. } => Err(GeometryError::InvalidOption {
+                name: "Moving.shape",
+                requirement: "a plane, sphere or cylinder, not another Moving",
+                value: f64::NAN,
+            }),
         }
     }
 }
@@ -61,7 +90,9 @@ mod tests {
         let cylinder: ObstacleSpec =
             ron::from_str("Cylinder(point: (1.0, 2.0, 3.0), axis: (0.0, 0.0, 2.0), radius: 0.5)")
                 .expect("a cylinder");
-        let Ok(Obstacle::Cylinder { axis, half_length: None, .. }) = cylinder.to_obstacle() else {
+        let Ok(Obstacle::Cylinder { axis, half_length: None, .. }) =
+            cylinder.to_obstacle().map(|o| o.shape)
+        else {
             panic!("an infinite cylinder: {cylinder:?}")
         };
         assert_eq!(axis, glam::DVec3::Z, "the axis is normalised");
@@ -69,5 +100,18 @@ mod tests {
         assert!(plane.to_obstacle().is_err(), "a zero normal");
         let sphere = ObstacleSpec::Sphere { centre: [0.0; 3], radius: -1.0 };
         assert!(sphere.to_obstacle().is_err(), "a negative radius");
+        let moving: ObstacleSpec = ron::from_str(
+            "Moving(shape: Sphere(centre: (5.0, 3.0, 0.0), radius: 1.0), \
+             path: [(0.0, (0.0, 0.0, 0.0)), (10.0, (20.0, 0.0, 0.0))])",
+        )
+        .expect("a moving sphere");
+        let on_path = moving.to_obstacle().expect("valid");
+        assert_eq!(on_path.path.velocity(5.0), glam::DVec3::new(2.0, 0.0, 0.0));
+        let backwards = "Moving(shape: Sphere(centre: (0.0, 0.0, 0.0), radius: 1.0), \
+                         path: [(2.0, (0.0, 0.0, 0.0)), (1.0, (1.0, 0.0, 0.0))])";
+        let backwards: ObstacleSpec = ron::from_str(backwards).expect("parses");
+        assert!(backwards.to_obstacle().is_err(), "times must increase");
+        let nested = ObstacleSpec::Moving { shape: Box::new(moving), path: Vec::new() };
+        assert!(nested.to_obstacle().is_err(), "a moving shape on a path");
     }
 }

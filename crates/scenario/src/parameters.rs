@@ -58,7 +58,7 @@ pub const PARAMETERS: &[Parameter] = &[
     p("friction.coefficient", "-", "required in friction", "μ, static = kinetic, ≥ 0 (0: frictionless, bit for bit)"),
     p("friction.edges", "-", "8", "edges E of the friction cone's inscribed pyramid, 3 to 16: the limit within 1 − cos(π/E) of Coulomb's"),
     p("friction.cone", "-", "Pyramid", "Pyramid (the fast path) or Exact: the cone itself, solved by the clarabel backend (the run switches to it; 7–40 ms a step): the reference"),
-    p("obstacles", "-", "[]", "rigid obstacles the body touches like the wall (their contacts, rows and friction are the wall's)"),
+    p("obstacles", "-", "[]", "rigid obstacles, still or moving on a path, the body touches like the wall (their contacts, rows and friction are the wall's)"),
     p("obstacles.Plane", "-", "-", "the half-space behind a plane"),
     p("obstacles.Plane.point", "cm", "required", "a point of the plane, (x, y, z)"),
     p("obstacles.Plane.normal", "-", "required", "the normal toward the free side, (x, y, z), any length but 0"),
@@ -70,6 +70,9 @@ pub const PARAMETERS: &[Parameter] = &[
     p("obstacles.Cylinder.axis", "-", "required", "its axis direction, (x, y, z), any length but 0"),
     p("obstacles.Cylinder.radius", "cm", "required", "its radius, > 0"),
     p("obstacles.Cylinder.half_length", "cm", "None", "half its length: Some(H) (> 0), or None for an infinite cylinder"),
+    p("obstacles.Moving", "-", "-", "an obstacle moving on a path: Moving(shape: Sphere(..), path: [(t, (x, y, z)), ...])"),
+    p("obstacles.Moving.shape", "-", "required", "a Plane, Sphere or Cylinder as posed at offset zero"),
+    p("obstacles.Moving.path", "s, cm", "required", "(time, offset) waypoints at increasing times, linear between them, held beyond the ends"),
     p("backend", "-", "SparseMaximal", "velocity-step linear algebra: SparseMaximal (linear in the bodies), or DenseReduced"),
     p("acceptance", "-", "(...)", "when a step's result is kept; a rejected step is retried with substeps"),
     p("acceptance.max_self_penetration_relative", "-", "0.1", "deepest self penetration at a step's end, fraction of the local radius"),
@@ -218,6 +221,13 @@ mod tests {
                     axis: [0.0, 0.0, 1.0],
                     radius: 2.0,
                     half_length: Some(5.0),
+                },
+                crate::ObstacleSpec::Moving {
+                    shape: Box::new(crate::ObstacleSpec::Sphere {
+                        centre: [5.0, 5.0, 0.0],
+                        radius: 1.0,
+                    }),
+                    path: vec![(0.0, [0.0; 3]), (10.0, [20.0, 0.0, 0.0])],
                 },
             ],
             phases: vec![

@@ -1,7 +1,7 @@
 //! Options of the step: time step, constraint stabilisation, margins, contact and wall set-up.
 
 use glam::DVec3;
-use hagfish_geometry::{DetectorOptions, Obstacle, WallOptions};
+use hagfish_geometry::{DetectorOptions, MovingObstacle, WallOptions};
 use hagfish_solver::{QpBackend, SolverOptions};
 use hagfish_tree::Model;
 
@@ -79,10 +79,11 @@ pub struct StepOptions {
     /// pyramid of the friction cone (docs/physics.md, "Friction: the cone and its pyramid");
     /// `None` (default) or μ = 0: frictionless, as the thesis.
     pub friction: Option<Friction>,
-    /// Rigid obstacles (planes, spheres, cylinders) the bodies touch as they touch the wall:
-    /// their contacts join the wall's (`StepData::wall_contacts`), with the wall's margin,
-    /// rows, friction and acceptance bound (docs/physics.md, "Obstacles"). Default none.
-    pub obstacles: Vec<Obstacle>,
+    /// Rigid obstacles (planes, spheres, cylinders), still or moving on a path, that the
+    /// bodies touch as they touch the wall: their contacts join the wall's
+    /// (`StepData::wall_contacts`), with the wall's margin, rows, friction and acceptance bound
+    /// (docs/physics.md, "Obstacles"). Default none.
+    pub obstacles: Vec<MovingObstacle>,
     /// Whether the head rows hold the root joints at their rest values (default
     /// [`RootHold::Held`], the hagfish's head at the wall) or leave them free.
     pub root: RootHold,

@@ -42,11 +42,13 @@ pub fn kinematics(model: &Model, state: &State, data: &mut StepData) {
     hagfish_tree::forward_kinematics(model, &state.q, &state.qdot, &mut data.tree);
 }
 
-/// Stage 2: centreline through the body centres, self contacts and wall and obstacle contacts; returns
-/// the self-contact detection's counts.
+/// Stage 2: centreline through the body centres, self contacts and wall and obstacle contacts
+/// (the obstacles where their paths have them at `time`, s); returns the self-contact
+/// detection's counts.
 pub fn detect_contacts(
     model: &Model,
     options: &StepOptions,
+    time: f64,
     data: &mut StepData,
 ) -> Result<DetectionReport, hagfish_geometry::GeometryError> {
     for (i, centre) in data.centres.iter_mut().enumerate() {
@@ -66,7 +68,7 @@ pub fn detect_contacts(
     }
     let margin = options.wall_options.margin;
     for obstacle in &options.obstacles {
-        obstacle.contacts(&data.centreline, margin, &mut data.wall_contacts);
+        obstacle.contacts(&data.centreline, margin, time, &mut data.wall_contacts);
     }
     Ok(detection)
 }
@@ -193,7 +195,7 @@ pub fn step(
     if data.take_over_carried() == Carried::Stale {
         kinematics(model, state, data);
         clock.lap(Stage::Kinematics);
-        data.report.detection = detect_contacts(model, options, data).in_step(at)?;
+        data.report.detection = detect_contacts(model, options, state.t, data).in_step(at)?;
         stop.check(at)?;
     }
     measure_penetration(data);
@@ -246,7 +248,7 @@ pub fn check_result(
 ) -> Result<EndOfStep, hagfish_geometry::GeometryError> {
     kinematics(model, state, data);
     let (detected, penetration) = data.with_carried(|data| {
-        let detected = detect_contacts(model, options, data);
+        let detected = detect_contacts(model, options, state.t, data);
         (detected, penetration(data))
     });
     data.carried.detection = detected?;

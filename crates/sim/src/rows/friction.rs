@@ -18,7 +18,7 @@ use hagfish_solver::{FrictionPyramid, RowKind, Rows};
 use serde::{Deserialize, Serialize};
 
 use super::RowGroup;
-use super::stabilisation::push_unilateral_row;
+use super::stabilisation::unilateral_rhs;
 use crate::error::SimError;
 
 /// Most edges of a pyramid (the directions of one contact live in a fixed array).
@@ -121,24 +121,26 @@ pub fn contact_directions(
 
 /// Pushes row `k` of a contact's rows, the first of which is row `first` of `rows`, and
 /// returns its coefficients to fill: a unilateral row on the contact's `gap`
-/// (`push_unilateral_row`) for the normal and for every edge of a pyramid, or with the exact
-/// cone (k = 1, 2) a friction row of the cone whose normal row is `first`, target 0 (the
-/// surfaces are still).
+/// ([`unilateral_rhs`]) for the normal and for every edge of a pyramid, or with the exact cone
+/// (k = 1, 2) a friction row of the cone whose normal row is `first`, target 0. On a moving
+/// surface the row bounds the velocity relative to it: `surface_speed` (the row's direction
+/// · the surface's velocity) is added to the bound (zero adds nothing, bit for bit).
 pub(super) fn push_contact_row(
     rows: &mut Rows,
     (group, id): (RowGroup, usize),
-    gap: f64,
+    (gap, surface_speed): (f64, f64),
     (time_step, push_out): (f64, f64),
     friction: Option<Friction>,
     (k, first): (usize, usize),
 ) -> &mut [f64] {
-    match friction {
+    let (kind, target) = match friction {
         Some(Friction { coefficient, cone: ConeForm::Exact, .. }) if k > 0 => {
-            let kind = RowKind::Friction { normal: first, coefficient };
-            rows.push_zeroed(kind, group.source(id), 0.0)
+            (RowKind::Friction { normal: first, coefficient }, 0.0)
         }
-        _ => push_unilateral_row(rows, group, id, gap, time_step, push_out),
-    }
+        _ => (RowKind::Inequality, unilateral_rhs(gap, time_step, push_out)),
+    };
+    let rhs = if surface_speed == 0.0 { target } else { target + surface_speed };
+    rows.push_zeroed(kind, group.source(id), rhs)
 }
 
 /// Where a wall (or obstacle) contact's rows act, as an offset from the body's centre: the

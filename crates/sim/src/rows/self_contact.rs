@@ -48,9 +48,9 @@ pub fn add_self_contact_rows(
             contact_directions(contact.normal, contact.tangent_a, friction, &mut directions);
         let first = rows.len();
         for (k, &direction) in directions[..edges].iter().enumerate() {
-            let stabilisation = (time_step, push_out);
-            let place = (RowGroup::Contact, i);
-            let row = push_contact_row(rows, place, core_gap, stabilisation, friction, (k, first));
+            let (place, stabilisation) = ((RowGroup::Contact, i), (time_step, push_out));
+            let gap = (core_gap, 0.0);
+            let row = push_contact_row(rows, place, gap, stabilisation, friction, (k, first));
             add_point_rows(model, data, &points[..count], direction, row);
         }
         let carries_spring = skin_carriers.is_none_or(|carriers| carriers[i]);

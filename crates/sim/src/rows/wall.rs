@@ -3,6 +3,7 @@
 //! Only the centre's velocity enters the normal row: the contact point is `c_k − r_k n_w` and
 //! `n_w·(ω × (−r_k n_w)) = 0`. With friction the rows push along the pyramid's edges
 //! (`friction.rs`) at the contact point, whose tangential velocity the body's spin does move.
+//! A moving obstacle's rows bound the velocity relative to its surface.
 
 use glam::DVec3;
 use hagfish_geometry::WallContact;
@@ -34,10 +35,9 @@ pub fn add_wall_rows(
         let point = if edges == 1 { centre } else { centre + offset };
         let first = rows.len();
         for (k, &direction) in directions[..edges].iter().enumerate() {
-            let stabilisation = (time_step, push_out);
-            let place = (RowGroup::Wall, i);
-            let row =
-                push_contact_row(rows, place, contact.gap, stabilisation, friction, (k, first));
+            let (place, stabilisation) = ((RowGroup::Wall, i), (time_step, push_out));
+            let gap = (contact.gap, direction.dot(contact.surface_velocity));
+            let row = push_contact_row(rows, place, gap, stabilisation, friction, (k, first));
             add_point_row(model, data, contact.body, point, direction, 1.0, row);
         }
     }

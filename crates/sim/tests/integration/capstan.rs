@@ -106,7 +106,7 @@ fn slips(pegs: usize, alpha: f64, mu: f64, ratio: f64) -> bool {
         root: RootHold::Free,
         friction: Some(Friction::pyramid(mu, 8)),
         obstacles: vec![
-            Obstacle::cylinder(DVec3::ZERO, DVec3::Z, CYLINDER, None).expect("cylinder"),
+            Obstacle::cylinder(DVec3::ZERO, DVec3::Z, CYLINDER, None).expect("cylinder").into(),
         ],
         ..StepOptions::default()
     };

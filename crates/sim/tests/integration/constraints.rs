@@ -260,7 +260,7 @@ fn obstacles_stop_a_body_pushed_into_them() {
         let options = StepOptions {
             self_contact: false,
             wall: None,
-            obstacles: vec![obstacle],
+            obstacles: vec![obstacle.into()],
             ..StepOptions::default()
         };
         let mut world = World::new(model, options, state).expect("world");

@@ -63,7 +63,7 @@ fn slide(angle: f64, turn: f64, friction: Friction, steps: usize) -> (Vec<f64>, 
         wall: None,
         root: RootHold::Free,
         friction: Some(friction),
-        obstacles: vec![Obstacle::plane(DVec3::ZERO, normal(angle, turn)).expect("a plane")],
+        obstacles: vec![Obstacle::plane(DVec3::ZERO, normal(angle, turn)).expect("a plane").into()],
         solver: SolverOptions { backend, ..SolverOptions::default() },
         ..StepOptions::default()
     };

@@ -10,3 +10,4 @@ mod capstan;
 mod constraints;
 mod incline;
 mod linear_memory;
+mod moving_obstacle;
