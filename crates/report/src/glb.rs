@@ -1,7 +1,8 @@
 //! glTF 2.0 binary export (`run.glb`), written by hand: one node per body, each an
 //! icosphere scaled to the body's radius and coloured by arc length, animated by one
-//! LINEAR translation sampler per node over the frames' times. glTF is in metres with +Y
-//! up, so a point (x, y, z) cm becomes (x, z, −y) / 100 m.
+//! LINEAR translation sampler per node over the frames' times; then one grey wireframe node
+//! (LINES) per obstacle, animated the same way when it moves. glTF is in metres with +Y up,
+//! so a point (x, y, z) cm becomes (x, z, −y) / 100 m.
 
 use std::collections::HashMap;
 
@@ -10,7 +11,10 @@ use serde_json::{Value, json};
 
 use crate::centreline::Centreline;
 use crate::colour::sequential;
+use crate::obstacles::Wireframe;
 
+/// glTF primitive mode of line segments (vertex pairs).
+const LINES: u32 = 1;
 /// glTF component type of f32.
 const FLOAT: u32 = 5126;
 /// glTF component type of u16.
@@ -174,28 +178,101 @@ struct Animation<'a> {
 }
 
 /// A JSON array of the `first` values, then `each(0) … each(count − 1)`, each made as it is
-/// written and dropped after.
+/// written and dropped after, then the `last` values.
 struct Elements<'a> {
     first: &'a [Value],
     count: usize,
     each: &'a dyn Fn(usize) -> Value,
-}
-
-impl<'a> Elements<'a> {
-    /// `each(0) … each(count − 1)`.
-    fn per_body(count: usize, each: &'a dyn Fn(usize) -> Value) -> Self {
-        Self { first: &[], count, each }
-    }
+    last: &'a [Value],
 }
 
 impl Serialize for Elements<'_> {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        serializer.collect_seq(self.first.iter().cloned().chain((0..self.count).map(self.each)))
+        let each = (0..self.count).map(self.each);
+        serializer
+            .collect_seq(self.first.iter().cloned().chain(each).chain(self.last.iter().cloned()))
     }
 }
 
-/// The `.glb` bytes of the animated run: `radii` per body (cm).
-pub fn encode(centreline: &Centreline, radii: &[f64]) -> Vec<u8> {
+/// An obstacle for [`encode`]: its wireframe at offset zero and its offset at each frame
+/// (cm; empty when it stands still).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ObstacleTrack {
+    /// The wireframe, posed at offset zero (cm).
+    pub lines: Wireframe,
+    /// The offset at each frame (cm), or none.
+    pub offsets: Vec<[f64; 3]>,
+}
+
+/// The accessors, meshes, nodes and animation entries of the obstacles, numbered after the
+/// bodies' (their buffer views appended to `buffer`).
+struct ObstacleParts {
+    accessors: Vec<Value>,
+    meshes: Vec<Value>,
+    nodes: Vec<Value>,
+    samplers: Vec<Value>,
+    channels: Vec<Value>,
+}
+
+impl ObstacleParts {
+    /// The parts of `obstacles`; `accessors` and `bodies` are the counts before theirs (the
+    /// bodies' meshes, nodes, samplers and the one obstacle material after theirs).
+    fn new(
+        obstacles: &[ObstacleTrack],
+        buffer: &mut Buffer,
+        accessors: usize,
+        bodies: usize,
+    ) -> Self {
+        let mut parts = ObstacleParts {
+            accessors: Vec::new(),
+            meshes: Vec::new(),
+            nodes: Vec::new(),
+            samplers: Vec::new(),
+            channels: Vec::new(),
+        };
+        for (k, obstacle) in obstacles.iter().enumerate() {
+            let segments = obstacle.lines.iter().flat_map(|line| line.windows(2).flatten());
+            let points: Vec<[f32; 3]> = segments.map(|&p| to_gltf(p)).collect();
+            let (low, high) = points.iter().fold(([f32::MAX; 3], [f32::MIN; 3]), |(l, h), p| {
+                ([0, 1, 2].map(|a| l[a].min(p[a])), [0, 1, 2].map(|a| h[a].max(p[a])))
+            });
+            let view = buffer.view(&floats(points.iter().flatten().copied()), Some(ARRAY_BUFFER));
+            let positions = accessors + parts.accessors.len();
+            parts.accessors.push(json!({
+                "bufferView": view, "componentType": FLOAT, "count": points.len(),
+                "type": "VEC3", "min": low, "max": high
+            }));
+            parts.meshes.push(json!({ "primitives": [{
+                "attributes": { "POSITION": positions }, "mode": LINES, "material": bodies
+            }] }));
+            let node = bodies + k;
+            let start = obstacle.offsets.first().map_or([0.0; 3], |p| to_gltf(*p));
+            parts.nodes.push(
+                json!({ "name": format!("obstacle {k}"), "mesh": node, "translation": start }),
+            );
+            if obstacle.offsets.is_empty() {
+                continue;
+            }
+            let track = obstacle.offsets.iter().flat_map(|p| to_gltf(*p));
+            let view = buffer.view(&floats(track), None);
+            let output = accessors + parts.accessors.len();
+            parts.accessors.push(json!({
+                "bufferView": view, "componentType": FLOAT, "count": obstacle.offsets.len(),
+                "type": "VEC3"
+            }));
+            let sampler = bodies + parts.samplers.len();
+            parts.samplers.push(json!({ "input": 3, "output": output, "interpolation": "LINEAR" }));
+            parts.channels.push(
+                json!({ "sampler": sampler, "target": { "node": node, "path": "translation" } }),
+            );
+        }
+        parts
+    }
+}
+
+/// The `.glb` bytes of the animated run: `radii` per body (cm), and the `obstacles` (their
+/// offsets, when they move, one per frame).
+pub fn encode(centreline: &Centreline, radii: &[f64], obstacles: &[ObstacleTrack]) -> Vec<u8> {
     let (vertices, triangles) = icosphere(1);
     let (bodies, frames) = (centreline.bodies, centreline.frames());
     let mut buffer = Buffer::default();
@@ -204,6 +281,7 @@ pub fn encode(centreline: &Centreline, radii: &[f64]) -> Vec<u8> {
     let index_bytes: Vec<u8> = triangles.iter().flatten().flat_map(|i| i.to_le_bytes()).collect();
     let indices = buffer.view(&index_bytes, Some(ELEMENT_ARRAY_BUFFER));
     let times = buffer.view(&floats(centreline.times.iter().map(|t| *t as f32)), None);
+    let obstacle_parts = ObstacleParts::new(obstacles, &mut buffer, 4 + bodies, bodies);
     let tracks =
         (0..bodies).flat_map(|b| (0..frames).flat_map(move |f| to_gltf(centreline.frame(f)[b])));
     let translations = buffer.trailing_view(12 * frames * bodies);
@@ -256,22 +334,32 @@ pub fn encode(centreline: &Centreline, radii: &[f64]) -> Vec<u8> {
         |b: usize| json!({ "input": 3, "output": first_track + b, "interpolation": "LINEAR" });
     let channel =
         |b: usize| json!({ "sampler": b, "target": { "node": b, "path": "translation" } });
-    let per_body = |each| Elements::per_body(bodies, each);
+    let per_body = |each, last| Elements { first: &[], count: bodies, each, last };
+    let grey = [json!({ "pbrMetallicRoughness": {
+        "baseColorFactor": [0.4, 0.4, 0.4, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0
+    } })];
+    let parts = &obstacle_parts;
+    let scene_nodes: Vec<usize> = (0..bodies + parts.nodes.len()).collect();
     let document = Document {
-        accessors: Elements { first: &fixed_accessors, count: bodies, each: &track },
+        accessors: Elements {
+            first: &fixed_accessors,
+            count: bodies,
+            each: &track,
+            last: &parts.accessors,
+        },
         animations: [Animation {
-            channels: per_body(&channel),
+            channels: per_body(&channel, &parts.channels),
             name: "run",
-            samplers: per_body(&sampler),
+            samplers: per_body(&sampler, &parts.samplers),
         }],
         asset: json!({ "version": "2.0", "generator": "hagfish-report" }),
         buffer_views: &buffer.views,
         buffers: json!([{ "byteLength": buffer.len() }]),
-        materials: per_body(&material),
-        meshes: per_body(&mesh),
-        nodes: per_body(&node),
+        materials: per_body(&material, if obstacles.is_empty() { &[] } else { &grey }),
+        meshes: per_body(&mesh, &parts.meshes),
+        nodes: per_body(&node, &parts.nodes),
         scene: 0,
-        scenes: json!([{ "name": "hagfish", "nodes": (0..bodies).collect::<Vec<_>>() }]),
+        scenes: json!([{ "name": "hagfish", "nodes": scene_nodes }]),
     };
     let mut json_bytes =
         serde_json::to_vec(&document).expect("JSON values and string keys always serialize");
@@ -369,7 +457,7 @@ mod tests {
     #[test]
     fn the_glb_parses_back_with_one_animated_node_per_body() {
         let centreline = two_frames();
-        let glb = encode(&centreline, &[1.0, 0.5, 0.25]);
+        let glb = encode(&centreline, &[1.0, 0.5, 0.25], &[]);
         let (document, bin) = parse(&glb);
         assert_eq!(document["asset"]["version"], "2.0");
         assert_eq!(document["nodes"].as_array().map(Vec::len), Some(3));
@@ -399,5 +487,26 @@ mod tests {
             })
             .collect();
         assert_eq!(value, vec![0.02, -0.0025, -0.015]);
+    }
+
+    #[test]
+    fn obstacles_are_grey_line_nodes_after_the_bodies_and_a_moving_one_is_animated() {
+        let centreline = two_frames();
+        let square = vec![vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0]]];
+        let still = ObstacleTrack { lines: square.clone(), offsets: Vec::new() };
+        let moving = ObstacleTrack { lines: square, offsets: vec![[0.0; 3], [0.0, 0.0, 10.0]] };
+        let glb = encode(&centreline, &[1.0, 0.5, 0.25], &[still, moving]);
+        let (document, _) = parse(&glb);
+        assert_eq!(document["nodes"].as_array().map(Vec::len), Some(5));
+        assert_eq!(document["scenes"][0]["nodes"].as_array().map(Vec::len), Some(5));
+        let primitive = &document["meshes"][3]["primitives"][0];
+        assert_eq!(primitive["mode"].as_u64(), Some(u64::from(LINES)));
+        assert_eq!(primitive["material"].as_u64(), Some(3), "the grey material after the bodies'");
+        let positions = primitive["attributes"]["POSITION"].as_u64().expect("positions") as usize;
+        assert_eq!(document["accessors"][positions]["count"].as_u64(), Some(4), "two segments");
+        let channels = document["animations"][0]["channels"].as_array().expect("channels");
+        assert_eq!(channels.len(), 4, "three bodies and the moving obstacle");
+        assert_eq!(channels[3]["target"]["node"].as_u64(), Some(4));
+        assert_eq!(document["nodes"][4]["translation"][2].as_f64(), Some(0.0));
     }
 }

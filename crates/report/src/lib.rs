@@ -11,8 +11,8 @@
 //! - `report.html`: one offline page with the summary, the plots, the animation, the
 //!   scenario and manifest, and a WebGL view scrubbed by a time slider.
 //! - `vtk/`: ParaView legacy polylines per frame with a `.vtk.series` index (and the
-//!   obstacles' wireframes in `obstacles.vtk`); `run.glb`:
-//!   glTF 2.0 binary, one animated node per body.
+//!   obstacles' wireframes); `run.glb`:
+//!   glTF 2.0 binary, one animated node per body and a wireframe node per obstacle.
 //!
 //! The required inputs are `centreline.csv`, `metrics.csv` and `forces.csv`;
 //! `scenario.ron` (body radii via its biometrics), `manifest.json` and `contacts.csv` are

@@ -11,6 +11,7 @@ use hagfish_anatomy::DataFile;
 use hagfish_geometry::{MovingObstacle, Obstacle, ObstaclePath};
 use hagfish_scenario::Scenario;
 
+use crate::glb::ObstacleTrack;
 use crate::run_dir::RunDir;
 
 /// Segments of each circle.
@@ -31,11 +32,36 @@ pub fn of_run(scenario: &Path) -> Vec<MovingObstacle> {
 /// The wireframes of every obstacle of `run` where it is at time `t` (s), around the region
 /// the body sweeps (its centreline's bounding box grown by the largest radius).
 pub fn of_run_wireframe(run: &RunDir, t: f64) -> Wireframe {
+    let (centre, extent) = surroundings(run);
+    run.obstacles.iter().flat_map(|o| wireframe(&o.at(t), centre, extent)).collect()
+}
+
+/// The obstacles of `run` for `run.glb`: each one's wireframe at offset zero around the
+/// region the body sweeps, and its offset at each frame when it moves.
+pub fn tracks(run: &RunDir) -> Vec<ObstacleTrack> {
+    let (centre, extent) = surroundings(run);
+    let still = ObstaclePath::default();
+    let frame_offsets = |path: &ObstaclePath| -> Vec<[f64; 3]> {
+        if *path == still {
+            return Vec::new();
+        }
+        run.centreline.times.iter().map(|&t| path.offset(t).to_array()).collect()
+    };
+    let track = |o: &MovingObstacle| ObstacleTrack {
+        lines: wireframe(&o.shape, centre, extent),
+        offsets: frame_offsets(&o.path),
+    };
+    run.obstacles.iter().map(track).collect()
+}
+
+/// The centre and half-size (cm) of the region the body of `run` sweeps: its centreline's
+/// bounding box grown by the largest radius.
+fn surroundings(run: &RunDir) -> (DVec3, f64) {
     let (low, high) = run.centreline.bounds();
     let margin = run.radii.values.iter().fold(0.0, |m: f64, r| m.max(*r));
     let centre = DVec3::from_array([0, 1, 2].map(|a| 0.5 * (low[a] + high[a])));
     let extent = (0..3).map(|a| 0.5 * (high[a] - low[a]) + margin).fold(1e-6, f64::max);
-    run.obstacles.iter().flat_map(|o| wireframe(&o.at(t), centre, extent)).collect()
+    (centre, extent)
 }
 
 /// Whether any obstacle of `run` moves.

@@ -139,7 +139,8 @@ fn make(dir: &Path, parts: Parts, sections: &[Section]) -> Result<Written, Repor
         written.files.push(series);
         written.vtk_frames = frames;
         let path = dir.join(GLB);
-        let bytes = written.time("glb", || glb::encode(&run.centreline, &run.radii.values));
+        let tracks = obstacles::tracks(&run);
+        let bytes = written.time("glb", || glb::encode(&run.centreline, radii, &tracks));
         write_file(&path, &bytes)?;
         written.files.push(path);
     }
