@@ -186,6 +186,21 @@
       count: 6
     };
 
+    // The obstacles: grey line segments, moved to each frame's offset when they move.
+    var obstacles = (data.obstacles || []).map(function (o) {
+      var base = new Float32Array(o.segments), n = base.length / 3;
+      var up = new Float32Array(3 * n), index = new Uint16Array(n);
+      for (var v = 0; v < n; v++) { up[3 * v + 2] = 1; index[v] = v; }
+      return {
+        base: base, offsets: o.offsets, moved: new Float32Array(base.length),
+        position: buffer(gl.ARRAY_BUFFER, base, gl.DYNAMIC_DRAW),
+        normal: buffer(gl.ARRAY_BUFFER, up, gl.STATIC_DRAW),
+        colour: buffer(gl.ARRAY_BUFFER, new Float32Array(3 * n).fill(0.35), gl.STATIC_DRAW),
+        index: buffer(gl.ELEMENT_ARRAY_BUFFER, index, gl.STATIC_DRAW),
+        count: n
+      };
+    });
+
     var yaw = -1.0, pitch = 0.5, distance = 1.2 * size, frame = 0;
 
     function bind(mesh) {
@@ -217,6 +232,15 @@
       gl.uniform1f(at.alpha, 1.0);
       bind(body);
       gl.drawElements(gl.TRIANGLES, body.count, gl.UNSIGNED_SHORT, 0);
+      obstacles.forEach(function (o) {
+        if (o.offsets.length) {
+          for (var i = 0; i < o.base.length; i++) o.moved[i] = o.base[i] + o.offsets[3 * frame + i % 3];
+          gl.bindBuffer(gl.ARRAY_BUFFER, o.position);
+          gl.bufferSubData(gl.ARRAY_BUFFER, 0, o.moved);
+        }
+        bind(o);
+        gl.drawElements(gl.LINES, o.count, gl.UNSIGNED_SHORT, 0);
+      });
       gl.enable(gl.BLEND);
       gl.blendFunc(gl.SRC_ALPHA, gl.ONE_MINUS_SRC_ALPHA);
       gl.uniform1f(at.alpha, 0.5);

@@ -10,6 +10,7 @@ use base64::Engine as _;
 use base64::engine::general_purpose::STANDARD;
 
 use crate::animation;
+use crate::obstacles;
 use crate::plots::Plot;
 use crate::run_dir::RunDir;
 use crate::section::Section;
@@ -60,8 +61,8 @@ fn fill(template: &str, values: &HashMap<&str, String>) -> String {
 }
 
 /// The run data the viewer reads: frames, bodies, times, radii, the body centres as
-/// base64 little-endian f32 (frame-major, x y z), and per frame its phase and knot (of the
-/// frames the run directory was read with, [`RunDir::frames`]).
+/// base64 little-endian f32 (frame-major, x y z), per frame its phase and knot (of the
+/// frames the run directory was read with, [`RunDir::frames`]), and the obstacles.
 ///
 /// The centres are the bulk (32 MB of base64 for 201 frames of 10 000 bodies), so they are
 /// encoded straight into the returned text where the rest of the JSON leaves room for them,
@@ -75,6 +76,18 @@ fn run_data(run: &RunDir) -> String {
         .kept(m.frames())
         .map(|f| format!("phase {}, knot {}", m.phase[f], m.knot[f]))
         .collect();
+    // Each obstacle: its wireframe's segments (vertex pairs, cm) at offset zero, and its
+    // offset at each frame (none when it stands still).
+    let obstacles: Vec<serde_json::Value> = obstacles::tracks(run)
+        .iter()
+        .map(|track| {
+            let segments = track.lines.iter().flat_map(|line| line.windows(2).flatten());
+            serde_json::json!({
+                "segments": segments.flatten().copied().collect::<Vec<f64>>(),
+                "offsets": track.offsets.iter().flatten().copied().collect::<Vec<f64>>(),
+            })
+        })
+        .collect();
     let rest = serde_json::json!({
         "frames": c.frames(),
         "bodies": c.bodies,
@@ -82,6 +95,7 @@ fn run_data(run: &RunDir) -> String {
         "radii": run.radii.values,
         "points": "",
         "states": states,
+        "obstacles": obstacles,
     });
     let rest = script_safe(&rest.to_string());
     let (before, after) = rest.split_once(POINTS_PLACE).expect("the JSON has its points member");
@@ -180,6 +194,27 @@ pub fn page(run: &RunDir, plots: &[Plot], gif: &[u8], sections: &[Section]) -> S
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_viewer_gets_each_obstacle_with_its_segments_and_offsets() {
+        let dir = crate::test_files::synthetic("viewer-obstacles");
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+        let form = std::fs::read_to_string(root.join("data/scenarios/form.ron")).expect("form");
+        let obstacles = "Scenario(\n    obstacles: [Sphere(centre: (1.0, 2.0, 3.0), radius: 0.5), \
+                         Moving(shape: Sphere(centre: (0.0, 0.0, 0.0), radius: 1.0), \
+                         path: [(0.0, (0.0, 0.0, 0.0)), (1.0, (1.0, 0.0, 0.0))])],";
+        std::fs::write(dir.join("scenario.ron"), form.replacen("Scenario(", obstacles, 1))
+            .expect("write");
+        let run = RunDir::read(&dir).expect("reads");
+        let data: serde_json::Value = serde_json::from_str(&run_data(&run)).expect("JSON");
+        let obstacles = data["obstacles"].as_array().expect("obstacles");
+        assert_eq!(obstacles.len(), 2);
+        let segments = obstacles[0]["segments"].as_array().expect("segments");
+        assert_eq!(segments.len() % 6, 0, "vertex pairs of x, y, z");
+        assert!(obstacles[0]["offsets"].as_array().is_some_and(Vec::is_empty), "it stands still");
+        let offsets = obstacles[1]["offsets"].as_array().expect("offsets");
+        assert_eq!(offsets.len(), 3 * run.centreline.frames(), "one offset per frame");
+    }
 
     #[test]
     fn escape_covers_markup_characters() {
