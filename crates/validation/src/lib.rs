@@ -25,6 +25,7 @@ pub mod cantilever;
 mod check;
 mod elastica;
 mod error;
+pub mod frictional_knot;
 pub mod loose_knot;
 mod settle;
 pub mod tension;

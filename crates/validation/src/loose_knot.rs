@@ -118,14 +118,19 @@ pub fn run(
     tension_dyn: f64,
     refinement: Refinement,
 ) -> Result<LooseKnot, ValidationError> {
-    let loaded = scenario(root, tension_dyn, refinement)?;
+    run_loaded(&scenario(root, tension_dyn, refinement)?)
+}
+
+/// Settles `loaded` (the loose-trefoil scenario, changed as a study needs) and measures it,
+/// with the check of [`run`] that the knot is still the one it started as.
+pub fn run_loaded(loaded: &LoadedScenario) -> Result<LooseKnot, ValidationError> {
     let Some(InitialShape::OpenTorusKnot(start)) = loaded.scenario.initial_shape else {
         return Err(ValidationError::Scenario {
             path: loaded.path.clone(),
             reason: "it has no initial knot (initial_shape)".into(),
         });
     };
-    let settled = settle(&loaded)?;
+    let settled = settle(loaded)?;
     let (expected, found) = (format!("{}_1", start.crossings), knot_type(&settled));
     if found != expected {
         return Err(ValidationError::KnotChanged { path: loaded.path.clone(), expected, found });
