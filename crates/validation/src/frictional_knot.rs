@@ -55,20 +55,20 @@ pub struct FrictionalKnot {
     pub friction_number: f64,
 }
 
-/// Settles the shipped loose trefoil with `friction` on `branch` at the final pull
-/// `tension_dyn`, and measures it.
+/// Settles the loose trefoil (changed by `refinement`) with `friction` on `branch` at the
+/// final pull `tension_dyn`, and measures it.
 pub fn run(
     root: &Path,
-    branch: Branch,
-    tension_dyn: f64,
+    (branch, tension_dyn): (Branch, f64),
     friction: Friction,
+    refinement: Refinement,
 ) -> Result<FrictionalKnot, ValidationError> {
     let coefficient = friction.coefficient;
     let first_pull = match branch {
         Branch::Tightening => tension_dyn,
         Branch::Loosening => TIGHT_PULL_DYN,
     };
-    let mut loaded = loose_knot::scenario(root, first_pull, Refinement::default())?;
+    let mut loaded = loose_knot::scenario(root, first_pull, refinement)?;
     loaded.scenario.friction = Some(friction);
     if branch == Branch::Loosening {
         let Some(Phase::Load(tight)) = loaded.scenario.phases.first_mut() else {

@@ -5,6 +5,7 @@ use std::path::Path;
 
 use hagfish_sim::rows::Friction;
 use hagfish_validation::frictional_knot::{Branch, FrictionalKnot, SIGMA, run};
+use hagfish_validation::loose_knot::Refinement;
 
 fn root() -> &'static Path {
     Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
@@ -27,7 +28,8 @@ fn the_frictional_loose_trefoil_holds_its_loop_by_a_term_linear_in_mu_on_both_br
         let runs: Vec<_> = cases
             .iter()
             .map(|&(branch, mu)| {
-                scope.spawn(move || run(root(), branch, 20.0, Friction::pyramid(mu, 8)))
+                let friction = Friction::pyramid(mu, 8);
+                scope.spawn(move || run(root(), (branch, 20.0), friction, Refinement::default()))
             })
             .collect();
         runs.into_iter().map(|r| r.join().expect("a run").expect("settles")).collect()
