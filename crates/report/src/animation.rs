@@ -1,14 +1,14 @@
 //! The animated GIF: the body as shaded tubes (spheres swept along the centreline, radius
 //! per body, coloured by arc length) in a top view (x–y) and a side view (x–z) side by
-//! side, with the wall x = 0, the obstacles' wireframes and a time bar. Frames are subsampled to at most
-//! [`MAX_FRAMES`]; it plays at [`SPEED_UP`] × real time.
+//! side, with the wall x = 0, the obstacles' wireframes and a time bar. Frames are
+//! subsampled to at most [`MAX_FRAMES`]; it plays at [`SPEED_UP`] × real time.
 
 use std::borrow::Cow;
 use std::path::Path;
 
 use crate::colour::{Rgb, sequential};
 use crate::error::ReportError;
-use crate::obstacles;
+use crate::obstacles::{self, ObstacleTrack};
 use crate::raster::{Raster, SHADES, Sphere};
 use crate::run_dir::RunDir;
 
@@ -90,15 +90,20 @@ impl Projection {
     }
 }
 
-/// Draws frame `f` of `run` in `view`.
-fn draw_view(run: &RunDir, projection: &Projection, view: View, f: usize) -> Raster {
+/// Draws frame `f` of `run` in `view`, with the obstacles where `obstacles` has them.
+fn draw_view(
+    run: &RunDir,
+    (projection, obstacles): (&Projection, &[ObstacleTrack]),
+    view: View,
+    f: usize,
+) -> Raster {
     let mut image = Raster::new(VIEW.0, VIEW.1, BACKGROUND);
     // The wall x = 0 (both views have x to the right).
     let wall = 0.5 * VIEW.0 as f64 - projection.centre[0] * projection.scale;
     if wall >= 0.0 && wall < VIEW.0 as f64 {
         image.fill((wall as usize, wall as usize + 2), (0, VIEW.1), LINE);
     }
-    for polyline in &obstacles::of_run_wireframe(run, run.centreline.times[f]) {
+    for polyline in &obstacles::at_frame(obstacles, f) {
         for pair in polyline.windows(2) {
             let (a, b) = (projection.project(view, pair[0]), projection.project(view, pair[1]));
             image.line((a.0, a.1), (b.0, b.1), LINE);
@@ -141,6 +146,7 @@ pub fn shown_frames(frames: usize) -> Vec<usize> {
 /// Encodes the animation of `run` as GIF bytes; `at` names the file for errors.
 pub fn encode(run: &RunDir, at: &Path) -> Result<Vec<u8>, ReportError> {
     let projection = Projection::fit(run);
+    let tracks = obstacles::tracks(run);
     let times = &run.centreline.times;
     let (width, height) = (VIEW.0 * VIEWS.len() + VIEWS.len() - 1, VIEW.1);
     let mut bytes = Vec::new();
@@ -153,7 +159,8 @@ pub fn encode(run: &RunDir, at: &Path) -> Result<Vec<u8>, ReportError> {
     for (i, &f) in shown.iter().enumerate() {
         let mut canvas = Raster::new(width, height, LINE);
         for (v, view) in VIEWS.iter().enumerate() {
-            canvas.paste(&draw_view(run, &projection, *view, f), v * (VIEW.0 + 1));
+            let drawn = draw_view(run, (&projection, &tracks), *view, f);
+            canvas.paste(&drawn, v * (VIEW.0 + 1));
         }
         let progress = if end > start { (times[f] - start) / (end - start) } else { 1.0 };
         canvas.fill((0, (progress * width as f64) as usize), (height - 3, height), BAR);

@@ -11,7 +11,7 @@ use serde_json::{Value, json};
 
 use crate::centreline::Centreline;
 use crate::colour::sequential;
-use crate::obstacles::Wireframe;
+use crate::obstacles::ObstacleTrack;
 
 /// glTF primitive mode of line segments (vertex pairs).
 const LINES: u32 = 1;
@@ -192,16 +192,6 @@ impl Serialize for Elements<'_> {
         serializer
             .collect_seq(self.first.iter().cloned().chain(each).chain(self.last.iter().cloned()))
     }
-}
-
-/// An obstacle for [`encode`]: its wireframe at offset zero and its offset at each frame
-/// (cm; empty when it stands still).
-#[derive(Clone, Debug, PartialEq)]
-pub struct ObstacleTrack {
-    /// The wireframe, posed at offset zero (cm).
-    pub lines: Wireframe,
-    /// The offset at each frame (cm), or none.
-    pub offsets: Vec<[f64; 3]>,
 }
 
 /// The accessors, meshes, nodes and animation entries of the obstacles, numbered after the

@@ -1,7 +1,8 @@
 //! The run's obstacles (the `obstacles` of its `scenario.ron`) as wireframes: a few circles
-//! and lines per obstacle that show its shape in the animation and in ParaView
-//! (`vtk/obstacles.vtk`, per frame when one moves). Planes and infinite cylinders are cut to
-//! the run's surroundings.
+//! and lines per obstacle that show its shape in the animation, the report's 3-D view,
+//! ParaView (`vtk/`) and `run.glb`. Each is one [`ObstacleTrack`], its wireframe posed at
+//! offset zero and its offset at each frame; planes and infinite cylinders are cut to the
+//! run's surroundings.
 
 use std::f64::consts::TAU;
 use std::path::Path;
@@ -11,7 +12,6 @@ use hagfish_anatomy::DataFile;
 use hagfish_geometry::{MovingObstacle, Obstacle, ObstaclePath};
 use hagfish_scenario::Scenario;
 
-use crate::glb::ObstacleTrack;
 use crate::run_dir::RunDir;
 
 /// Segments of each circle.
@@ -29,15 +29,29 @@ pub fn of_run(scenario: &Path) -> Vec<MovingObstacle> {
     file.value.obstacles.iter().filter_map(|spec| spec.to_obstacle().ok()).collect()
 }
 
-/// The wireframes of every obstacle of `run` where it is at time `t` (s), around the region
-/// the body sweeps (its centreline's bounding box grown by the largest radius).
-pub fn of_run_wireframe(run: &RunDir, t: f64) -> Wireframe {
-    let (centre, extent) = surroundings(run);
-    run.obstacles.iter().flat_map(|o| wireframe(&o.at(t), centre, extent)).collect()
+/// An obstacle of a run: its wireframe at offset zero and its offset at each frame (cm;
+/// empty when it stands still).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ObstacleTrack {
+    /// The wireframe, posed at offset zero (cm).
+    pub lines: Wireframe,
+    /// The offset at each frame (cm), or none.
+    pub offsets: Vec<[f64; 3]>,
 }
 
-/// The obstacles of `run` for `run.glb`: each one's wireframe at offset zero around the
-/// region the body sweeps, and its offset at each frame when it moves.
+/// The wireframe of every track where it is at frame `f`.
+pub fn at_frame(tracks: &[ObstacleTrack], f: usize) -> Wireframe {
+    let mut wireframe = Wireframe::new();
+    for track in tracks {
+        let d = track.offsets.get(f).copied().unwrap_or([0.0; 3]);
+        let moved = |p: &[f64; 3]| [p[0] + d[0], p[1] + d[1], p[2] + d[2]];
+        wireframe.extend(track.lines.iter().map(|line| line.iter().map(moved).collect()));
+    }
+    wireframe
+}
+
+/// The obstacles of `run`: each one's wireframe at offset zero around the region the body
+/// sweeps, and its offset at each frame when it moves.
 pub fn tracks(run: &RunDir) -> Vec<ObstacleTrack> {
     let (centre, extent) = surroundings(run);
     let still = ObstaclePath::default();
@@ -62,11 +76,6 @@ fn surroundings(run: &RunDir) -> (DVec3, f64) {
     let centre = DVec3::from_array([0, 1, 2].map(|a| 0.5 * (low[a] + high[a])));
     let extent = (0..3).map(|a| 0.5 * (high[a] - low[a]) + margin).fold(1e-6, f64::max);
     (centre, extent)
-}
-
-/// Whether any obstacle of `run` moves.
-pub fn any_moves(run: &RunDir) -> bool {
-    run.obstacles.iter().any(|o| o.path != ObstaclePath::default())
 }
 
 /// The wireframe of `obstacle` around the region of centre `centre` and half-size `extent`
@@ -149,6 +158,18 @@ mod tests {
                 assert!((p - centre).length() < 40.0, "{obstacle:?}: {p} far from the run");
             }
         }
+    }
+
+    #[test]
+    fn a_track_is_drawn_at_its_frames_offset_and_a_still_one_where_it_stands() {
+        let line = vec![vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]]];
+        let still = ObstacleTrack { lines: line.clone(), offsets: Vec::new() };
+        let moving = ObstacleTrack { lines: line, offsets: vec![[0.0; 3], [0.0, 2.0, 0.0]] };
+        let drawn = at_frame(&[still, moving], 1);
+        assert_eq!(
+            drawn,
+            vec![vec![[0.0; 3], [1.0, 0.0, 0.0]], vec![[0.0, 2.0, 0.0], [1.0, 2.0, 0.0]]]
+        );
     }
 
     #[test]

@@ -123,14 +123,11 @@ fn make(dir: &Path, parts: Parts, sections: &[Section]) -> Result<Written, Repor
         written.files.push(gif_path);
     }
     if parts.exports {
-        let obstacles = match obstacles::any_moves(&run) {
-            false => vtk::ObstacleFrames::Still(obstacles::of_run_wireframe(&run, 0.0)),
+        let tracks = obstacles::tracks(&run);
+        let obstacles = match tracks.iter().any(|track| !track.offsets.is_empty()) {
+            false => vtk::ObstacleFrames::Still(obstacles::at_frame(&tracks, 0)),
             true => vtk::ObstacleFrames::Moving(
-                run.centreline
-                    .times
-                    .iter()
-                    .map(|&t| obstacles::of_run_wireframe(&run, t))
-                    .collect(),
+                (0..run.centreline.frames()).map(|f| obstacles::at_frame(&tracks, f)).collect(),
             ),
         };
         let radii = &run.radii.values;
@@ -139,7 +136,6 @@ fn make(dir: &Path, parts: Parts, sections: &[Section]) -> Result<Written, Repor
         written.files.push(series);
         written.vtk_frames = frames;
         let path = dir.join(GLB);
-        let tracks = obstacles::tracks(&run);
         let bytes = written.time("glb", || glb::encode(&run.centreline, radii, &tracks));
         write_file(&path, &bytes)?;
         written.files.push(path);
