@@ -87,12 +87,13 @@ pub struct Scenario {
     #[serde(default)]
     pub acceptance: StepAcceptance,
     /// Coulomb friction on the self contacts and the wall (docs/physics.md, "Friction: the
-    /// cone and its pyramid"): `Some((coefficient: 0.1))`, optionally `edges: E` (default 8);
-    /// `None` (default): frictionless, as the thesis.
+    /// cone and its pyramid"): `Some((coefficient: 0.1))`, optionally `edges: E` (default 8)
+    /// and `cone: Exact` (the exact cone, run on the clarabel backend); `None` (default):
+    /// frictionless, as the thesis.
     #[serde(default)]
     pub friction: Option<Friction>,
-    /// Rigid obstacles the body touches as it touches the wall (docs/physics.md,
-    /// "Obstacles"; default none).
+    /// Rigid obstacles, still or moving on a path (`Moving(shape: …, path: […])`), that the
+    /// body touches as it touches the wall (docs/physics.md, "Obstacles"; default none).
     #[serde(default)]
     pub obstacles: Vec<ObstacleSpec>,
 }

@@ -75,8 +75,9 @@ pub struct StepOptions {
     pub contact_prediction: Option<f64>,
     /// When a step's result is accepted ([`StepAcceptance`]).
     pub acceptance: StepAcceptance,
-    /// Coulomb friction on the self contacts (their cores) and the wall, by the inscribed
-    /// pyramid of the friction cone (docs/physics.md, "Friction: the cone and its pyramid");
+    /// Coulomb friction on the self contacts (their cores), the wall and the obstacles, by the
+    /// inscribed pyramid of the friction cone or the cone itself ([`crate::rows::ConeForm`];
+    /// docs/physics.md, "Friction: the cone and its pyramid");
     /// `None` (default) or μ = 0: frictionless, as the thesis.
     pub friction: Option<Friction>,
     /// Rigid obstacles (planes, spheres, cylinders), still or moving on a path, that the
