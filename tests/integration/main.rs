@@ -18,6 +18,7 @@ mod knot_size;
 mod modes_command;
 mod overrides;
 mod overwrite_kill;
+mod pull;
 mod refusals;
 mod render_command;
 mod resume;

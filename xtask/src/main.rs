@@ -11,6 +11,8 @@
 //!   of bodies and prints its table (`family.rs`, `family_modes.rs`).
 //! - `validate`: runs the checks against elastic-rod theory (`hagfish-validation`) and prints
 //!   the table of `docs/validation.md`; fails if a check is outside its tolerance.
+//! - `overhand [--turns N,…] [--speeds U,…] …`: Choi et al. 2021's overhand knots pulled tight
+//!   (`overhand.rs`).
 
 mod family;
 mod family_cases;
@@ -18,6 +20,7 @@ mod family_modes;
 mod golden;
 mod knotted;
 mod metrics;
+mod overhand;
 mod python;
 mod regress;
 mod table;
@@ -78,6 +81,28 @@ enum Task {
     },
     /// Runs the checks against elastic-rod theory and prints their table (Markdown).
     Validate,
+    /// Pulls Choi et al. 2021's overhand knots with n turns tight at each end speed and prints
+    /// their tables (Markdown; docs/validation.md, "Overhand knots pulled tight").
+    Overhand {
+        /// Turns n of the knots (1…4).
+        #[arg(long, value_delimiter = ',', default_values_t = [1, 2, 3, 4])]
+        turns: Vec<usize>,
+        /// Speeds of each end u (cm/s).
+        #[arg(long, value_delimiter = ',', default_values_t = [0.3, 0.6, 0.9])]
+        speeds: Vec<f64>,
+        /// Time step (s).
+        #[arg(long, default_value_t = 0.02)]
+        time_step: f64,
+        /// The pull force that ends a run (dyn).
+        #[arg(long, default_value_t = 300.0)]
+        stop_force: f64,
+        /// Runs at a time.
+        #[arg(long, default_value_t = 2)]
+        jobs: usize,
+        /// Write each run's samples to DIR/n<N>_u<U>.csv.
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+    },
     /// Runs a knot scenario on the family of bodies and time steps (ES103 and 15 variants)
     /// and prints its knot table (Markdown), as in docs/physics.md.
     Family {
@@ -147,6 +172,21 @@ fn main() -> ExitCode {
             knotted::run(&workspace_root(), &request).map(|()| true)
         }
         Task::Validate => validate::run(&workspace_root()),
+        Task::Overhand { turns, speeds, time_step, stop_force, jobs, out } => {
+            if let Some(n) = turns.iter().find(|n| !(1..=4).contains(*n)) {
+                eprintln!("error: --turns {n}: the knots have 1 to 4 turns (data/knots/imc-der)");
+                return ExitCode::from(2);
+            }
+            let request = overhand::Request {
+                turns: &turns,
+                speeds: &speeds,
+                time_step,
+                stop_force,
+                jobs,
+                out: out.as_deref(),
+            };
+            overhand::run(&workspace_root(), &request).map(|()| true)
+        }
         Task::Family { scenario, knot, sets, jobs, only, measure, phase, kind, rounding } => {
             // A relative path that is not there from here is taken from the workspace root.
             let scenario =

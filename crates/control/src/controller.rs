@@ -58,6 +58,25 @@ pub struct PointDamper {
     pub coefficient: f64,
 }
 
+/// A grip on a body point (`docs/physics.md`, "Grip"): six equality rows hold the point's
+/// velocity at `velocity + (β/h)(target − point)` and the body's angular velocity at
+/// `(β/h) rotation_error`, β the head rows' drift correction, so that the point follows its
+/// target and the body keeps its orientation. The rows' multipliers are the grip's force and
+/// moment.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Grip {
+    /// The gripped body.
+    pub body: usize,
+    /// The gripped point, where it is (world, cm).
+    pub point: DVec3,
+    /// Where the point should be (world, cm).
+    pub target: DVec3,
+    /// The target's velocity (cm/s).
+    pub velocity: DVec3,
+    /// The rotation vector that turns the body back to its held orientation (world, rad).
+    pub rotation_error: DVec3,
+}
+
 /// What controllers ask for in one step. Cleared by the pipeline before each step; the
 /// buffers keep their capacity.
 #[derive(Clone, Debug, Default)]
@@ -68,6 +87,8 @@ pub struct Actuation {
     pub dampers: Vec<PointDamper>,
     /// Thigmotaxis rows for the constraint solve.
     pub thigmo: Vec<ThigmoRequest>,
+    /// A grip's rows for the constraint solve ([`crate::PullPhase`]), or `None`.
+    pub grip: Option<Grip>,
     /// Joint torques τ_ext, one per DOF (dyn·cm), or empty for none (an open-loop replay,
     /// [`crate::Replay`]).
     pub torques: Vec<f64>,
@@ -86,6 +107,7 @@ impl Actuation {
         self.forces.clear();
         self.dampers.clear();
         self.thigmo.clear();
+        self.grip = None;
         self.torques.clear();
         self.servo_stiffness.clear();
         self.servo_damping.clear();

@@ -93,6 +93,7 @@ mod tests {
                 started_at: 2.5,
                 condition_since: Some(2.7),
                 load_since: None,
+                pull: None,
                 core_start_l: Some(0.3),
                 core_length_d: Some(14.0),
                 core_length_d_at_start: Some(13.0),

@@ -64,6 +64,7 @@ mod load;
 mod loops;
 mod modal_basis;
 mod phases;
+mod pull;
 mod replay;
 mod tail_pd;
 mod thigmotaxis;
@@ -72,7 +73,9 @@ mod tie_plan;
 mod tube_length;
 mod until;
 
-pub use controller::{Actuation, ControlContext, Controller, Passive, PointDamper, PointForce};
+pub use controller::{
+    Actuation, ControlContext, Controller, Grip, Passive, PointDamper, PointForce,
+};
 pub use controller_state::ControllerState;
 pub use crossings::{Crossing, Layer, crossings_of_tail};
 pub use dof_kind::{DofKind, KindSelection};
@@ -92,6 +95,7 @@ pub use phases::{
     KnotObservation, Phase, PhaseProgress, PhasedController, ThigmoPhase, TieFailure,
     kinetic_energy,
 };
+pub use pull::{PullAnchor, PullPhase};
 pub use replay::{Replay, ReplayField};
 pub use tail_pd::TailGains;
 pub use thigmotaxis::{SlidingTargets, Strand, ThigmoParameters, ThigmoRequest};

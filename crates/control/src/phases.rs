@@ -16,6 +16,7 @@ use crate::force_space::Confinement;
 use crate::forming::{FormingController, FormingScript, body_at_fraction, body_length};
 use crate::knot_span::KnotSpan;
 use crate::load::LoadPhase;
+use crate::pull::{PullAnchor, PullPhase};
 use crate::thigmotaxis::{Strand, ThigmoParameters, ThigmoRequest};
 use crate::tie::{
     CrossingCheck, CrossingMiss, HOLD_REACH_BODIES, HeldCrossing, LayerCode, TiePhase, TieProgress,
@@ -41,6 +42,9 @@ pub enum Phase {
     /// Ties a knot by following the leader along a template ([`FollowPhase`]); ends once the
     /// knot analysis shows it, or fails `settle_s` after the template without it.
     Follow(FollowPhase),
+    /// Grips the tail end and pulls it at a prescribed speed ([`PullPhase`]); after the
+    /// phase the grip holds it still, until a later pull.
+    Pull(PullPhase),
 }
 
 impl Phase {
@@ -59,7 +63,11 @@ impl Phase {
         match self {
             Phase::Form(script) => Some(script.clone()),
             Phase::Tie(tie) => Some(tie.script()),
-            Phase::Hold(_) | Phase::Thigmotaxis(_) | Phase::Load(_) | Phase::Follow(_) => None,
+            Phase::Hold(_)
+            | Phase::Thigmotaxis(_)
+            | Phase::Load(_)
+            | Phase::Pull(_)
+            | Phase::Follow(_) => None,
         }
     }
 }
@@ -110,6 +118,9 @@ pub struct PhaseProgress {
     /// on ([`LoadPhase`]).
     #[serde(default)]
     pub load_since: Option<f64>,
+    /// The latest pull so far, or `None` before any: its grip stays on ([`PullPhase`]).
+    #[serde(default)]
+    pub pull: Option<PullAnchor>,
     /// Index of the current phase (`phases.len()` after the last: passive).
     pub phase: usize,
     /// Time the current phase started (s).
@@ -391,6 +402,7 @@ impl PhasedController {
             Some(Phase::Thigmotaxis(phase)) => &phase.name,
             Some(Phase::Tie(_) | Phase::Follow(_)) => "tie",
             Some(Phase::Load(_)) => "load",
+            Some(Phase::Pull(_)) => "pull",
             None => "done",
         }
     }
@@ -405,7 +417,8 @@ impl PhasedController {
             Some(Phase::Hold(seconds)) => elapsed >= *seconds,
             Some(
                 Phase::Thigmotaxis(ThigmoPhase { until, .. })
-                | Phase::Load(LoadPhase { until, .. }),
+                | Phase::Load(LoadPhase { until, .. })
+                | Phase::Pull(PullPhase { until, .. }),
             ) => {
                 let span = KnotSpan::of(context.self_contacts, context.centreline);
                 let observed = Observation {
@@ -426,6 +439,9 @@ impl PhasedController {
     }
 
     fn advance(&mut self, t: f64) {
+        if let Some(pull) = self.progress.pull.as_mut().filter(|p| p.phase == self.progress.phase) {
+            pull.stopped_s = Some(t);
+        }
         let phase = self.progress.phase + 1;
         let load_since = match self.phases.get(phase) {
             Some(Phase::Load(_)) => Some(t),
@@ -487,11 +503,18 @@ impl Controller for PhasedController {
                     self.tie.plan_done_at = Some(context.state.t);
                 }
             }
+            Some(Phase::Pull(pull)) => {
+                let phase = self.progress.phase;
+                if self.progress.pull.is_none_or(|anchor| anchor.phase != phase) {
+                    self.progress.pull = Some(PullAnchor::start(pull, phase, context));
+                }
+            }
             Some(Phase::Load(_)) | None => {}
         }
         if let Some((load, since)) = self.active_load() {
             load.actuate(since, context, out);
         }
+        out.grip = self.progress.pull.map(|anchor| anchor.grip(context));
     }
 }
 

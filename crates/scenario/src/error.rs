@@ -90,6 +90,17 @@ pub enum ScenarioError {
         /// What is wrong.
         source: hagfish_geometry::GeometryError,
     },
+    /// An obstacle overlaps the head body at the start: the head is held at the wall, so no
+    /// step can push it out (the velocity solve has no solution).
+    #[error(
+        "obstacles[{index}] overlaps the head (body 0, held at the wall) by {depth_cm:.4} cm at          t = 0: no step can push the held head out of it; move the obstacle away from the head"
+    )]
+    ObstacleOverlapsHead {
+        /// Its position in the list, from 0.
+        index: usize,
+        /// How deep the head's sphere is in it (cm).
+        depth_cm: f64,
+    },
     /// Building the scenario's world, or stepping it (`LoadedScenario::build_at`), failed.
     #[error(transparent)]
     Sim(#[from] SimError),

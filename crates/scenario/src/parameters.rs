@@ -167,6 +167,10 @@ pub const PARAMETERS: &[Parameter] = &[
     p("Load.direction.Fixed", "-", "-", "a fixed world direction (normalised): a dead load"),
     p("Load.ramp_s", "s", "0", "time to ramp the magnitude up from 0"),
     p("Load.until", "-", "required", "when the phase ends: fields as Thigmotaxis.until"),
+    p("phases[].Pull", "-", "-", "phase: the tail end gripped (clamped) and moved at a prescribed speed; held still after the phase"),
+    p("Pull.speed_cm_per_s", "cm/s", "required", "speed of the tail end, ≥ 0 (0 clamps it in place)"),
+    p("Pull.direction", "-", "required", "(x, y, z): the world direction of the pull (normalised)"),
+    p("Pull.until", "-", "required", "when the phase ends: fields as Thigmotaxis.until"),
 ];
 
 #[cfg(test)]
@@ -175,8 +179,9 @@ mod tests {
 
     use hagfish_control::{
         Condition, Direction, ForceSpace, FormingScript, Handedness, KindSelection, LoadDirection,
-        LoadPhase, ModalSpace, Phase, Quantity, Replay, ScriptStep, SlidingTargets, TailGains,
-        ThigmoParameters, ThigmoPhase, Threshold, TieKnot, TiePhase, Until, WaterDrag, Waypoint,
+        LoadPhase, ModalSpace, Phase, PullPhase, Quantity, Replay, ScriptStep, SlidingTargets,
+        TailGains, ThigmoParameters, ThigmoPhase, Threshold, TieKnot, TiePhase, Until, WaterDrag,
+        Waypoint,
     };
 
     use super::*;
@@ -308,6 +313,11 @@ mod tests {
                     force_dyn: 1.0,
                     direction: LoadDirection::Fixed((0.0, 1.0, 0.0)),
                     ramp_s: 0.5,
+                    until: Until { seconds: 1.0, ..Until::default() },
+                }),
+                Phase::Pull(PullPhase {
+                    speed_cm_per_s: 0.5,
+                    direction: (1.0, 0.0, 0.0),
                     until: Until { seconds: 1.0, ..Until::default() },
                 }),
                 Phase::Load(LoadPhase {

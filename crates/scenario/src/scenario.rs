@@ -17,6 +17,7 @@ use std::path::{Path, PathBuf};
 
 use hagfish_anatomy::{AnatomyError, Body, BodySkin, DataFile, Field, read_data_file};
 use hagfish_control::{Phase, PhasedController, WaterDrag, diameters_tail_ward};
+use hagfish_geometry::MovingObstacle;
 use hagfish_tree::{Model, State};
 use serde::{Deserialize, Serialize};
 
@@ -258,6 +259,7 @@ impl LoadedScenario {
                 spec.to_obstacle().map_err(|source| ScenarioError::Obstacle { index, source })
             })
             .collect::<Result<Vec<_>, _>>()?;
+        refuse_obstacles_on_the_head(&model, &state, &obstacles)?;
         let mut options = StepOptions {
             time_step: self.scenario.time_step_s,
             obstacles,
@@ -288,6 +290,27 @@ impl LoadedScenario {
     }
 }
 
+/// [`ScenarioError::ObstacleOverlapsHead`] if an obstacle at t = 0 overlaps the head body's
+/// sphere (its centre, its radius) posed by `state`.
+fn refuse_obstacles_on_the_head(
+    model: &Model,
+    state: &State,
+    obstacles: &[MovingObstacle],
+) -> Result<(), ScenarioError> {
+    let Some(head) = model.bodies().first() else { return Ok(()) };
+    let mut data = hagfish_tree::Data::new(model);
+    hagfish_tree::position_kinematics(model, &state.q, &mut data);
+    let centre = data.body_centre(0);
+    for (index, obstacle) in obstacles.iter().enumerate() {
+        let (distance, _) = obstacle.at(0.0).distance(centre);
+        let depth_cm = head.radius - distance;
+        if depth_cm > 0.0 {
+            return Err(ScenarioError::ObstacleOverlapsHead { index, depth_cm });
+        }
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -299,6 +322,19 @@ mod tests {
         let text = std::fs::read_to_string(&path).expect("tests/data/form.ron");
         let text = text.replace("phases: [", &format!("{backend}phases: ["));
         LoadedScenario::parse(text.as_bytes(), &path).expect("parses")
+    }
+
+    #[test]
+    fn an_obstacle_on_the_held_head_is_refused_and_one_beside_it_is_not() {
+        let on = short_form_with("obstacles: [Sphere(centre: (0.5, 0.0, 0.0), radius: 1.0)], ");
+        let Err(error) = on.build() else { panic!("built with the head inside a sphere") };
+        assert!(
+            matches!(error, ScenarioError::ObstacleOverlapsHead { index: 0, depth_cm } if depth_cm > 0.0),
+            "{error}"
+        );
+        assert!(error.to_string().contains("obstacles[0] overlaps the head"), "{error}");
+        let beside = short_form_with("obstacles: [Sphere(centre: (0.5, 5.0, 0.0), radius: 1.0)], ");
+        assert!(beside.build().is_ok());
     }
 
     #[test]

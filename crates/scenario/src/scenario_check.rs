@@ -11,8 +11,8 @@ use std::collections::HashMap;
 
 use hagfish_anatomy::{AnatomyError, DataFile, Field};
 use hagfish_control::{
-    FollowPhase, ForceSpace, FormingScript, LoadDirection, LoadPhase, Phase, Quantity, ScriptStep,
-    TailGains, ThigmoPhase, Threshold, TiePhase, Until, Waypoint,
+    FollowPhase, ForceSpace, FormingScript, LoadDirection, LoadPhase, Phase, PullPhase, Quantity,
+    ScriptStep, TailGains, ThigmoPhase, Threshold, TiePhase, Until, Waypoint,
 };
 
 use crate::initial_shape::{InitialShape, OpenTorusKnot};
@@ -248,20 +248,36 @@ impl Checker<'_> {
 
     fn load(&mut self, phase: &LoadPhase) -> Result<(), AnatomyError> {
         self.check("force_dyn", phase.force_dyn, Range::NonNegative)?;
-        if let LoadDirection::Fixed((x, y, z)) = phase.direction {
-            let field = self.next_field("Fixed");
-            let length = (x * x + y * y + z * z).sqrt();
-            if !(length.is_finite() && length > 0.0) {
-                return Err(AnatomyError::OutOfRange {
-                    at: self.file.locate(&field),
-                    field,
-                    value: length,
-                    expected: "a finite, non-zero direction".into(),
-                });
-            }
+        if let LoadDirection::Fixed(direction) = phase.direction {
+            self.direction("Fixed", direction)?;
         }
         self.check("ramp_s", phase.ramp_s, Range::NonNegative)?;
         self.until(&phase.until)
+    }
+
+    fn pull(&mut self, phase: &PullPhase) -> Result<(), AnatomyError> {
+        self.check("speed_cm_per_s", phase.speed_cm_per_s, Range::NonNegative)?;
+        self.direction("direction", phase.direction)?;
+        self.until(&phase.until)
+    }
+
+    /// A direction at the next `key`: finite and not zero.
+    fn direction(
+        &mut self,
+        key: &'static str,
+        (x, y, z): (f64, f64, f64),
+    ) -> Result<(), AnatomyError> {
+        let field = self.next_field(key);
+        let length = (x * x + y * y + z * z).sqrt();
+        if length.is_finite() && length > 0.0 {
+            return Ok(());
+        }
+        Err(AnatomyError::OutOfRange {
+            at: self.file.locate(&field),
+            field,
+            value: length,
+            expected: "a finite, non-zero direction".into(),
+        })
     }
 
     fn until(&mut self, until: &Until) -> Result<(), AnatomyError> {
@@ -330,6 +346,7 @@ pub(crate) fn check_scenario(
             Phase::Thigmotaxis(phase) => checker.thigmotaxis(phase)?,
             Phase::Tie(phase) => checker.tie(phase, body_diameters)?,
             Phase::Load(phase) => checker.load(phase)?,
+            Phase::Pull(phase) => checker.pull(phase)?,
             Phase::Follow(phase) => checker.follow(phase)?,
         }
     }

@@ -151,6 +151,7 @@ impl GroupForces {
             RowGroup::Contact => "contact",
             RowGroup::Thigmo => "thigmo",
             RowGroup::Skin => "skin",
+            RowGroup::Grip => "grip",
         }
     }
 }

@@ -4,7 +4,8 @@
 //!
 //! Self-contact, wall and thigmotaxis rows push on body centres: a row with coefficient
 //! `dᵀ Σ_m s_m w_m P_m` (direction d, spline weights w_m, sign s_m = ±1 for the two strands)
-//! and impulse λ exerts the force `s_m w_m (λ/h) d` at centre m. Head and limit rows act in
+//! and impulse λ exerts the force `s_m w_m (λ/h) d` at centre m. A grip's rows exert their
+//! force at the gripped point and their moment on its body. Head and limit rows act in
 //! joint space and show up as the joints' torques. The result, per joint j, is the force and
 //! moment that the distal part (the subtree) exerts on the proximal part, in the frame of
 //! body j (x along the body): the rod's internal force n and moment m at the joint.
@@ -16,7 +17,8 @@ use hagfish_tree::{Model, Spatial, State};
 
 use crate::options::StepOptions;
 use crate::rows::{
-    Friction, MAX_FRICTION_EDGES, contact_directions, thigmo_strands, wall_contact_offset,
+    Friction, MAX_FRICTION_EDGES, contact_directions, grip_wrench, thigmo_strands,
+    wall_contact_offset,
 };
 use crate::step_data::StepData;
 
@@ -169,7 +171,12 @@ fn collect_row_wrenches(data: &mut StepData, h: f64, friction: Option<Friction>)
                     push(other, -1.0, (tangent, DVec3::ZERO), force);
                 }
             }
-            Some(RowGroup::Head | RowGroup::Limit) | None => {}
+            Some(RowGroup::Head | RowGroup::Limit | RowGroup::Grip) | None => {}
         }
+    }
+    if let Some(grip) = &data.actuation.grip {
+        let (force, moment) = grip_wrench(&data.rows, multipliers, h);
+        external[grip.body] +=
+            Spatial::point_force(grip.point, force) + Spatial::new(moment, DVec3::ZERO);
     }
 }

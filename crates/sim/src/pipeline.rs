@@ -27,8 +27,8 @@ pub use crate::internal_forces::internal_forces;
 use crate::options::{RootHold, StepOptions};
 use crate::report::{Stage, StageClock, StepReport};
 use crate::rows::{
-    add_head_rows, add_limit_rows, add_overshooting_limit_rows, add_self_contact_rows,
-    add_thigmo_rows, add_wall_rows, overshoots_limit,
+    add_grip_rows, add_head_rows, add_limit_rows, add_overshooting_limit_rows,
+    add_self_contact_rows, add_thigmo_rows, add_wall_rows, overshoots_limit,
 };
 use crate::step_data::StepData;
 use crate::stop::StopRequest;
@@ -108,7 +108,7 @@ pub fn dynamics(model: &Model, options: &StepOptions, state: &State, data: &mut 
 }
 
 /// Stage 5: the rows of this step: head (unless the root is free), joint limits, wall, self
-/// contact, thigmotaxis.
+/// contact, thigmotaxis, grip.
 pub fn build_rows(model: &Model, options: &StepOptions, state: &State, data: &mut StepData) {
     let h = options.time_step;
     data.rows.clear();
@@ -144,6 +144,10 @@ pub fn build_rows(model: &Model, options: &StepOptions, state: &State, data: &mu
         h,
         &mut data.rows,
     );
+    if let Some(grip) = &data.actuation.grip {
+        let correction = (h, options.head_correction);
+        add_grip_rows(model, &data.tree, grip, correction, &mut data.rows);
+    }
 }
 
 /// Stage 6, one solve: `min ½q̇ᵀM̃q̇ − q̇ᵀf̃` subject to the rows; the path (Cholesky, KKT, QP)

@@ -8,6 +8,8 @@
 //! - [`cantilever`]: small tip load (Euler–Bernoulli `PL³/3B`), the internal bending moment
 //!   against statics, and a large tip load against the elastica ([`elastica_tip`]).
 //! - [`tension`]: a straight rod pulled at the tail: the axial force at every joint.
+//! - [`clamped_buckling`]: a rod clamped at both ends, one end gripped and pushed: Euler's
+//!   load `4π²B/L²`.
 //! - [`loose_knot`]: a loose trefoil in a thin rod under tension: the loop radius
 //!   (`T R²/B → 1/2`) and the first integral of the Kirchhoff equations.
 //!
@@ -23,10 +25,12 @@
 
 pub mod cantilever;
 mod check;
+pub mod clamped_buckling;
 mod elastica;
 mod error;
 pub mod frictional_knot;
 pub mod loose_knot;
+pub mod overhand_pull;
 mod settle;
 pub mod tension;
 
@@ -43,6 +47,7 @@ pub fn all_checks(root: &std::path::Path) -> Result<Vec<Check>, ValidationError>
     }
     checks.push(cantilever::large_load(root, 3.0)?);
     checks.push(tension::axial(root)?);
+    checks.push(clamped_buckling::run(root, 100)?.check(100));
     checks.extend(loose_knot::study(root)?.checks());
     Ok(checks)
 }

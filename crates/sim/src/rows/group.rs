@@ -21,11 +21,14 @@ pub enum RowGroup {
     /// The skin's spring at a self contact (docs/physics.md, "Skin"); id: the index in the
     /// step's self contacts (the same contact's core row is a [`RowGroup::Contact`] row).
     Skin,
+    /// A grip on a body point (`hagfish_control::Grip`); id: the row's axis (0–2 force, 3–5
+    /// moment; [`crate::rows::grip_row_axis`]).
+    Grip,
 }
 
 impl RowGroup {
     /// Number of groups.
-    pub const COUNT: usize = 6;
+    pub const COUNT: usize = 7;
     /// All groups in tag order.
     pub const ALL: [RowGroup; RowGroup::COUNT] = [
         RowGroup::Head,
@@ -34,6 +37,7 @@ impl RowGroup {
         RowGroup::Contact,
         RowGroup::Thigmo,
         RowGroup::Skin,
+        RowGroup::Grip,
     ];
 
     /// The solver tag of the group's rows.

@@ -3,6 +3,7 @@
 //! the solver's [`hagfish_solver::Rows`] container, so building rows does not allocate.
 
 mod friction;
+mod grip;
 mod group;
 mod head;
 mod limits;
@@ -14,6 +15,7 @@ mod wall;
 pub use friction::{
     ConeForm, Friction, MAX_FRICTION_EDGES, contact_directions, wall_contact_offset,
 };
+pub use grip::{add_grip_rows, grip_row_axis, grip_wrench};
 pub use group::RowGroup;
 pub use head::add_head_rows;
 pub use limits::{add_limit_rows, add_overshooting_limit_rows, overshoots_limit};

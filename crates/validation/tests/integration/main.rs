@@ -1,4 +1,5 @@
 //! Integration tests of `hagfish-validation`: one test binary.
 
 mod frictional_knot;
+mod overhand_pull;
 mod rod_theory;

@@ -3,7 +3,9 @@
 use std::path::Path;
 
 use hagfish_validation::loose_knot::Refinement;
-use hagfish_validation::{Check, ValidationError, all_checks, cantilever, loose_knot, tension};
+use hagfish_validation::{
+    Check, ValidationError, all_checks, cantilever, clamped_buckling, loose_knot, tension,
+};
 
 fn root() -> &'static Path {
     Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
@@ -89,4 +91,16 @@ fn a_knot_lost_while_settling_is_an_error_not_a_measurement() {
 fn the_table_has_every_check() {
     let checks = all_checks(root()).expect("runs");
     assert!(checks.len() >= 17, "{} checks", checks.len());
+}
+
+#[test]
+fn a_gripped_rod_pushed_past_euler_s_load_holds_it() {
+    let buckling = clamped_buckling::run(root(), 100).expect("runs");
+    assert_passes(&buckling.check(100));
+    // Past the load the force stays at it: within 2 % from 0.5 % to 1.9 % shortening.
+    for shortening in [0.005, 0.01, 0.015, 0.019] {
+        let force = buckling.force_at(shortening).expect("sampled");
+        let ratio = force / buckling.euler_load_dyn;
+        assert!((ratio - 1.0).abs() < 0.02, "at Δ = {shortening} L: P/P_c = {ratio}");
+    }
 }

@@ -1,0 +1,232 @@
+//! Choi, Tong, Jawed & Joo 2021's knot-tying case (J. Appl. Mech. 88:051010): their rod
+//! (`data/rods/choi2021.ron`: L = 100 cm, h = 0.16 cm, ρ = 1.18 g/cm³, E = 1.8·10⁶ dyn/cm²)
+//! started from their overhand knot with n = 1…4 turns (`data/knots/imc-der/`), μ = 0.1,
+//! left 2 s at rest, then pulled tight with both ends clamped, each end moving at u.
+//!
+//! Here (`data/validation/overhand_pull.ron`) the head is held and the tail gripped and moved at 2u:
+//! the same relative motion seen from their head end's frame (no drag, no gravity: the
+//! equations do not change under a constant velocity). Measured each step: the end-to-end
+//! distance, the grip's pull force (the multipliers of its rows) and the deepest self
+//! penetration. The pull stops at a force, before the inextensible chain runs out of slack.
+
+use std::path::Path;
+use std::time::Instant;
+
+use hagfish_control::Phase;
+use hagfish_knots::{KnotOptions, analyse_knot};
+use hagfish_scenario::{LoadedScenario, Override};
+use hagfish_sim::rows::grip_wrench;
+
+use crate::error::ValidationError;
+
+/// The scenario file, relative to the workspace root.
+pub const SCENARIO: &str = "data/validation/overhand_pull.ron";
+
+/// How far the ends are pulled apart at most (cm): the rod's 100 cm less the least of their
+/// starting distances (28 cm, n = 1), so that a pull ends on its force, not on its distance.
+pub const MAX_PULL_CM: f64 = 72.0;
+
+/// One step's measurement.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PullSample {
+    /// Time since the pull started (s).
+    pub time_s: f64,
+    /// Distance from the head end to the tail end (cm).
+    pub end_to_end_cm: f64,
+    /// The grip's force along the pull (dyn): the tension the ends feel.
+    pub force_dyn: f64,
+}
+
+/// How a pull ended.
+#[derive(Clone, Debug, PartialEq)]
+pub enum PullEnd {
+    /// The force reached the stop force.
+    Force,
+    /// The ends were [`MAX_PULL_CM`] further apart.
+    Distance,
+    /// A step failed (the simulator's error, in words): the samples end before it.
+    Failed(String),
+}
+
+/// A knot pulled tight.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PulledKnot {
+    /// Turns n of the overhand knot.
+    pub turns: usize,
+    /// Speed of each end in Choi et al.'s frame (cm/s): the tail moves at twice it here.
+    pub end_speed_cm_per_s: f64,
+    /// The time step (s).
+    pub time_step_s: f64,
+    /// One sample per step of the pull.
+    pub samples: Vec<PullSample>,
+    /// The deepest self penetration over the pull, over the rod's radius (the rest before it
+    /// takes up the starting curve's own overlaps: Choi et al.'s curves put strands up to 2 %
+    /// of h into each other at 600 bodies).
+    pub max_penetration_relative: f64,
+    /// The knot at the start and at the end (Rolfsen names by the knot analysis).
+    pub knots: (String, String),
+    /// How the pull ended.
+    pub end: PullEnd,
+    /// Steps run (the rest and the pull).
+    pub steps: u64,
+    /// Wall time of the steps (s).
+    pub wall_s: f64,
+}
+
+/// The knot type of the world's body (its centres, closed over many directions).
+fn knot_name(world: &hagfish_sim::World) -> String {
+    let data = &world.data().tree;
+    let centres: Vec<_> = (0..world.model().body_count()).map(|b| data.body_centre(b)).collect();
+    analyse_knot(&centres, &KnotOptions::default())
+        .map_or_else(|e| format!("unknown ({e})"), |report| report.knot.to_string())
+}
+
+/// Pulls the n-turn knot with each end at `end_speed_cm_per_s`, steps of `time_step_s`, until
+/// the pull force reaches `stop_force_dyn` (or the ends are [`MAX_PULL_CM`] further apart).
+pub fn run(
+    root: &Path,
+    (turns, end_speed_cm_per_s): (usize, f64),
+    time_step_s: f64,
+    stop_force_dyn: f64,
+) -> Result<PulledKnot, ValidationError> {
+    let shape = format!(
+        "initial_shape=Some(Polyline((file: \"../knots/imc-der/n{turns}.txt\", cm_per_unit: 100.0)))"
+    );
+    let sets = [Override::parse(&shape)?];
+    let mut loaded = LoadedScenario::load_with(root.join(SCENARIO), &sets)?;
+    let scenario = &mut loaded.scenario;
+    scenario.time_step_s = time_step_s;
+    let Some(Phase::Pull(pull)) = scenario.phases.last_mut() else {
+        return Err(ValidationError::Scenario {
+            path: loaded.path.clone(),
+            reason: "its last phase is not a pull".into(),
+        });
+    };
+    pull.speed_cm_per_s = 2.0 * end_speed_cm_per_s;
+    pull.until.seconds = MAX_PULL_CM / pull.speed_cm_per_s;
+    let pull_s = pull.until.seconds;
+    // The rest before the pull: the phases before it, each a hold or a still grip.
+    let rest_s: f64 = scenario
+        .phases
+        .iter()
+        .rev()
+        .skip(1)
+        .map(|phase| match phase {
+            Phase::Hold(seconds) => *seconds,
+            Phase::Pull(still) => still.until.seconds,
+            _ => 0.0,
+        })
+        .sum();
+    let steps = ((rest_s + pull_s) / time_step_s).round() as u64;
+    let (mut world, mut controller) = loaded.build()?;
+    let radius = world.model().bodies()[0].radius;
+    let start = knot_name(&world);
+    let clock = Instant::now();
+    let (mut samples, mut deepest, mut end) = (Vec::new(), 0.0f64, PullEnd::Distance);
+    while world.steps() < steps {
+        let penetration = match world.step(&mut controller) {
+            Ok(report) => report.max_self_penetration,
+            Err(error) => {
+                end = PullEnd::Failed(error.to_string());
+                break;
+            }
+        };
+        let pulling = world.state().t > rest_s;
+        if pulling {
+            deepest = deepest.max(penetration);
+        }
+        let data = world.data();
+        let Some(grip) = data.actuation.grip.filter(|_| pulling) else { continue };
+        let (force, _) = grip_wrench(&data.rows, data.solver.multipliers(), time_step_s);
+        let direction = grip.velocity.normalize_or_zero();
+        let sample = PullSample {
+            time_s: world.state().t - rest_s,
+            end_to_end_cm: grip.point.length(),
+            force_dyn: force.dot(direction),
+        };
+        samples.push(sample);
+        if sample.force_dyn >= stop_force_dyn {
+            end = PullEnd::Force;
+            break;
+        }
+    }
+    let wall_s = clock.elapsed().as_secs_f64();
+    Ok(PulledKnot {
+        turns,
+        end_speed_cm_per_s,
+        time_step_s,
+        samples,
+        max_penetration_relative: deepest / radius,
+        knots: (start, knot_name(&world)),
+        end,
+        steps: world.steps(),
+        wall_s,
+    })
+}
+
+/// Half the window of [`PulledKnot::smoothed_force`] in end-to-end distance (cm): a step's
+/// force carries the stick and slip of the friction pyramid's rows (±10 % step to step at
+/// h = 0.02 s), the mean over 0.5 cm of pull does not.
+pub const SMOOTHING_HALF_WIDTH_CM: f64 = 0.25;
+
+/// The largest fall of the smoothed force below the highest force before it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ForceDrop {
+    /// The fall over the force before it, (F_max − F)/F_max.
+    pub fraction: f64,
+    /// The end-to-end distance where the force was highest before the fall (cm).
+    pub from_cm: f64,
+    /// The force there (dyn).
+    pub from_dyn: f64,
+}
+
+impl PulledKnot {
+    /// The mean pull force (dyn) over the samples whose end-to-end distance is within
+    /// [`SMOOTHING_HALF_WIDTH_CM`] of `end_to_end_cm`, or `None` if there are none.
+    pub fn smoothed_force(&self, end_to_end_cm: f64) -> Option<f64> {
+        let near = self
+            .samples
+            .iter()
+            .filter(|s| (s.end_to_end_cm - end_to_end_cm).abs() <= SMOOTHING_HALF_WIDTH_CM);
+        let (sum, count) = near.fold((0.0, 0usize), |(sum, n), s| (sum + s.force_dyn, n + 1));
+        (count > 0).then(|| sum / count as f64)
+    }
+
+    /// The range of end-to-end distances pulled through, less the smoothing window at each
+    /// end (cm).
+    pub fn smoothed_range(&self) -> Option<(f64, f64)> {
+        let first = self.samples.first()?.end_to_end_cm + SMOOTHING_HALF_WIDTH_CM;
+        let last = self.samples.last()?.end_to_end_cm - SMOOTHING_HALF_WIDTH_CM;
+        (last > first).then_some((first, last))
+    }
+
+    /// The smoothed force every `spacing_cm` of end-to-end distance: `(distance, force)`.
+    pub fn smoothed_curve(&self, spacing_cm: f64) -> Vec<(f64, f64)> {
+        let Some((first, last)) = self.smoothed_range() else { return Vec::new() };
+        let count = ((last - first) / spacing_cm).floor() as usize;
+        (0..=count)
+            .map(|k| first + k as f64 * spacing_cm)
+            .filter_map(|e| self.smoothed_force(e).map(|f| (e, f)))
+            .collect()
+    }
+
+    /// The largest fall of the smoothed force (every `spacing_cm`) below its highest value
+    /// before, counted from where the force first reaches `from_dyn` (the start of the pull,
+    /// where the knot takes up the slack of its starting curve, is left out).
+    pub fn largest_drop(&self, spacing_cm: f64, from_dyn: f64) -> Option<ForceDrop> {
+        let curve = self.smoothed_curve(spacing_cm);
+        let start = curve.iter().position(|&(_, f)| f >= from_dyn)?;
+        let mut peak = curve[start];
+        let mut largest = ForceDrop { fraction: 0.0, from_cm: peak.0, from_dyn: peak.1 };
+        for &(e, f) in &curve[start..] {
+            if f > peak.1 {
+                peak = (e, f);
+            }
+            let fraction = (peak.1 - f) / peak.1;
+            if fraction > largest.fraction {
+                largest = ForceDrop { fraction, from_cm: peak.0, from_dyn: peak.1 };
+            }
+        }
+        Some(largest)
+    }
+}

@@ -1,0 +1,35 @@
+//! Choi et al. 2021's knot-tying case (`hagfish_validation::overhand_pull`; docs/validation.md,
+//! "Overhand knots pulled tight"): the trefoil (n = 1) pulled tight with each end at 0.6 and
+//! 0.9 cm/s needs the same force at the same end-to-end distance (their result: the pull is
+//! slow enough to be quasi-static), stays a trefoil, and its strands do not sink into each
+//! other by more than their 0.5 % of the rod's radius.
+
+use std::path::Path;
+
+use hagfish_validation::overhand_pull::{PullEnd, PulledKnot, run};
+
+fn root() -> &'static Path {
+    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+}
+
+/// The trefoil pulled at `speed` (each end) until 60 dyn, at h = 0.02 s.
+fn trefoil(speed: f64) -> PulledKnot {
+    run(root(), (1, speed), 0.02, 60.0).expect("the pull runs")
+}
+
+#[test]
+fn the_trefoil_needs_the_same_force_at_two_pull_speeds() {
+    let (slow, fast) = (trefoil(0.6), trefoil(0.9));
+    for knot in [&slow, &fast] {
+        assert_eq!(knot.end, PullEnd::Force, "u = {}", knot.end_speed_cm_per_s);
+        assert_eq!(knot.knots, ("3_1".to_string(), "3_1".to_string()));
+        let penetration = knot.max_penetration_relative;
+        assert!(penetration <= 0.005, "u = {}: {penetration} h", knot.end_speed_cm_per_s);
+    }
+    let curve = slow.smoothed_curve(0.25);
+    for target in [20.0, 30.0, 45.0] {
+        let (at, force) = *curve.iter().find(|(_, f)| *f >= target).expect("reached");
+        let other = fast.smoothed_force(at).expect("pulled through");
+        assert!((other / force - 1.0).abs() < 0.05, "at {at} cm: {force} dyn and {other} dyn");
+    }
+}

@@ -1,0 +1,161 @@
+//! `cargo xtask overhand`: Choi, Tong, Jawed & Joo 2021's knot-tying case
+//! (`hagfish_validation::overhand_pull`): the overhand knots with n turns pulled tight at each
+//! end speed, one run per (n, u), `jobs` at a time. Prints, as Markdown, a row per run (how it
+//! ended, the largest force drop, the deepest penetration, the wall time) and per knot the
+//! smoothed force at the same end-to-end distances for every speed; writes each run's samples
+//! to `<out>/n<N>_u<U>.csv` when `out` is given.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use hagfish_validation::overhand_pull::{self, PullEnd, PulledKnot};
+
+use crate::family::in_parallel;
+
+/// The smoothed curve's spacing (cm of end-to-end distance).
+const SPACING_CM: f64 = 0.25;
+
+/// A force drop is looked for once the force has reached this (dyn): the start of the pull,
+/// where the knot's starting curve takes up its slack, is left out.
+const DROP_FROM_DYN: f64 = 20.0;
+
+/// The forces at which the speeds are compared (dyn), each at the end-to-end distance where
+/// the first speed's smoothed force first reaches it.
+const COMPARED_DYN: [f64; 4] = [50.0, 100.0, 200.0, 300.0];
+
+/// What to run.
+pub struct Request<'a> {
+    /// Turns n.
+    pub turns: &'a [usize],
+    /// Speeds of each end u (cm/s).
+    pub speeds: &'a [f64],
+    /// Time step (s).
+    pub time_step: f64,
+    /// The force that ends a pull (dyn).
+    pub stop_force: f64,
+    /// Runs at a time.
+    pub jobs: usize,
+    /// Where to write the samples, if anywhere.
+    pub out: Option<&'a Path>,
+}
+
+/// Runs the grid and prints its tables.
+pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
+    let cases: Vec<(usize, f64)> =
+        request.turns.iter().flat_map(|&n| request.speeds.iter().map(move |&u| (n, u))).collect();
+    let runs = in_parallel(&cases, request.jobs, |&case| {
+        overhand_pull::run(root, case, request.time_step, request.stop_force)
+    })?;
+    let runs: Vec<PulledKnot> =
+        runs.into_iter().collect::<Result<_, _>>().map_err(|e| e.to_string())?;
+    if let Some(out) = request.out {
+        write_samples(out, &runs)?;
+    }
+    println!("{}", run_table(&runs));
+    println!("{}", speed_table(&runs));
+    println!(
+        "`cargo xtask overhand --turns {} --speeds {} --time-step {} --stop-force {}`; μ = 0.1, \
+         data/validation/overhand_pull.ron",
+        join(request.turns),
+        join(request.speeds),
+        request.time_step,
+        request.stop_force
+    );
+    Ok(())
+}
+
+fn join<T: ToString>(values: &[T]) -> String {
+    values.iter().map(T::to_string).collect::<Vec<_>>().join(",")
+}
+
+/// A row per run.
+fn run_table(runs: &[PulledKnot]) -> String {
+    let mut table = String::from(
+        "| n | u (cm/s) | knot at start → end | ended | end-to-end (cm) | force (dyn) | largest drop | \
+         deepest penetration (% h) | steps | wall (s) | ms/step |\n|---|---|---|---|---|---|---|---|---|---|---|\n",
+    );
+    for run in runs {
+        let last = run.samples.last();
+        let ended = match &run.end {
+            PullEnd::Force => "at the force".to_string(),
+            PullEnd::Distance => "at the distance".to_string(),
+            PullEnd::Failed(why) => format!("failed: {why}"),
+        };
+        let drop = run.largest_drop(SPACING_CM, DROP_FROM_DYN).map_or("—".into(), |d| {
+            format!("{:.0} % from {:.0} dyn at {:.1} cm", 100.0 * d.fraction, d.from_dyn, d.from_cm)
+        });
+        let _ = writeln!(
+            table,
+            "| {} | {} | {} → {} | {ended} | {:.2} | {:.1} | {drop} | {:.3} | {} | {:.1} | {:.2} |",
+            run.turns,
+            run.end_speed_cm_per_s,
+            run.knots.0,
+            run.knots.1,
+            last.map_or(f64::NAN, |s| s.end_to_end_cm),
+            last.map_or(f64::NAN, |s| s.force_dyn),
+            100.0 * run.max_penetration_relative,
+            run.steps,
+            run.wall_s,
+            1e3 * run.wall_s / run.steps as f64,
+        );
+    }
+    table
+}
+
+/// Per knot, the smoothed force of every speed at the distances where the first speed's
+/// reaches [`COMPARED_DYN`], and the largest spread over the mean.
+fn speed_table(runs: &[PulledKnot]) -> String {
+    let mut table = String::from(
+        "| n | end-to-end (cm) | force at each speed (dyn) | spread (max − min)/mean |\n|---|---|---|---|\n",
+    );
+    let mut turns: Vec<usize> = runs.iter().map(|r| r.turns).collect();
+    turns.dedup();
+    for n in turns {
+        let same: Vec<&PulledKnot> = runs.iter().filter(|r| r.turns == n).collect();
+        let Some(first) = same.first() else { continue };
+        let curve = first.smoothed_curve(SPACING_CM);
+        for target in COMPARED_DYN {
+            let Some(&(at, _)) = curve.iter().find(|&&(_, f)| f >= target) else { continue };
+            let forces: Option<Vec<f64>> = same.iter().map(|r| r.smoothed_force(at)).collect();
+            let Some(forces) = forces else { continue };
+            let mean = forces.iter().sum::<f64>() / forces.len() as f64;
+            let (lo, hi) =
+                forces.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &f| (lo.min(f), hi.max(f)));
+            let listed: Vec<String> = same
+                .iter()
+                .zip(&forces)
+                .map(|(r, f)| format!("{:.1} ({} cm/s)", f, r.end_speed_cm_per_s))
+                .collect();
+            let _ = writeln!(
+                table,
+                "| {n} | {at:.2} | {} | {:.3} |",
+                listed.join(", "),
+                (hi - lo) / mean
+            );
+        }
+    }
+    table
+}
+
+/// Each run's samples as `n<N>_u<U>.csv`: time since the pull started, end-to-end distance,
+/// force.
+fn write_samples(out: &Path, runs: &[PulledKnot]) -> Result<(), String> {
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    for run in runs {
+        let path = out.join(format!("n{}_u{}.csv", run.turns, run.end_speed_cm_per_s));
+        let mut writer =
+            csv::Writer::from_path(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let write = |w: &mut csv::Writer<std::fs::File>, record: [String; 3]| {
+            w.write_record(record).map_err(|e| format!("{}: {e}", path.display()))
+        };
+        write(&mut writer, ["time_s".into(), "end_to_end_cm".into(), "force_dyn".into()])?;
+        for s in &run.samples {
+            write(
+                &mut writer,
+                [s.time_s.to_string(), s.end_to_end_cm.to_string(), s.force_dyn.to_string()],
+            )?;
+        }
+        writer.flush().map_err(|e| format!("{}: {e}", path.display()))?;
+    }
+    Ok(())
+}
