@@ -33,9 +33,13 @@ use crate::error::SolverError;
 use crate::linalg::{column, column_mut, try_capacity, try_matrix_capacity};
 use crate::mass_operator::FactoredMass;
 use crate::problem::Problem;
+use crate::reduced_rows::ReducedRows;
 
 /// Columns per block of the product W = YᵀY.
 const W_BLOCK: usize = 8;
+
+/// Side of the square tiles in which [`ContactSpace::expand`] mirrors W's lower triangle.
+const MIRROR_TILE: usize = 64;
 
 /// Columns of Y solved between two polls of the stop flag (a multiple of the tree factor's
 /// four-column batches, so that the columns are solved as in one call).
@@ -48,16 +52,26 @@ const Y_CHUNK: usize = 64;
 const W_POLLED_ENTRIES: usize = 1 << 24;
 
 /// Y, W, z, r and b of one solve (sizes n × m, m × m, n, m, m), the support eᵢ of Y's
-/// columns (entries eᵢ.. of column i are zero), and the scratch of the build: the rows by
-/// decreasing support (`order`), their supports, Y and W in that order.
+/// columns (entries eᵢ.. of column i are zero), and the scratch of the build: the reduced
+/// columns (`reduced_rows.rs`; the rows themselves when no row is a combination), their
+/// supports, the columns by decreasing support (`order`), their supports, Y and W in that
+/// order; for combinations, each reduced column's place in that order (`rank`), W of the
+/// reduced columns (`reduced_w`, p × p) and `reduced_w` Eᵀ (`reduced_t`, p × m).
 #[derive(Debug)]
 pub(crate) struct ContactSpace {
     y: Mat<f64>,
     support: Vec<usize>,
+    reduced: ReducedRows,
+    column_support: Vec<usize>,
     order: Vec<usize>,
     sorted_support: Vec<usize>,
     sorted: Mat<f64>,
     sorted_w: Mat<f64>,
+    rank: Vec<usize>,
+    reduced_w: Mat<f64>,
+    reduced_t: Mat<f64>,
+    /// The reduced columns and rows `reduced_w` and `reduced_t` have room for.
+    reduced_reserved: (usize, usize),
     w: Mat<f64>,
     compliance: Vec<f64>,
     z: Vec<f64>,
@@ -73,10 +87,16 @@ impl ContactSpace {
         Self {
             y: Mat::zeros(0, 0),
             support: Vec::new(),
+            reduced: ReducedRows::default(),
+            column_support: Vec::new(),
             order: Vec::new(),
             sorted_support: Vec::new(),
             sorted: Mat::zeros(0, 0),
             sorted_w: Mat::zeros(0, 0),
+            rank: Vec::new(),
+            reduced_w: Mat::zeros(0, 0),
+            reduced_t: Mat::zeros(0, 0),
+            reduced_reserved: (0, 0),
             w: Mat::zeros(0, 0),
             compliance: Vec::new(),
             z: Vec::new(),
@@ -92,7 +112,15 @@ impl ContactSpace {
     /// [`SolverError::Allocation`] if a buffer cannot be allocated.
     pub(crate) fn try_reserve(&mut self, dofs: usize, rows: usize) -> Result<(), SolverError> {
         self.try_reserve_matrices(dofs, rows)?;
-        for buffer in [&mut self.support, &mut self.order, &mut self.sorted_support] {
+        self.reduced.try_reserve(rows)?;
+        let indices = [
+            &mut self.support,
+            &mut self.column_support,
+            &mut self.order,
+            &mut self.sorted_support,
+            &mut self.rank,
+        ];
+        for buffer in indices {
             try_capacity(buffer, rows, "a contact-space index")?;
         }
         for buffer in [&mut self.compliance, &mut self.r, &mut self.b] {
@@ -140,42 +168,52 @@ impl ContactSpace {
     ) -> Result<(), SolverError> {
         let rows = problem.rows();
         let (n, m) = (problem.dofs(), rows.len());
-        self.try_reserve_matrices(n, m)?;
-        self.support.clear();
-        self.support.extend((0..m).map(|i| {
-            let end = rows.row(i).iter().rposition(|&c| c != 0.0).map_or(0, |last| last + 1);
+        self.reduced.reduce(rows);
+        let p = self.reduced.len();
+        self.try_reserve_matrices(n, m.max(p))?;
+        let reduced = &self.reduced;
+        self.column_support.clear();
+        self.column_support.extend((0..p).map(|j| {
+            let column = reduced.column(rows, j);
+            let end = column.iter().rposition(|&c| c != 0.0).map_or(0, |last| last + 1);
             factor.lower_support(end).unwrap_or(n)
         }));
         // Columns by decreasing support (ties by index): Y's columns in `sorted`, their
         // supports in `sorted_support`.
         self.order.clear();
-        self.order.extend(0..m);
-        let support = &self.support;
-        self.order.sort_unstable_by_key(|&i| (core::cmp::Reverse(support[i]), i));
+        self.order.extend(0..p);
+        let support = &self.column_support;
+        self.order.sort_unstable_by_key(|&j| (core::cmp::Reverse(support[j]), j));
         self.sorted_support.clear();
-        self.sorted_support.extend(self.order.iter().map(|&i| support[i]));
-        self.sorted.resize_with(n, m, |_, _| 0.0);
-        for (k, &i) in self.order.iter().enumerate() {
-            self.sorted.col_as_slice_mut(k).copy_from_slice(rows.row(i));
+        self.sorted_support.extend(self.order.iter().map(|&j| support[j]));
+        self.sorted.resize_with(n, p, |_, _| 0.0);
+        for (k, &j) in self.order.iter().enumerate() {
+            self.sorted.col_as_slice_mut(k).copy_from_slice(self.reduced.column(rows, j));
         }
-        for first in (0..m).step_by(Y_CHUNK) {
+        for first in (0..p).step_by(Y_CHUNK) {
             problem.check_stop()?;
-            let count = Y_CHUNK.min(m - first);
+            let count = Y_CHUNK.min(p - first);
             let chunk = self.sorted.as_mut().submatrix_mut(0, first, n, count);
             factor.solve_lower_supported(chunk, &self.sorted_support[first..first + count]);
         }
         problem.check_stop()?;
-        self.y.resize_with(n, m, |_, _| 0.0);
-        for (k, &i) in self.order.iter().enumerate() {
-            self.y.col_as_slice_mut(i).copy_from_slice(self.sorted.col_as_slice(k));
-        }
-        self.form_sorted_w(m, W_POLLED_ENTRIES, problem)?;
-        // The upper triangle is scattered to both triangles of W in row order.
-        for (l, &j) in self.order.iter().enumerate() {
-            for (k, &i) in self.order[..=l].iter().enumerate() {
-                let value = self.sorted_w[(k, l)];
-                self.w[(i, j)] = value;
-                self.w[(j, i)] = value;
+        self.form_sorted_w(p, W_POLLED_ENTRIES, problem)?;
+        if rows.has_combinations() {
+            self.expand(n, m, problem)?;
+        } else {
+            self.support.clone_from(&self.column_support);
+            self.y.resize_with(n, m, |_, _| 0.0);
+            self.w.resize_with(m, m, |_, _| 0.0);
+            for (k, &i) in self.order.iter().enumerate() {
+                self.y.col_as_slice_mut(i).copy_from_slice(self.sorted.col_as_slice(k));
+            }
+            // The upper triangle is scattered to both triangles of W in row order.
+            for (l, &j) in self.order.iter().enumerate() {
+                for (k, &i) in self.order[..=l].iter().enumerate() {
+                    let value = self.sorted_w[(k, l)];
+                    self.w[(i, j)] = value;
+                    self.w[(j, i)] = value;
+                }
             }
         }
         self.compliance.clear();
@@ -187,6 +225,84 @@ impl ContactSpace {
         }
 
         self.update_force(factor, problem);
+        Ok(())
+    }
+
+    /// Y and W of the rows from those of the reduced columns (`reduced_rows.rs`): column i of Y
+    /// is Σ_t w_t Y_R[:, j_t], and W = E W_R Eᵀ, formed as T = W_R Eᵀ (p × m) and then
+    /// W[a, i] = Σ_t w_t T[j_t, i] over row a's terms. Row i's support is its terms' largest.
+    /// The stop flag is polled between the products and every [`Y_CHUNK`] columns of W.
+    fn expand(&mut self, n: usize, m: usize, problem: &Problem<'_>) -> Result<(), SolverError> {
+        let p = self.reduced.len();
+        let (reserved_p, reserved_m) = self.reduced_reserved;
+        if p > reserved_p || m > reserved_m {
+            // As `try_reserve_matrices`: afresh, and a quarter larger than asked.
+            let (p, m) = (p.max(reserved_p + reserved_p / 4), m.max(reserved_m + reserved_m / 4));
+            self.reduced_w = Mat::zeros(0, 0);
+            self.reduced_t = Mat::zeros(0, 0);
+            try_matrix_capacity(&mut self.reduced_w, p, p, "W of the reduced columns")?;
+            try_matrix_capacity(&mut self.reduced_t, p, m, "W_R Eᵀ")?;
+            self.reduced_reserved = (p, m);
+        }
+        self.rank.clear();
+        self.rank.resize(p, 0);
+        for (k, &j) in self.order.iter().enumerate() {
+            self.rank[j] = k;
+        }
+        let (reduced, rank) = (&self.reduced, &self.rank);
+        self.support.clear();
+        self.support.extend((0..m).map(|i| {
+            reduced.terms(i).iter().map(|&(j, _)| self.column_support[j]).max().unwrap_or(0)
+        }));
+        self.y.resize_with(n, m, |_, _| 0.0);
+        for i in 0..m {
+            let column = self.y.col_as_slice_mut(i);
+            column.fill(0.0);
+            for &(j, weight) in reduced.terms(i) {
+                let end = self.column_support[j];
+                let solved = &self.sorted.col_as_slice(rank[j])[..end];
+                column[..end].iter_mut().zip(solved).for_each(|(y, s)| *y += weight * s);
+            }
+        }
+        problem.check_stop()?;
+        self.reduced_w.resize_with(p, p, |_, _| 0.0);
+        for a in 0..p {
+            for b in 0..p {
+                let (k, l) = (rank[a].min(rank[b]), rank[a].max(rank[b]));
+                self.reduced_w[(a, b)] = self.sorted_w[(k, l)];
+            }
+        }
+        self.reduced_t.resize_with(p, m, |_, _| 0.0);
+        for i in 0..m {
+            let column = self.reduced_t.col_as_slice_mut(i);
+            column.fill(0.0);
+            for &(j, weight) in reduced.terms(i) {
+                let w_column = self.reduced_w.col_as_slice(j);
+                column.iter_mut().zip(w_column).for_each(|(t, w)| *t += weight * w);
+            }
+        }
+        // The lower triangle column by column (contiguous), then mirrored tile by tile: W
+        // exactly symmetric, as the active set reads either triangle.
+        self.w.resize_with(m, m, |_, _| 0.0);
+        for i in 0..m {
+            if i % Y_CHUNK == 0 {
+                problem.check_stop()?;
+            }
+            let t = self.reduced_t.col_as_slice(i);
+            let column = &mut self.w.col_as_slice_mut(i)[i..];
+            for (value, a) in column.iter_mut().zip(i..) {
+                *value = reduced.terms(a).iter().map(|&(j, weight)| weight * t[j]).sum();
+            }
+        }
+        for tile_column in (0..m).step_by(MIRROR_TILE) {
+            for tile_row in (tile_column..m).step_by(MIRROR_TILE) {
+                for j in tile_column..(tile_column + MIRROR_TILE).min(m) {
+                    for i in tile_row.max(j + 1)..(tile_row + MIRROR_TILE).min(m) {
+                        self.w[(j, i)] = self.w[(i, j)];
+                    }
+                }
+            }
+        }
         Ok(())
     }
 
@@ -394,7 +510,70 @@ mod tests {
         assert!(gap < 1e-14, "W in polled chunks differs by {gap:e}");
     }
 
+    /// Rows made of bases (`Rows::combine_last`: a pyramid's edges over a contact's three
+    /// bases, with trailing zeros) give the W, r and q̇(λ) of the same rows written out, and
+    /// an exactly symmetric W.
+    fn combinations_are_their_rows(n: usize, contacts: usize, seed: u64) -> Result<(), String> {
+        let mut next = stream(seed);
+        let mass = random_spd(n, &mut next);
+        let force: Vec<f64> = (0..n).map(|_| next()).collect();
+        let (mut combined, mut own) = (Rows::new(n), Rows::new(n));
+        let source = RowSource::new(RowTag::new(3), 0);
+        for contact in 0..contacts {
+            let end = ((next() + 1.0) * 0.5 * (n + 1) as f64) as usize % (n + 1);
+            let first = combined.push_bases();
+            for k in 0..3 {
+                combined.base_mut(first + k)[..end].iter_mut().for_each(|c| *c = next());
+            }
+            // A row of its own between contacts, as a joint limit's.
+            if contact % 2 == 1 {
+                let row: Vec<f64> = (0..n).map(|_| next()).collect();
+                let rhs = next();
+                combined.push_zeroed(RowKind::Inequality, source, rhs).copy_from_slice(&row);
+                own.push_zeroed(RowKind::Inequality, source, rhs).copy_from_slice(&row);
+            }
+            for _ in 0..8 {
+                let (weights, rhs) = ([next(), next(), next()], next());
+                combined.push_zeroed(RowKind::Inequality, source, rhs);
+                combined.combine_last(first, weights);
+                let written = combined.row(combined.len() - 1).to_vec();
+                own.push_zeroed(RowKind::Inequality, source, rhs).copy_from_slice(&written);
+            }
+        }
+        let m = own.len();
+        let mut reverse = MassFactor::new();
+        reverse.factor(mass.as_ref()).map_err(|e| e.to_string())?;
+        let (mut from_bases, mut from_rows) = (ContactSpace::new(), ContactSpace::new());
+        let problem = Problem::new(mass.as_ref(), &force, &combined).map_err(|e| e.to_string())?;
+        from_bases.build(&reverse, &problem).expect("room for Y and W");
+        let problem = Problem::new(mass.as_ref(), &force, &own).map_err(|e| e.to_string())?;
+        from_rows.build(&reverse, &problem).expect("room for Y and W");
+        let gap = relative_gap(from_bases.w(), from_rows.w());
+        let w = from_bases.w();
+        let symmetric = (0..m).all(|i| (0..m).all(|j| w[(i, j)] == w[(j, i)]));
+        let r_gap = relative_gap(column(from_bases.r()), column(from_rows.r()));
+        let lambda: Vec<f64> = (0..m).map(|_| next()).collect();
+        let (mut a, mut b) = (vec![0.0; n], vec![0.0; n]);
+        from_bases.recover(&reverse, &lambda, &mut a);
+        from_rows.recover(&reverse, &lambda, &mut b);
+        let q_gap = relative_gap(column(&a), column(&b));
+        let supports = from_bases.supports() == from_rows.supports();
+        if gap > 1e-10 || r_gap > 1e-10 || q_gap > 1e-8 || !symmetric || !supports {
+            return Err(format!(
+                "W {gap:e}, r {r_gap:e}, q̇ {q_gap:e}, symmetric {symmetric}, supports {supports}"
+            ));
+        }
+        Ok(())
+    }
+
     proptest! {
+        #[test]
+        fn rows_made_of_bases_are_the_rows_they_make(
+            n in 1usize..=40, contacts in 0usize..=6, seed in any::<u64>()
+        ) {
+            combinations_are_their_rows(n, contacts, seed).map_err(TestCaseError::fail)?;
+        }
+
         #[test]
         fn trailing_zeros_are_skipped_exactly(
             n in 1usize..=60, m in 0usize..=30, seed in any::<u64>()

@@ -32,6 +32,13 @@
 //! refuses it, and takes the cone's inscribed pyramid as plain inequality rows instead
 //! ([`crate::FrictionPyramid`]).
 //!
+//! A row may be stored as a combination of three base vectors, `cᵢ = Σₖ wₖ g_{f+k}`
+//! ([`Rows::push_bases`], [`Rows::combine_last`]): a contact's rows along the edges of its
+//! friction pyramid are all `dᵀG` for the same 3 × n Jacobian G of the contact's relative
+//! velocity. The row's own coefficients are still written out (every path reads them); the
+//! contact-space build solves L⁻¹ for the three bases once instead of once per row
+//! (`reduced_rows.rs`).
+//!
 //! Storage: the coefficients sit in one column-major n × capacity matrix whose column i is
 //! cᵢ, i.e. the columns form Cᵀ. That is the layout the contact-space solve needs (it copies
 //! Cᵀ and solves L Y = Cᵀ in place) and each row is one contiguous slice. Capacity only grows:
@@ -158,6 +165,20 @@ impl<T> core::ops::IndexMut<RowTag> for PerTag<T> {
     }
 }
 
+/// How a row's coefficients are made (module docs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum RowBasis {
+    /// Its own coefficients.
+    Own,
+    /// `cᵢ = Σₖ weights[k] · g_{first+k}`, the bases of [`Rows::base`].
+    Combination {
+        /// The first of its three bases.
+        first: usize,
+        /// The weights wₖ.
+        weights: [f64; 3],
+    },
+}
+
 /// Grow-only container of constraint rows over `dofs` reduced velocities.
 #[derive(Debug, Clone)]
 pub struct Rows {
@@ -166,6 +187,12 @@ pub struct Rows {
     rhs: Vec<f64>,
     kinds: Vec<RowKind>,
     sources: Vec<RowSource>,
+    /// How each row is made.
+    basis: Vec<RowBasis>,
+    /// n × capacity, column-major: the base vectors of combination rows.
+    bases: Mat<f64>,
+    /// Base vectors in use.
+    base_count: usize,
 }
 
 impl Rows {
@@ -176,6 +203,9 @@ impl Rows {
             rhs: Vec::new(),
             kinds: Vec::new(),
             sources: Vec::new(),
+            basis: Vec::new(),
+            bases: Mat::zeros(dofs, 0),
+            base_count: 0,
         }
     }
 
@@ -191,6 +221,7 @@ impl Rows {
         try_capacity(&mut rows.rhs, capacity, "the rows' right-hand sides")?;
         try_capacity(&mut rows.kinds, capacity, "the rows' kinds")?;
         try_capacity(&mut rows.sources, capacity, "the rows' sources")?;
+        try_capacity(&mut rows.basis, capacity, "the rows' bases")?;
         Ok(rows)
     }
 
@@ -214,6 +245,8 @@ impl Rows {
         self.rhs.clear();
         self.kinds.clear();
         self.sources.clear();
+        self.basis.clear();
+        self.base_count = 0;
     }
 
     /// Removes all rows and switches to `dofs` velocities (reallocates only if n changes).
@@ -221,6 +254,7 @@ impl Rows {
         self.clear();
         if dofs != self.dofs() {
             self.coefficients = Mat::zeros(dofs, self.coefficients.ncols());
+            self.bases = Mat::zeros(dofs, self.bases.ncols());
         }
     }
 
@@ -254,9 +288,61 @@ impl Rows {
         self.rhs.push(rhs);
         self.kinds.push(kind);
         self.sources.push(source);
+        self.basis.push(RowBasis::Own);
         let column = self.coefficients.col_as_slice_mut(index);
         column.fill(0.0);
         column
+    }
+
+    /// Appends three zeroed base vectors and returns the index of the first; fill them with
+    /// [`Rows::base_mut`], then make rows of them with [`Rows::combine_last`].
+    pub fn push_bases(&mut self) -> usize {
+        let first = self.base_count;
+        while self.base_count + 3 > self.bases.ncols() {
+            let capacity = (2 * self.bases.ncols()).max(12);
+            let mut grown = Mat::zeros(self.dofs(), capacity);
+            grown.as_mut().subcols_mut(0, first).copy_from(self.bases.as_ref().subcols(0, first));
+            self.bases = grown;
+        }
+        self.base_count += 3;
+        for k in first..first + 3 {
+            self.bases.col_as_slice_mut(k).fill(0.0);
+        }
+        first
+    }
+
+    /// Base vector `index` to fill (it must have been pushed).
+    pub fn base_mut(&mut self, index: usize) -> &mut [f64] {
+        debug_assert!(index < self.base_count, "base {index} not pushed");
+        self.bases.col_as_slice_mut(index)
+    }
+
+    /// Base vector `index` (crate-internal indices only).
+    pub(crate) fn base(&self, index: usize) -> &[f64] {
+        self.bases.col_as_slice(index)
+    }
+
+    /// Makes the last row `Σₖ weights[k] · g_{first+k}`, writing out its coefficients (the
+    /// bases `first..first + 3` must be filled).
+    pub fn combine_last(&mut self, first: usize, weights: [f64; 3]) {
+        let Some(index) = self.len().checked_sub(1) else { return };
+        let column = self.coefficients.col_as_slice_mut(index);
+        column.fill(0.0);
+        for (k, &w) in weights.iter().enumerate() {
+            let base = self.bases.col_as_slice(first + k);
+            column.iter_mut().zip(base).for_each(|(c, g)| *c += w * g);
+        }
+        self.basis[index] = RowBasis::Combination { first, weights };
+    }
+
+    /// How each row is made (one per row).
+    pub fn basis(&self) -> &[RowBasis] {
+        &self.basis
+    }
+
+    /// True when some row is a combination of bases.
+    pub fn has_combinations(&self) -> bool {
+        self.basis.iter().any(|b| matches!(b, RowBasis::Combination { .. }))
     }
 
     /// Coefficients cᵢ of row `index`, or `None` past the end.

@@ -23,6 +23,8 @@ pub const SCENARIO: &str = "data/validation/clamped_buckling.ron";
 pub struct Buckling {
     /// Euler's load `4π²B/L²` of the rod (dyn).
     pub euler_load_dyn: f64,
+    /// The rod, its bodies and the push, in words (for the check's set-up).
+    pub setup: String,
     /// `(Δ/L, P)`: the shortening of the head-to-tail distance over L and the grip's
     /// compressive force (dyn), one per step.
     pub samples: Vec<(f64, f64)>,
@@ -39,6 +41,17 @@ pub fn run(root: &Path, bodies: usize) -> Result<Buckling, ValidationError> {
     };
     rod.body_count = bodies;
     let (length, stiffness) = (rod.length_cm, rod.bending_stiffness_dyn_cm2);
+    let speed = loaded.scenario.phases.iter().find_map(|phase| match phase {
+        hagfish_control::Phase::Pull(pull) if pull.speed_cm_per_s > 0.0 => {
+            Some(pull.speed_cm_per_s)
+        }
+        _ => None,
+    });
+    let setup = format!(
+        "{}: L = {length} cm, B = {stiffness} dyn·cm², N = {bodies}; tail gripped and pushed at {} cm/s; Δ = 1 % L",
+        rod.name,
+        speed.unwrap_or(0.0)
+    );
     let (mut world, mut controller) = loaded.build()?;
     let h = loaded.scenario.time_step_s;
     let steps = (loaded.scenario.duration_s / h).round() as u64;
@@ -51,7 +64,7 @@ pub fn run(root: &Path, bodies: usize) -> Result<Buckling, ValidationError> {
         samples.push(((length - grip.point.x) / length, -force.x));
     }
     let euler_load_dyn = 4.0 * std::f64::consts::PI.powi(2) * stiffness / (length * length);
-    Ok(Buckling { euler_load_dyn, samples })
+    Ok(Buckling { euler_load_dyn, setup, samples })
 }
 
 impl Buckling {
@@ -61,12 +74,10 @@ impl Buckling {
     }
 
     /// The check: the force at 1 % shortening against Euler's load, within 2 %.
-    pub fn check(&self, bodies: usize) -> Check {
+    pub fn check(&self) -> Check {
         Check {
             name: "clamped–clamped buckling under a grip: the force".into(),
-            setup: format!(
-                "thin rod, N = {bodies}, tail gripped and pushed at 0.05 cm/s; Δ = 1 % L"
-            ),
+            setup: self.setup.clone(),
             formula: "P = 4π²B/L²",
             source: "Euler's buckling load, both ends clamped",
             expected: self.euler_load_dyn,

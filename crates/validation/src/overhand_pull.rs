@@ -81,8 +81,23 @@ fn knot_name(world: &hagfish_sim::World) -> String {
         .map_or_else(|e| format!("unknown ({e})"), |report| report.knot.to_string())
 }
 
+/// The mean force over the last `2 ·` [`SMOOTHING_HALF_WIDTH_CM`] of pull, once the pull has
+/// gone that far (the first step's force is the jerk of starting at full speed, not the
+/// knot's).
+fn trailing_mean_force(samples: &[PullSample]) -> Option<f64> {
+    let last = samples.last()?.end_to_end_cm;
+    let window = 2.0 * SMOOTHING_HALF_WIDTH_CM;
+    if last - samples.first()?.end_to_end_cm < window {
+        return None;
+    }
+    let recent = samples.iter().rev().take_while(|s| last - s.end_to_end_cm <= window);
+    let (sum, count) = recent.fold((0.0, 0usize), |(sum, n), s| (sum + s.force_dyn, n + 1));
+    Some(sum / count as f64)
+}
+
 /// Pulls the n-turn knot with each end at `end_speed_cm_per_s`, steps of `time_step_s`, until
-/// the pull force reaches `stop_force_dyn` (or the ends are [`MAX_PULL_CM`] further apart).
+/// the pull force, averaged over the last 0.5 cm of pull, reaches `stop_force_dyn` (or the ends
+/// are [`MAX_PULL_CM`] further apart).
 pub fn run(
     root: &Path,
     (turns, end_speed_cm_per_s): (usize, f64),
@@ -145,7 +160,7 @@ pub fn run(
             force_dyn: force.dot(direction),
         };
         samples.push(sample);
-        if sample.force_dyn >= stop_force_dyn {
+        if trailing_mean_force(&samples).is_some_and(|force| force >= stop_force_dyn) {
             end = PullEnd::Force;
             break;
         }

@@ -1,6 +1,7 @@
 //! A step allocates nothing once warm. Four knotted states are stepped on with their
 //! scenario's own controller: the knotted benchmark state (`form.ron` at t = 23.13 s, about
-//! 40 self contacts, knot-forming pull; on both dynamics backends), `thesis_scripted.ron` at
+//! 40 self contacts, knot-forming pull; on both dynamics backends, and on the sparse one with
+//! friction), `thesis_scripted.ron` at
 //! t = 21 s (thigmotaxis rows), `figure_eight.ron` from 12.5 s (the last 0.6 s of the
 //! follow-the-leader tie's servos, then its tighten; up to 65 self contacts) and `tie.ron` on
 //! ES103 at 1000 bodies (sparse backend) at t = 19 s, a trefoil tied by control. (While a knot
@@ -12,6 +13,7 @@
 use hagfish_bench_support::{knotted_world, long_knotted_world};
 use hagfish_control::PhasedController;
 use hagfish_scenario::LoadedScenario;
+use hagfish_sim::rows::Friction;
 use hagfish_sim::{DynamicsBackend, StepOptions, World};
 
 /// Steps after the knotted state before counting (buffers reach their working size).
@@ -52,8 +54,19 @@ fn knotted_steps_do_not_allocate() {
     let mut sparse = World::new(world.model().clone(), sparse_options, world.state().clone())
         .expect("sparse world");
     let mut sparse_controller = controller.clone();
+    // With friction, each contact's pyramid rows combine three base rows (decision 0029).
+    let friction_options =
+        StepOptions { friction: Some(Friction::pyramid(0.1, 8)), ..sparse.options().clone() };
+    let mut frictional = World::new(world.model().clone(), friction_options, world.state().clone())
+        .expect("frictional world");
+    let mut frictional_controller = controller.clone();
     assert_steps_do_not_allocate("form.ron", &mut world, &mut controller);
     assert_steps_do_not_allocate("form.ron, sparse backend", &mut sparse, &mut sparse_controller);
+    assert_steps_do_not_allocate(
+        "form.ron, sparse backend, friction μ = 0.1",
+        &mut frictional,
+        &mut frictional_controller,
+    );
     let thesis =
         LoadedScenario::load(format!("{root}/data/scenarios/thesis_scripted.ron")).expect("loads");
     let (mut world, mut controller) = thesis.build_at(21.0).expect("thesis at 21 s");

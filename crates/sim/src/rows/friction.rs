@@ -143,6 +143,28 @@ pub(super) fn push_contact_row(
     rows.push_zeroed(kind, group.source(id), rhs)
 }
 
+/// The three base rows of a contact whose `edges` rows run along the edges of a friction
+/// pyramid, or `None` (frictionless, or the exact cone: one row per direction already): each
+/// edge row `dᵀG` is then `Σₖ d_k g_k` with `g_k` the row along world axis k, which `fill`
+/// writes (`Rows::combine_last`), so that the contact-space build solves for three rows
+/// instead of `edges`.
+pub(super) fn push_pyramid_bases(
+    rows: &mut Rows,
+    friction: Option<Friction>,
+    edges: usize,
+    mut fill: impl FnMut(DVec3, &mut [f64]),
+) -> Option<usize> {
+    let pyramid = friction.is_some_and(|f| f.cone == ConeForm::Pyramid);
+    if !pyramid || edges < 2 {
+        return None;
+    }
+    let first = rows.push_bases();
+    for (k, axis) in [DVec3::X, DVec3::Y, DVec3::Z].into_iter().enumerate() {
+        fill(axis, rows.base_mut(first + k));
+    }
+    Some(first)
+}
+
 /// Where a wall (or obstacle) contact's rows act, as an offset from the body's centre: the
 /// centre itself along the normal alone (`edges` = 1; the rows as they were without friction),
 /// else the contact point c − r n̂, whose tangential velocity the body's spin moves.

@@ -12,7 +12,9 @@ use hagfish_tree::jacobian::add_point_rows;
 use hagfish_tree::{Data, Model};
 
 use super::RowGroup;
-use super::friction::{Friction, MAX_FRICTION_EDGES, contact_directions, push_contact_row};
+use super::friction::{
+    Friction, MAX_FRICTION_EDGES, contact_directions, push_contact_row, push_pyramid_bases,
+};
 use crate::skin::SkinLayer;
 
 /// Appends the rows of each self contact, id its index in `contacts` (both spline points
@@ -46,12 +48,19 @@ pub fn add_self_contact_rows(
         let core_gap = contact_skin.map_or(contact.gap, |s| s.core_gap);
         let edges =
             contact_directions(contact.normal, contact.tangent_a, friction, &mut directions);
+        let contact_points = &points[..count];
+        let bases = push_pyramid_bases(rows, friction, edges, |axis, base| {
+            add_point_rows(model, data, contact_points, axis, base);
+        });
         let first = rows.len();
         for (k, &direction) in directions[..edges].iter().enumerate() {
             let (place, stabilisation) = ((RowGroup::Contact, i), (time_step, push_out));
             let gap = (core_gap, 0.0);
             let row = push_contact_row(rows, place, gap, stabilisation, friction, (k, first));
-            add_point_rows(model, data, &points[..count], direction, row);
+            match bases {
+                Some(bases) => rows.combine_last(bases, direction.to_array()),
+                None => add_point_rows(model, data, contact_points, direction, row),
+            }
         }
         let carries_spring = skin_carriers.is_none_or(|carriers| carriers[i]);
         if let Some(contact_skin) = contact_skin.filter(|_| carries_spring) {

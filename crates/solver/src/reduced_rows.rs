@@ -1,0 +1,128 @@
+//! The columns a contact-space build solves L⁻¹ for: each row's own coefficients, or, for rows
+//! made of base vectors ([`RowBasis::Combination`]), their three bases once (`rows.rs`). Row i
+//! is then `cᵢ = Σ_t w_t r_{j_t}` over its terms (column j_t of the reduced set, weight w_t):
+//! one term of weight 1 for a row of its own, three for a combination. With E the m × p
+//! matrix of the terms, Y = Y_R Eᵀ and W = E W_R Eᵀ: a friction pyramid of 8 edges costs the
+//! solves and the product YᵀY of 3 columns instead of 8.
+
+use crate::error::SolverError;
+use crate::linalg::try_capacity;
+use crate::rows::{RowBasis, Rows};
+
+/// What a reduced column is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum ReducedColumn {
+    /// Row i's own coefficients.
+    Row(usize),
+    /// Base vector k of the rows.
+    Base(usize),
+}
+
+/// Row i's terms: `(reduced column, weight)`, the first `count` of them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Terms {
+    terms: [(usize, f64); 3],
+    count: usize,
+}
+
+impl Terms {
+    /// The terms in use.
+    pub(crate) fn as_slice(&self) -> &[(usize, f64)] {
+        &self.terms[..self.count]
+    }
+}
+
+/// The reduced columns of one build and each row's terms.
+#[derive(Debug, Default)]
+pub(crate) struct ReducedRows {
+    columns: Vec<ReducedColumn>,
+    terms: Vec<Terms>,
+    /// The reduced column of each base vector, or `usize::MAX` before it is met.
+    base_column: Vec<usize>,
+}
+
+impl ReducedRows {
+    /// Room for `rows` rows (and as many reduced columns).
+    pub(crate) fn try_reserve(&mut self, rows: usize) -> Result<(), SolverError> {
+        try_capacity(&mut self.columns, rows, "the reduced columns")?;
+        try_capacity(&mut self.terms, rows, "the rows' terms")
+    }
+
+    /// The reduced columns of `rows`: a row of its own is its own column; a combination's
+    /// three bases are columns from the first row that uses them on.
+    pub(crate) fn reduce(&mut self, rows: &Rows) {
+        self.columns.clear();
+        self.terms.clear();
+        self.base_column.clear();
+        for (i, basis) in rows.basis().iter().enumerate() {
+            let terms = match *basis {
+                RowBasis::Own => {
+                    self.columns.push(ReducedColumn::Row(i));
+                    Terms { terms: [(self.columns.len() - 1, 1.0); 3], count: 1 }
+                }
+                RowBasis::Combination { first, weights } => {
+                    if self.base_column.len() < first + 3 {
+                        self.base_column.resize(first + 3, usize::MAX);
+                    }
+                    let mut terms = [(0, 0.0); 3];
+                    for (k, term) in terms.iter_mut().enumerate() {
+                        if self.base_column[first + k] == usize::MAX {
+                            self.base_column[first + k] = self.columns.len();
+                            self.columns.push(ReducedColumn::Base(first + k));
+                        }
+                        *term = (self.base_column[first + k], weights[k]);
+                    }
+                    Terms { terms, count: 3 }
+                }
+            };
+            self.terms.push(terms);
+        }
+    }
+
+    /// Number of reduced columns p.
+    pub(crate) fn len(&self) -> usize {
+        self.columns.len()
+    }
+
+    /// Reduced column `j`'s coefficients in `rows`.
+    pub(crate) fn column<'r>(&self, rows: &'r Rows, j: usize) -> &'r [f64] {
+        match self.columns[j] {
+            ReducedColumn::Row(i) => rows.row(i),
+            ReducedColumn::Base(k) => rows.base(k),
+        }
+    }
+
+    /// Row i's terms.
+    pub(crate) fn terms(&self, i: usize) -> &[(usize, f64)] {
+        self.terms[i].as_slice()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rows::{RowKind, RowSource, RowTag};
+
+    #[test]
+    fn a_combination_s_bases_are_columns_once_and_its_rows_their_weights() {
+        let mut rows = Rows::new(2);
+        let source = RowSource::new(RowTag::new(0), 0);
+        rows.push_zeroed(RowKind::Inequality, source, 0.0).copy_from_slice(&[1.0, 2.0]);
+        let first = rows.push_bases();
+        for (k, base) in [[1.0, 0.0], [0.0, 1.0], [1.0, 1.0]].iter().enumerate() {
+            rows.base_mut(first + k).copy_from_slice(base);
+        }
+        for weights in [[1.0, 2.0, 3.0], [0.5, 0.0, -1.0]] {
+            rows.push_zeroed(RowKind::Inequality, source, 0.0);
+            rows.combine_last(first, weights);
+        }
+        assert_eq!(rows.row(1), [4.0, 5.0]);
+        assert_eq!(rows.row(2), [-0.5, -1.0]);
+        let mut reduced = ReducedRows::default();
+        reduced.reduce(&rows);
+        assert_eq!(reduced.len(), 4, "one row of its own and three bases");
+        assert_eq!(reduced.terms(0), [(0, 1.0)]);
+        assert_eq!(reduced.terms(2), [(1, 0.5), (2, 0.0), (3, -1.0)]);
+        assert_eq!(reduced.column(&rows, 3), [1.0, 1.0]);
+    }
+}
