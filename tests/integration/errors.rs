@@ -57,7 +57,7 @@ user_error!(negative_time_step, "time_step_s: 0.01" => "time_step_s: -0.01", "6:
 user_error!(time_step_below_the_floor, "time_step_s: 0.01" => "time_step_s: 1e-300", "6:18",
     "time_step_s = 1e-300 is out of range: expected finite and ≥ 1e-6");
 user_error!(unknown_phase, "Hold(0.5)" => "Wait(0.5)", "18:9",
-    "Unexpected variant named `Wait` in enum `Phase`, expected one of `Form`, `Hold`, `Thigmotaxis`, `Tie`, `Load`, or `Follow` instead");
+    "Unexpected variant named `Wait` in enum `Phase`, expected one of `Form`, `Hold`, `Thigmotaxis`, `Tie`, `Load`, `Follow`, or `Pull` instead");
 user_error!(
     an_initial_knot_that_is_no_torus_knot_is_located_at_its_value,
     "    phases: [" => "    initial_shape: Some(OpenTorusKnot((crossings: 4, radius_l: 0.02, start_l: \
