@@ -99,7 +99,7 @@ enum Task {
         /// Runs at a time.
         #[arg(long, default_value_t = 2)]
         jobs: usize,
-        /// Write each run's samples to DIR/n<N>_u<U>.csv.
+        /// Write each run's samples to `DIR/n<N>_u<U>.csv`.
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
     },

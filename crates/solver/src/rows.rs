@@ -170,7 +170,7 @@ impl<T> core::ops::IndexMut<RowTag> for PerTag<T> {
 pub enum RowBasis {
     /// Its own coefficients.
     Own,
-    /// `cᵢ = Σₖ weights[k] · g_{first+k}`, the bases of [`Rows::base`].
+    /// `cᵢ = Σₖ weights[k] · g_{first+k}`, the bases filled through [`Rows::base_mut`].
     Combination {
         /// The first of its three bases.
         first: usize,
