@@ -4,8 +4,10 @@
 //! needs is the pull force, read off its rows' multipliers (docs/physics.md, "Grip").
 //!
 //! The grip's target at time t of a pull that started at t₀ with the tail end at x₀ and the
-//! tail's orientation R₀ is `x*(t) = x₀ + v (min(t, t₁) − t₀)` (t₁ when the phase ended: the
-//! grip then holds the end where the pull left it, until a later pull takes over) and R₀.
+//! tail's orientation R₀ is `x*(t) = x₀ + v τ` with τ = min(t, t₁) − t₀ (t₁ when the phase
+//! ended: the grip then holds the end where the pull left it, until a later pull takes over)
+//! and R₀; with a ramp of r seconds the speed rises linearly and x*(t) = x₀ + v τ²/(2r) for
+//! τ < r, x₀ + v (τ − r/2) after.
 
 use glam::{DQuat, DVec3};
 use serde::{Deserialize, Serialize};
@@ -22,6 +24,10 @@ pub struct PullPhase {
     pub speed_cm_per_s: f64,
     /// World direction of the pull (normalised when used), e.g. `(1.0, 0.0, 0.0)`.
     pub direction: (f64, f64, f64),
+    /// Time over which the speed rises linearly from 0 (s), ≥ 0 (0: at once, as a clamp
+    /// that starts at full speed; its first step then takes the jerk).
+    #[serde(default)]
+    pub ramp_s: f64,
     /// When the phase ends, e.g. `(seconds: 60.0)`.
     pub until: Until,
 }
@@ -49,8 +55,11 @@ pub struct PullAnchor {
     pub end_cm: [f64; 3],
     /// The tail's orientation at the start (a unit quaternion x, y, z, w).
     pub rotation: [f64; 4],
-    /// The pull's velocity (cm/s).
+    /// The pull's velocity once ramped up (cm/s).
     pub velocity_cm_per_s: [f64; 3],
+    /// The ramp's duration (s).
+    #[serde(default)]
+    pub ramp_s: f64,
 }
 
 /// The tail end of `context`: the last body, its far end and its orientation.
@@ -73,13 +82,33 @@ impl PullAnchor {
             end_cm: end.to_array(),
             rotation: rotation.to_array(),
             velocity_cm_per_s: pull.velocity().to_array(),
+            ramp_s: pull.ramp_s,
         }
     }
 
-    /// The grip's target end at time `t`: `x₀ + v (min(t, t₁) − t₀)` (cm).
+    /// The distance pulled by time `t` over the speed (s), τ = min(t, t₁) − t₀ into the
+    /// pull: `τ²/(2r)` while the speed ramps up over r, then `τ − r/2`.
+    fn pulled_s(&self, t: f64) -> f64 {
+        let tau = (self.stopped_s.map_or(t, |stopped| t.min(stopped)) - self.since_s).max(0.0);
+        let ramp = self.ramp_s;
+        if tau < ramp { tau * tau / (2.0 * ramp) } else { tau - 0.5 * ramp }
+    }
+
+    /// The grip's target end at time `t`: x₀ + v·[`pulled_s`](Self::pulled_s) (cm).
     pub fn target(&self, t: f64) -> DVec3 {
-        let moving_s = self.stopped_s.map_or(t, |stopped| t.min(stopped)) - self.since_s;
-        DVec3::from_array(self.end_cm) + DVec3::from_array(self.velocity_cm_per_s) * moving_s
+        DVec3::from_array(self.end_cm)
+            + DVec3::from_array(self.velocity_cm_per_s) * self.pulled_s(t)
+    }
+
+    /// The target's velocity at time `t` (cm/s): v·min(1, τ/r) while the pull runs, zero
+    /// after its phase.
+    pub fn velocity(&self, t: f64) -> DVec3 {
+        if self.stopped_s.is_some_and(|stopped| t >= stopped) {
+            return DVec3::ZERO;
+        }
+        let tau = (t - self.since_s).max(0.0);
+        let ramp = if self.ramp_s > 0.0 { (tau / self.ramp_s).min(1.0) } else { 1.0 };
+        DVec3::from_array(self.velocity_cm_per_s) * ramp
     }
 
     /// The grip for the step of `context`: the tail end, its target position and velocity,
@@ -87,8 +116,6 @@ impl PullAnchor {
     pub fn grip(&self, context: &ControlContext<'_>) -> Grip {
         let t = context.state.t;
         let (body, end, rotation) = tail_end(context);
-        let moving = self.stopped_s.is_none_or(|stopped| t < stopped);
-        let velocity = if moving { DVec3::from_array(self.velocity_cm_per_s) } else { DVec3::ZERO };
         let held = DQuat::from_array(self.rotation);
         let turn = (held * rotation.inverse()).normalize();
         // The shorter way round: q and −q are the same rotation.
@@ -97,7 +124,7 @@ impl PullAnchor {
             body,
             point: end,
             target: self.target(t),
-            velocity,
+            velocity: self.velocity(t),
             rotation_error: turn.to_scaled_axis(),
         }
     }
@@ -115,6 +142,7 @@ mod tests {
             end_cm: [10.0, 0.0, 0.0],
             rotation: DQuat::IDENTITY.to_array(),
             velocity_cm_per_s: [0.5, 0.0, 0.0],
+            ramp_s: 0.0,
         }
     }
 
@@ -125,12 +153,27 @@ mod tests {
         assert_eq!(anchor.target(6.0), DVec3::new(12.0, 0.0, 0.0));
         anchor.stopped_s = Some(4.0);
         assert_eq!(anchor.target(6.0), DVec3::new(11.0, 0.0, 0.0));
+        assert_eq!(anchor.velocity(6.0), DVec3::ZERO);
+    }
+
+    #[test]
+    fn a_ramped_pull_speeds_up_linearly_and_then_lags_half_its_ramp() {
+        let anchor = PullAnchor { ramp_s: 2.0, ..anchor() };
+        assert_eq!(anchor.velocity(3.0), DVec3::new(0.25, 0.0, 0.0));
+        assert_eq!(anchor.target(3.0), DVec3::new(10.0 + 0.5 * 0.25, 0.0, 0.0));
+        assert_eq!(anchor.velocity(5.0), DVec3::new(0.5, 0.0, 0.0));
+        // After the ramp: x₀ + v(τ − r/2), τ = 3 s.
+        assert_eq!(anchor.target(5.0), DVec3::new(10.0 + 0.5 * 2.0, 0.0, 0.0));
     }
 
     #[test]
     fn the_velocity_is_the_speed_along_the_normalised_direction() {
-        let pull =
-            PullPhase { speed_cm_per_s: 0.6, direction: (0.0, 3.0, 4.0), until: Until::default() };
+        let pull = PullPhase {
+            speed_cm_per_s: 0.6,
+            direction: (0.0, 3.0, 4.0),
+            ramp_s: 0.0,
+            until: Until::default(),
+        };
         assert!((pull.velocity() - DVec3::new(0.0, 0.36, 0.48)).length() < 1e-15);
     }
 }

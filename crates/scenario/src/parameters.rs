@@ -170,6 +170,7 @@ pub const PARAMETERS: &[Parameter] = &[
     p("phases[].Pull", "-", "-", "phase: the tail end gripped (clamped) and moved at a prescribed speed; held still after the phase"),
     p("Pull.speed_cm_per_s", "cm/s", "required", "speed of the tail end, ≥ 0 (0 clamps it in place)"),
     p("Pull.direction", "-", "required", "(x, y, z): the world direction of the pull (normalised)"),
+    p("Pull.ramp_s", "s", "0", "time over which the speed rises linearly from 0 (0: at once)"),
     p("Pull.until", "-", "required", "when the phase ends: fields as Thigmotaxis.until"),
 ];
 
@@ -318,6 +319,7 @@ mod tests {
                 Phase::Pull(PullPhase {
                     speed_cm_per_s: 0.5,
                     direction: (1.0, 0.0, 0.0),
+                    ramp_s: 0.5,
                     until: Until { seconds: 1.0, ..Until::default() },
                 }),
                 Phase::Load(LoadPhase {

@@ -258,6 +258,7 @@ impl Checker<'_> {
     fn pull(&mut self, phase: &PullPhase) -> Result<(), AnatomyError> {
         self.check("speed_cm_per_s", phase.speed_cm_per_s, Range::NonNegative)?;
         self.direction("direction", phase.direction)?;
+        self.check("ramp_s", phase.ramp_s, Range::NonNegative)?;
         self.until(&phase.until)
     }
 
