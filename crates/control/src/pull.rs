@@ -94,7 +94,7 @@ impl PullAnchor {
         if tau < ramp { tau * tau / (2.0 * ramp) } else { tau - 0.5 * ramp }
     }
 
-    /// The grip's target end at time `t`: x₀ + v·[`pulled_s`](Self::pulled_s) (cm).
+    /// The grip's target end at time `t`: x₀ + v·(the distance pulled over the speed) (cm).
     pub fn target(&self, t: f64) -> DVec3 {
         DVec3::from_array(self.end_cm)
             + DVec3::from_array(self.velocity_cm_per_s) * self.pulled_s(t)
