@@ -1,6 +1,6 @@
 //! The controller interface: what a controller sees and what it may do.
 
-use glam::DVec3;
+use glam::{DMat3, DVec3};
 use hagfish_geometry::{Centreline, SelfContact};
 use hagfish_tree::{Data, Model, State};
 
@@ -34,6 +34,16 @@ impl ControlContext<'_> {
     pub fn centre_velocity(&self, body: usize) -> DVec3 {
         self.kinematics.velocities[body].point_velocity(self.centre(body))
     }
+
+    /// The tail end, where loads and grips act: the last body, the far end of its axis
+    /// (`centre + (ℓ/2) x̂`, cm) and its frame's rotation.
+    pub fn tail_end(&self) -> (usize, DVec3, DMat3) {
+        let tail = self.model.body_count() - 1;
+        let frame = &self.kinematics.body_frames[tail];
+        let end =
+            frame.translation + frame.rotation.col(0) * (0.5 * self.model.bodies()[tail].length);
+        (tail, end, frame.rotation)
+    }
 }
 
 /// A point force on a body, applied explicitly for one step.
@@ -58,7 +68,7 @@ pub struct PointDamper {
     pub coefficient: f64,
 }
 
-/// A grip on a body point (`docs/physics.md`, "Grip"): six equality rows hold the point's
+/// A grip on a body point (`docs/physics.md`, "Pulls at prescribed speed (grip)"): six equality rows hold the point's
 /// velocity at `velocity + (β/h)(target − point)` and the body's angular velocity at
 /// `(β/h) rotation_error`, β the head rows' drift correction, so that the point follows its
 /// target and the body keeps its orientation. The rows' multipliers are the grip's force and

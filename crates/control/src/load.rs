@@ -50,11 +50,8 @@ impl LoadPhase {
 
     /// Applies the load at the tail end for the step of `context`.
     pub fn actuate(&self, started_at: f64, context: &ControlContext<'_>, out: &mut Actuation) {
-        let tail = context.model.body_count() - 1;
-        let frame = &context.kinematics.body_frames[tail];
-        let axis = frame.rotation.col(0);
-        let end = frame.translation + axis * (0.5 * context.model.bodies()[tail].length);
-        let force = self.force(context.state.t, started_at, axis);
+        let (tail, end, rotation) = context.tail_end();
+        let force = self.force(context.state.t, started_at, rotation.col(0));
         out.forces.push(PointForce { body: tail, point: end, force });
     }
 }

@@ -1,7 +1,7 @@
 //! A pull at prescribed speed: the tail end gripped (clamped in position and orientation) and
 //! moved at a constant velocity, the way a testing machine pulls a rod (Choi, Tong, Jawed &
 //! Joo 2021 clamp both ends of their rod and pull them apart at 3–9 mm/s). The force the grip
-//! needs is the pull force, read off its rows' multipliers (docs/physics.md, "Grip").
+//! needs is the pull force, read off its rows' multipliers (docs/physics.md, "Pulls at prescribed speed (grip)").
 //!
 //! The grip's target at time t of a pull that started at t₀ with the tail end at x₀ and the
 //! tail's orientation R₀ is `x*(t) = x₀ + v τ` with τ = min(t, t₁) − t₀ (t₁ when the phase
@@ -62,25 +62,16 @@ pub struct PullAnchor {
     pub ramp_s: f64,
 }
 
-/// The tail end of `context`: the last body, its far end and its orientation.
-fn tail_end(context: &ControlContext<'_>) -> (usize, DVec3, DQuat) {
-    let tail = context.model.body_count() - 1;
-    let frame = &context.kinematics.body_frames[tail];
-    let axis = frame.rotation.col(0);
-    let end = frame.translation + axis * (0.5 * context.model.bodies()[tail].length);
-    (tail, end, DQuat::from_mat3(&frame.rotation))
-}
-
 impl PullAnchor {
     /// The anchor of `pull`, phase `phase`, starting now with the tail as `context` sees it.
     pub fn start(pull: &PullPhase, phase: usize, context: &ControlContext<'_>) -> Self {
-        let (_, end, rotation) = tail_end(context);
+        let (_, end, rotation) = context.tail_end();
         Self {
             phase,
             since_s: context.state.t,
             stopped_s: None,
             end_cm: end.to_array(),
-            rotation: rotation.to_array(),
+            rotation: DQuat::from_mat3(&rotation).to_array(),
             velocity_cm_per_s: pull.velocity().to_array(),
             ramp_s: pull.ramp_s,
         }
@@ -115,9 +106,9 @@ impl PullAnchor {
     /// and the rotation vector that turns the tail's orientation back to R₀.
     pub fn grip(&self, context: &ControlContext<'_>) -> Grip {
         let t = context.state.t;
-        let (body, end, rotation) = tail_end(context);
+        let (body, end, rotation) = context.tail_end();
         let held = DQuat::from_array(self.rotation);
-        let turn = (held * rotation.inverse()).normalize();
+        let turn = (held * DQuat::from_mat3(&rotation).inverse()).normalize();
         // The shorter way round: q and −q are the same rotation.
         let turn = if turn.w < 0.0 { -turn } else { turn };
         Grip {

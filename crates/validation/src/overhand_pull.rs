@@ -119,26 +119,14 @@ pub fn run(
     };
     pull.speed_cm_per_s = 2.0 * end_speed_cm_per_s;
     pull.until.seconds = MAX_PULL_CM / pull.speed_cm_per_s;
-    let pull_s = pull.until.seconds;
-    // The rest before the pull: the phases before it, each a hold or a still grip.
-    let rest_s: f64 = scenario
-        .phases
-        .iter()
-        .rev()
-        .skip(1)
-        .map(|phase| match phase {
-            Phase::Hold(seconds) => *seconds,
-            Phase::Pull(still) => still.until.seconds,
-            _ => 0.0,
-        })
-        .sum();
-    let steps = ((rest_s + pull_s) / time_step_s).round() as u64;
+    let last_phase = scenario.phases.len() - 1;
     let (mut world, mut controller) = loaded.build()?;
     let radius = world.model().bodies()[0].radius;
     let start = knot_name(&world);
     let clock = Instant::now();
     let (mut samples, mut deepest, mut end) = (Vec::new(), 0.0f64, PullEnd::Distance);
-    while world.steps() < steps {
+    // Until the last phase (the pull) is over; the phases before it rest with a still grip.
+    while !controller.finished() {
         let penetration = match world.step(&mut controller) {
             Ok(report) => report.max_self_penetration,
             Err(error) => {
@@ -146,16 +134,16 @@ pub fn run(
                 break;
             }
         };
-        let pulling = world.state().t > rest_s;
-        if pulling {
-            deepest = deepest.max(penetration);
-        }
+        let Some(anchor) = controller.progress().pull.filter(|a| a.phase == last_phase) else {
+            continue;
+        };
+        deepest = deepest.max(penetration);
         let data = world.data();
-        let Some(grip) = data.actuation.grip.filter(|_| pulling) else { continue };
+        let Some(grip) = data.actuation.grip else { continue };
         let (force, _) = grip_wrench(&data.rows, data.solver.multipliers(), time_step_s);
         let direction = grip.velocity.normalize_or_zero();
         let sample = PullSample {
-            time_s: world.state().t - rest_s,
+            time_s: world.state().t - anchor.since_s,
             end_to_end_cm: grip.point.length(),
             force_dyn: force.dot(direction),
         };

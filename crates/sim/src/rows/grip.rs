@@ -1,4 +1,4 @@
-//! Grip rows (`docs/physics.md`, "Grip"; `hagfish_control::Grip`): six equality rows that
+//! Grip rows (`docs/physics.md`, "Pulls at prescribed speed (grip)"; `hagfish_control::Grip`): six equality rows that
 //! hold a body point on a moving target and the body at a held orientation,
 //! `e_kᵀ P(x) q̇ = e_k·(v* + (β/h)(x* − x))` and `e_kᵀ Ω q̇ = e_k·(β/h) θ` for the world axes
 //! e_k, with P(x) the point's Jacobian, Ω the body's angular-velocity Jacobian, θ the rotation
@@ -17,7 +17,7 @@ use super::RowGroup;
 /// The world axes of the grip's rows: ids 0–2 the linear rows, 3–5 the angular ones.
 const AXES: [DVec3; 3] = [DVec3::X, DVec3::Y, DVec3::Z];
 
-/// Appends the six rows of `grip`, ids 0…5 (see [`grip_row_axis`]).
+/// Appends the six rows of `grip`, ids 0…5 (see [`grip_row_push`]).
 pub fn add_grip_rows(
     model: &Model,
     data: &Data,
@@ -43,10 +43,18 @@ pub fn add_grip_rows(
     }
 }
 
-/// What grip row `id` pushes along: `(axis, true)` for a force along the world axis (ids
-/// 0–2), `(axis, false)` for a moment about it (ids 3–5).
-pub fn grip_row_axis(id: usize) -> (DVec3, bool) {
-    (AXES[id % 3], id < 3)
+/// What a grip row's multiplier is.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum GripPush {
+    /// A force along this world axis (ids 0–2).
+    Force(DVec3),
+    /// A moment about this world axis (ids 3–5).
+    Moment(DVec3),
+}
+
+/// What grip row `id` pushes along.
+pub fn grip_row_push(id: usize) -> GripPush {
+    if id < 3 { GripPush::Force(AXES[id % 3]) } else { GripPush::Moment(AXES[id % 3]) }
 }
 
 /// The grip's force (dyn) and moment (dyn·cm) on its body in the last solve: the multipliers
@@ -57,9 +65,9 @@ pub fn grip_wrench(rows: &Rows, multipliers: &[f64], time_step: f64) -> (DVec3, 
         if RowGroup::of(source.tag) != Some(RowGroup::Grip) {
             continue;
         }
-        match grip_row_axis(source.id) {
-            (axis, true) => force += axis * (lambda / time_step),
-            (axis, false) => moment += axis * (lambda / time_step),
+        match grip_row_push(source.id) {
+            GripPush::Force(axis) => force += axis * (lambda / time_step),
+            GripPush::Moment(axis) => moment += axis * (lambda / time_step),
         }
     }
     (force, moment)

@@ -22,7 +22,7 @@ pub enum RowGroup {
     /// step's self contacts (the same contact's core row is a [`RowGroup::Contact`] row).
     Skin,
     /// A grip on a body point (`hagfish_control::Grip`); id: the row's axis (0–2 force, 3–5
-    /// moment; [`crate::rows::grip_row_axis`]).
+    /// moment; [`crate::rows::grip_row_push`]).
     Grip,
 }
 

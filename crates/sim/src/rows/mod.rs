@@ -15,7 +15,7 @@ mod wall;
 pub use friction::{
     ConeForm, Friction, MAX_FRICTION_EDGES, contact_directions, wall_contact_offset,
 };
-pub use grip::{add_grip_rows, grip_row_axis, grip_wrench};
+pub use grip::{GripPush, add_grip_rows, grip_row_push, grip_wrench};
 pub use group::RowGroup;
 pub use head::add_head_rows;
 pub use limits::{add_limit_rows, add_overshooting_limit_rows, overshoots_limit};
