@@ -261,17 +261,8 @@ fn slide_length_change(m: &Metrics) -> Option<f64> {
 /// Mean |f| over the DOFs and the frames of the slide phase (`None` without a slide frame in
 /// `forces`).
 fn slide_force(m: &Metrics, forces: &ThigmoForces) -> Option<f64> {
-    let frames: Vec<usize> =
-        (0..forces.times.len().min(m.frames())).filter(|&f| m.phase[f] == SLIDE_PHASE).collect();
-    let count = frames.len() * 3 * forces.joints;
-    let sum: f64 = frames
-        .iter()
-        .flat_map(|&f| {
-            forces.values.iter().flat_map(move |axis| &axis[f * forces.joints..][..forces.joints])
-        })
-        .map(|x| x.abs())
-        .sum();
-    (count > 0).then(|| sum / count as f64)
+    let frames: Vec<usize> = (0..m.frames()).filter(|&f| m.phase[f] == SLIDE_PHASE).collect();
+    forces.mean_abs(&frames)
 }
 
 /// Largest |f| and mean |f| over the DOFs of the frames where any DOF's force is non-zero.

@@ -4,6 +4,7 @@
 
 mod common;
 
+mod around_cylinder;
 mod body_command;
 mod body_counts;
 mod commands;

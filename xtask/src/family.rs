@@ -55,6 +55,9 @@ pub enum Measure {
     /// The modes of a phase's force field and the basis against ES103's
     /// ([`crate::family_modes`]).
     Modes(crate::family_modes::ModesMeasure),
+    /// The slide of a knot tied around the scenario's first still cylinder: its turns about
+    /// it and its travel along it beside the slide's measures ([`crate::family_cylinder`]).
+    Cylinder,
 }
 
 /// The header of the loosen/tighten table.
@@ -92,7 +95,7 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
     // Read once here, so that a scenario that cannot run is said once, not by every member.
     let loaded = LoadedScenario::load(request.scenario).map_err(|e| e.to_string())?;
     let controls = match request.measure {
-        Measure::Slide | Measure::Modes(_) => None,
+        Measure::Slide | Measure::Modes(_) | Measure::Cylinder => None,
         Measure::LoosenTighten => Some(control_phases(&loaded, request.scenario)?),
     };
     let runner = Runner { hagfish: &hagfish, work: &work, es103: &es103, request };
@@ -102,6 +105,12 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
         Measure::Modes(modes) => {
             print_command(request, members.len(), "modes");
             return crate::family_modes::run(&runner, &members, modes, loaded.scenario.time_step_s);
+        }
+        Measure::Cylinder => {
+            let axis = crate::family_cylinder::cylinder_axis(&loaded)?;
+            print_command(request, members.len(), "cylinder");
+            let step = loaded.scenario.time_step_s;
+            return crate::family_cylinder::run(&runner, &members, axis, step);
         }
     };
     if let Some(controls) = controls {
@@ -152,12 +161,19 @@ fn print_command(request: &Request<'_>, members: usize, measure: &str) {
     }
     println!(
         "`cargo xtask family --scenario {} --knot {} --measure {measure}{extra}{}{}` ({members} \
-         members):\n",
+         member{}):\n",
         request.scenario.display(),
         request.knot,
-        request.sets.iter().map(|s| format!(" --set {s}")).collect::<String>(),
+        request.sets.iter().map(|s| format!(" --set {}", shell_word(s))).collect::<String>(),
         request.only.iter().map(|s| format!(" --only {s}")).collect::<String>(),
+        if members == 1 { "" } else { "s" },
     );
+}
+
+/// `text` as one shell word: in double quotes when it holds a space, a parenthesis or a
+/// bracket (`friction=Some((coefficient: 0.3))`), so that a printed command can be pasted.
+fn shell_word(text: &str) -> String {
+    if text.contains([' ', '(', ')', '[', ']']) { format!("\"{text}\"") } else { text.into() }
 }
 
 /// `work` applied to each of `items` by `jobs` threads at a time; the results in the items'

@@ -7,7 +7,7 @@
 //!   regression and `cargo test --workspace --release` (`test_all.rs`).
 //! - `knotted [--export PATH] [--steps N] [--repeat R] [--time-step H] [--backend B]`: exports and times
 //!   the knotted benchmark state (`knotted.rs`).
-//! - `family [--measure slide|loosen-tighten|modes] …`: runs a knot scenario on the family
+//! - `family [--measure slide|loosen-tighten|modes|cylinder] …`: runs a knot scenario on the family
 //!   of bodies and prints its table (`family.rs`, `family_modes.rs`).
 //! - `validate`: runs the checks against elastic-rod theory (`hagfish-validation`) and prints
 //!   the table of `docs/validation.md`; fails if a check is outside its tolerance.
@@ -16,6 +16,7 @@
 
 mod family;
 mod family_cases;
+mod family_cylinder;
 mod family_modes;
 mod golden;
 mod knotted;
@@ -124,9 +125,15 @@ enum Task {
         #[arg(long, value_name = "NAME")]
         only: Vec<String>,
         /// What to measure: `slide` (tie → tighten → slide), `loosen-tighten` (tie →
-        /// loosen → tighten, each phase against a control run with its targets at zero) or
-        /// `modes` (the modes of a phase's force field and each basis against ES103's).
-        #[arg(long, value_parser = ["slide", "loosen-tighten", "modes"], default_value = "slide")]
+        /// loosen → tighten, each phase against a control run with its targets at zero),
+        /// `modes` (the modes of a phase's force field and each basis against ES103's) or
+        /// `cylinder` (a slide around the scenario's first cylinder: the knot's turns about it
+        /// and its travel along it, e.g. `--scenario data/scenarios/pole.ron`).
+        #[arg(
+            long,
+            value_parser = ["slide", "loosen-tighten", "modes", "cylinder"],
+            default_value = "slide"
+        )]
         measure: String,
         /// `--measure modes`: the phase decomposed.
         #[arg(long, default_value = "slide")]
@@ -135,7 +142,7 @@ enum Task {
         /// all three when none is given.
         #[arg(long, value_name = "KIND", value_parser = str::parse::<KindSelection>)]
         kind: Vec<KindSelection>,
-        /// `--measure slide` or `modes`: runs per member, the unperturbed one and N − 1
+        /// `--measure slide`, `modes` or `cylinder`: runs per member, the unperturbed one and N − 1
         /// rounding perturbations of its time step, h(1 + j·1e-12) (the modes with the spread
         /// over them).
         #[arg(long, value_name = "N", default_value_t = 1)]
@@ -196,7 +203,7 @@ fn main() -> ExitCode {
                 return ExitCode::from(2);
             }
             if measure == "loosen-tighten" && rounding != 1 {
-                eprintln!("error: --rounding is an option of --measure slide and modes");
+                eprintln!("error: --rounding is an option of --measure slide, modes and cylinder");
                 return ExitCode::from(2);
             }
             let measure = match measure.as_str() {
@@ -209,6 +216,7 @@ fn main() -> ExitCode {
                     };
                     family::Measure::Modes(family_modes::ModesMeasure { phase, kinds })
                 }
+                "cylinder" => family::Measure::Cylinder,
                 _ => family::Measure::Slide,
             };
             let request = family::Request {

@@ -57,6 +57,21 @@ impl ThigmoForces {
         self.times.len()
     }
 
+    /// The mean |f| over the DOFs of every joint and axis in `frames` (indices past the last
+    /// frame are left out), `None` for no frame: a phase's mean force (dyn·cm).
+    pub fn mean_abs(&self, frames: &[usize]) -> Option<f64> {
+        let frames: Vec<usize> = frames.iter().copied().filter(|&f| f < self.frames()).collect();
+        let count = frames.len() * AXES.len() * self.joints;
+        let sum: f64 = frames
+            .iter()
+            .flat_map(|&f| {
+                self.values.iter().flat_map(move |a| &a[f * self.joints..][..self.joints])
+            })
+            .map(|x| x.abs())
+            .sum();
+        (count > 0).then(|| sum / count as f64)
+    }
+
     /// The largest magnitude on axis `a` (0 if there is none).
     pub fn max_abs(&self, a: usize) -> f64 {
         self.values[a].iter().fold(0.0, |m, v| m.max(v.abs()))
@@ -79,6 +94,10 @@ mod tests {
         assert_eq!(f.values[1], vec![0.0, 0.0, 30.0, 0.0]);
         assert_eq!(f.values[2], vec![0.0, -2.0, 0.0, 0.0]);
         assert_eq!((f.max_abs(0), f.max_abs(1), f.max_abs(2)), (1.0, 30.0, 2.0));
+        // Means over 3 axes × 2 joints of the frames asked for; frame 5 does not exist.
+        assert_eq!(f.mean_abs(&[0]), Some(3.0 / 6.0));
+        assert_eq!(f.mean_abs(&[0, 1, 5]), Some(33.0 / 12.0));
+        assert_eq!(f.mean_abs(&[5]), None);
         std::fs::write(&path, "frame,time_s,joint,axis,group,value_dyn_cm\n0,0,0,W,thigmo,1\n")
             .expect("write");
         let e = ThigmoForces::read(&path).expect_err("bad axis");

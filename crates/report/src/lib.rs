@@ -43,6 +43,7 @@
 //! ```
 
 mod animation;
+mod around_cylinder;
 mod centreline;
 mod colour;
 mod csv;
@@ -71,6 +72,7 @@ mod test_files;
 mod vtk;
 mod wcon;
 
+pub use around_cylinder::{KnotAroundCylinder, turns_about_axis};
 pub use centreline::Centreline;
 pub use csv::{CsvFile, MAX_LINE_BYTES, Record, Rows};
 pub use error::ReportError;
