@@ -172,7 +172,7 @@ fn print_command(request: &Request<'_>, members: usize, measure: &str) {
 
 /// `text` as one shell word: in double quotes when it holds a space, a parenthesis or a
 /// bracket (`friction=Some((coefficient: 0.3))`), so that a printed command can be pasted.
-fn shell_word(text: &str) -> String {
+pub fn shell_word(text: &str) -> String {
     if text.contains([' ', '(', ')', '[', ']']) { format!("\"{text}\"") } else { text.into() }
 }
 

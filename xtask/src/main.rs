@@ -103,6 +103,10 @@ enum Task {
         /// Write each run's samples to `DIR/n<N>_u<U>.csv`.
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
+        /// An override of `data/validation/overhand_pull.ron` for every run, as `hagfish run
+        /// --set` (repeatable), e.g. `--set 'body="/path/rod.ron"'`.
+        #[arg(long = "set", value_name = "PATH=VALUE")]
+        sets: Vec<String>,
     },
     /// Runs a knot scenario on the family of bodies and time steps (ES103 and 15 variants)
     /// and prints its knot table (Markdown), as in docs/physics.md.
@@ -179,7 +183,7 @@ fn main() -> ExitCode {
             knotted::run(&workspace_root(), &request).map(|()| true)
         }
         Task::Validate => validate::run(&workspace_root()),
-        Task::Overhand { turns, speeds, time_step, stop_force, jobs, out } => {
+        Task::Overhand { turns, speeds, time_step, stop_force, jobs, out, sets } => {
             if let Some(n) = turns.iter().find(|n| !(1..=4).contains(*n)) {
                 eprintln!("error: --turns {n}: the knots have 1 to 4 turns (data/knots/imc-der)");
                 return ExitCode::from(2);
@@ -191,6 +195,7 @@ fn main() -> ExitCode {
                 stop_force,
                 jobs,
                 out: out.as_deref(),
+                sets: &sets,
             };
             overhand::run(&workspace_root(), &request).map(|()| true)
         }

@@ -8,9 +8,10 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
+use hagfish_scenario::Override;
 use hagfish_validation::overhand_pull::{self, PullEnd, PulledKnot};
 
-use crate::family::in_parallel;
+use crate::family::{in_parallel, shell_word};
 
 /// The smoothed curve's spacing (cm of end-to-end distance).
 const SPACING_CM: f64 = 0.25;
@@ -37,14 +38,21 @@ pub struct Request<'a> {
     pub jobs: usize,
     /// Where to write the samples, if anywhere.
     pub out: Option<&'a Path>,
+    /// `--set PATH=VALUE` overrides of `data/validation/overhand_pull.ron` for every run.
+    pub sets: &'a [String],
 }
 
 /// Runs the grid and prints its tables.
 pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
     let cases: Vec<(usize, f64)> =
         request.turns.iter().flat_map(|&n| request.speeds.iter().map(move |&u| (n, u))).collect();
+    let sets: Vec<Override> = request
+        .sets
+        .iter()
+        .map(|s| Override::parse(s).map_err(|e| format!("--set {s}: {e}")))
+        .collect::<Result<_, _>>()?;
     let runs = in_parallel(&cases, request.jobs, |&case| {
-        overhand_pull::run(root, case, request.time_step, request.stop_force)
+        overhand_pull::run(root, case, request.time_step, request.stop_force, &sets)
     })?;
     let runs: Vec<PulledKnot> =
         runs.into_iter().collect::<Result<_, _>>().map_err(|e| e.to_string())?;
@@ -54,12 +62,13 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
     println!("{}", run_table(&runs));
     println!("{}", speed_table(&runs));
     println!(
-        "`cargo xtask overhand --turns {} --speeds {} --time-step {} --stop-force {}`; μ = 0.1, \
-         data/validation/overhand_pull.ron",
+        "`cargo xtask overhand --turns {} --speeds {} --time-step {} --stop-force {}{}`; \
+         data/validation/overhand_pull.ron (μ = 0.1 unless set)",
         join(request.turns),
         join(request.speeds),
         request.time_step,
-        request.stop_force
+        request.stop_force,
+        request.sets.iter().map(|s| format!(" --set {}", shell_word(s))).collect::<String>(),
     );
     Ok(())
 }

@@ -97,17 +97,20 @@ fn trailing_mean_force(samples: &[PullSample]) -> Option<f64> {
 
 /// Pulls the n-turn knot with each end at `end_speed_cm_per_s`, steps of `time_step_s`, until
 /// the pull force, averaged over the last 0.5 cm of pull, reaches `stop_force_dyn` (or the ends
-/// are [`MAX_PULL_CM`] further apart).
+/// are [`MAX_PULL_CM`] further apart); `extra` overrides the scenario further (another rod:
+/// `body="…"`, another μ: `friction=…`), after the knot's starting curve is set.
 pub fn run(
     root: &Path,
     (turns, end_speed_cm_per_s): (usize, f64),
     time_step_s: f64,
     stop_force_dyn: f64,
+    extra: &[Override],
 ) -> Result<PulledKnot, ValidationError> {
     let shape = format!(
         "initial_shape=Some(Polyline((file: \"../knots/imc-der/n{turns}.txt\", cm_per_unit: 100.0)))"
     );
-    let sets = [Override::parse(&shape)?];
+    let mut sets = vec![Override::parse(&shape)?];
+    sets.extend_from_slice(extra);
     let mut loaded = LoadedScenario::load_with(root.join(SCENARIO), &sets)?;
     let scenario = &mut loaded.scenario;
     scenario.time_step_s = time_step_s;

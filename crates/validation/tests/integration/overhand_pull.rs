@@ -14,7 +14,7 @@ fn root() -> &'static Path {
 
 /// The trefoil pulled at `speed` (each end) until 110 dyn, at h = 0.02 s.
 fn trefoil(speed: f64) -> PulledKnot {
-    run(root(), (1, speed), 0.02, 110.0).expect("the pull runs")
+    run(root(), (1, speed), 0.02, 110.0, &[]).expect("the pull runs")
 }
 
 #[test]
