@@ -7,7 +7,7 @@
 //! kept): its knot drifts (by −3.6 to +7.0 cm along the pole in the 20 s, on three rounding
 //! replicates) but stays ≥ 0.15 L from the head.
 
-use crate::common::{ROOT, code_and_stderr, fresh_dir, run_hagfish};
+use crate::common::run_scenario;
 use glam::DVec3;
 use hagfish_report::{KnotAroundCylinder, KnotRun};
 
@@ -17,15 +17,7 @@ const LENGTH_CM: f64 = 42.4;
 /// Runs `pole.ron` into a fresh directory `name` with `--set` values `sets` and measures its
 /// slide and its slide around the pole (the scenario's: along +x through (0, −1.9, 0)).
 fn around(name: &str, sets: &[String]) -> (KnotRun, KnotAroundCylinder) {
-    let dir = fresh_dir(name);
-    let scenario = format!("{ROOT}/data/scenarios/pole.ron");
-    let out = dir.to_string_lossy();
-    let mut args = vec!["run", &scenario, "--quiet", "--out", &out];
-    for set in sets {
-        args.extend(["--set", set]);
-    }
-    let output = run_hagfish(&args);
-    assert!(output.status.success(), "{name}: {}", code_and_stderr(&output).1);
+    let dir = run_scenario(name, "data/scenarios/pole.ron", sets);
     let slide = KnotRun::read(&dir).unwrap_or_else(|e| panic!("{name}: {e}"));
     let around = KnotAroundCylinder::read(&dir, DVec3::new(0.0, -1.9, 0.0), DVec3::X)
         .unwrap_or_else(|e| panic!("{name}: {e}"));

@@ -35,6 +35,22 @@ where
     hagfish(args).output().expect("hagfish runs")
 }
 
+/// Runs the scenario `scenario` (a path from the repository root) quietly into a fresh
+/// directory `name` with the `--set` values `sets`, asserts that it succeeds, and returns the
+/// run directory.
+pub fn run_scenario(name: &str, scenario: &str, sets: &[String]) -> PathBuf {
+    let dir = fresh_dir(name);
+    let scenario = format!("{ROOT}/{scenario}");
+    let out = dir.to_string_lossy().into_owned();
+    let mut args = vec!["run", &scenario, "--quiet", "--out", &out];
+    for set in sets {
+        args.extend(["--set", set]);
+    }
+    let output = run_hagfish(&args);
+    assert!(output.status.success(), "{name}: {}", code_and_stderr(&output).1);
+    dir
+}
+
 /// The exit code and stderr of `output`.
 pub fn code_and_stderr(output: &Output) -> (Option<i32>, String) {
     (output.status.code(), String::from_utf8_lossy(&output.stderr).into_owned())

@@ -10,21 +10,13 @@
 //! on four of these trajectories. A tighten control whose loosened knot comes undone during
 //! that phase (2 of the 4 on the 35 cm body) counts as not tightened.
 
-use crate::common::{ROOT, code_and_stderr, es103_with, fresh_dir, run_hagfish};
+use crate::common::{es103_with, fresh_dir, run_scenario};
 use hagfish_bench_support::length_edits;
 use hagfish_report::LoosenTighten;
 
 /// Runs `loosen_tighten.ron` into a fresh directory `name` with `--set` values `sets`.
 fn sizes(name: &str, sets: &[String]) -> LoosenTighten {
-    let dir = fresh_dir(name);
-    let scenario = format!("{ROOT}/data/scenarios/loosen_tighten.ron");
-    let out = dir.to_string_lossy();
-    let mut args = vec!["run", &scenario, "--quiet", "--out", &out];
-    for set in sets {
-        args.extend(["--set", set]);
-    }
-    let output = run_hagfish(&args);
-    assert!(output.status.success(), "{name}: {}", code_and_stderr(&output).1);
+    let dir = run_scenario(name, "data/scenarios/loosen_tighten.ron", sets);
     LoosenTighten::read(&dir, "3_1").unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 

@@ -108,7 +108,7 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
         }
         Measure::Cylinder => {
             let axis = crate::family_cylinder::cylinder_axis(&loaded)?;
-            print_command(request, members.len(), "cylinder");
+            print_command(request, members.len() * request.rounding.max(1), "cylinder");
             let step = loaded.scenario.time_step_s;
             return crate::family_cylinder::run(&runner, &members, axis, step);
         }
@@ -124,14 +124,31 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
         rows.iter().for_each(|row| println!("{row}"));
         return Ok(());
     }
+    print_command(request, members.len() * request.rounding.max(1), measure);
+    let passing = format!("pass {}", SlideBounds::for_knot(request.knot));
+    let step = loaded.scenario.time_step_s;
+    run_judged(&runner, &members, header, &passing, |case| runner.slide_row(case, step))
+}
+
+/// Runs `row` on every case of `members` (each member and its rounding perturbations,
+/// `family_cases.rs`), `jobs` at a time, each row echoed to stderr as it comes; prints the
+/// table under `header` and below it how many runs `passing` (what they do to count: "pass
+/// the trefoil's slide bounds (…)"), naming what each other run missed. `row` gives a case's
+/// table row and, when it misses, how.
+pub fn run_judged(
+    runner: &Runner<'_>,
+    members: &[Variant],
+    header: &str,
+    passing: &str,
+    row: impl Fn(&Case<'_>) -> (String, Option<String>) + Sync,
+) -> Result<(), String> {
     let bodies: Vec<Result<PathBuf, String>> = members.iter().map(|v| runner.body(v)).collect();
-    let cases = cases(&members, &bodies, request.rounding);
-    let rows = in_parallel(&cases, request.jobs, |case| {
-        let row = runner.slide_row(case, loaded.scenario.time_step_s);
+    let cases = cases(members, &bodies, runner.request.rounding);
+    let rows = in_parallel(&cases, runner.request.jobs, |case| {
+        let row = row(case);
         eprintln!("{}", row.0);
         row
     })?;
-    print_command(request, rows.len(), measure);
     println!("{header}");
     rows.iter().for_each(|(row, _)| println!("{row}"));
     let failed: Vec<(String, &String)> = cases
@@ -140,10 +157,9 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
         .filter_map(|(c, (_, f))| f.as_ref().map(|f| (c.label(), f)))
         .collect();
     println!(
-        "\n{} of {} runs pass {}{}",
+        "\n{} of {} runs {passing}{}",
         rows.len() - failed.len(),
         rows.len(),
-        SlideBounds::for_knot(request.knot),
         if failed.is_empty() { "." } else { "; the others:" }
     );
     failed.iter().for_each(|(label, why)| println!("- {label}: {why}"));

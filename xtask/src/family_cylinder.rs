@@ -5,11 +5,12 @@
 //! along it ([`KnotAroundCylinder`]).
 
 use glam::DVec3;
+use hagfish_bench_support::Variant;
 use hagfish_report::{KnotAroundCylinder, KnotRun, SlideBounds};
 use hagfish_scenario::{LoadedScenario, ObstacleSpec};
 
-use crate::family::{Runner, in_parallel};
-use crate::family_cases::{Case, cases};
+use crate::family::{Runner, run_judged};
+use crate::family_cases::Case;
 
 /// The table's header.
 const HEADER: &str = "| variant | tied at (s) | held | turns about the cylinder (slide start, \
@@ -48,33 +49,12 @@ pub fn cylinder_axis(loaded: &LoadedScenario) -> Result<(DVec3, DVec3), String> 
 /// bounds and why.
 pub fn run(
     runner: &Runner<'_>,
-    members: &[hagfish_bench_support::Variant],
+    members: &[Variant],
     axis: (DVec3, DVec3),
     scenario_step: f64,
 ) -> Result<(), String> {
-    let bodies: Vec<_> = members.iter().map(|v| runner.body(v)).collect();
-    let cases = cases(members, &bodies, runner.request.rounding);
-    let rows = in_parallel(&cases, runner.request.jobs, |case| {
-        let row = row(runner, case, axis, scenario_step);
-        eprintln!("{}", row.0);
-        row
-    })?;
-    println!("{HEADER}");
-    rows.iter().for_each(|(row, _)| println!("{row}"));
-    let failed: Vec<(String, &String)> = cases
-        .iter()
-        .zip(&rows)
-        .filter_map(|(c, (_, f))| f.as_ref().map(|f| (c.label(), f)))
-        .collect();
-    println!(
-        "\n{} of {} runs stay around the cylinder in every slide frame and pass {}{}",
-        rows.len() - failed.len(),
-        rows.len(),
-        BOUNDS,
-        if failed.is_empty() { "." } else { "; the others:" }
-    );
-    failed.iter().for_each(|(label, why)| println!("- {label}: {why}"));
-    Ok(())
+    let passing = format!("stay around the cylinder in every slide frame and pass {BOUNDS}");
+    run_judged(runner, members, HEADER, &passing, |case| row(runner, case, axis, scenario_step))
 }
 
 /// The row of `case` and, when it misses the bounds, how.
