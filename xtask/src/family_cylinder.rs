@@ -80,7 +80,8 @@ fn row(
     let mut failures = slide.failures(&BOUNDS, knot, sign);
     if around.least_turns < 1.0 - 1e-6 || around.shown < 1.0 {
         failures.push(format!(
-            "least turns about the cylinder {:.2} on {:.0} % of the slide",
+            "least |turns| about the cylinder {:.2} (a knotted core on {:.0} % of the slide's \
+             frames)",
             around.least_turns,
             100.0 * around.shown
         ));

@@ -86,10 +86,12 @@ impl KnotAroundCylinder {
 }
 
 /// Turns of the polygon `points`, closed by the chord from its last point to its first,
-/// about the line through `point` along the unit `axis`: (1/2π) Σ Δφ over its edges, each
-/// Δφ the edge's turn about the line in (−π, π] (module docs). A point on the line adds no
-/// angle.
+/// about the line through `point` along `axis` (any length; NaN for a zero one): (1/2π) Σ Δφ
+/// over its edges, each Δφ the edge's turn about the line in (−π, π] (module docs). An integer
+/// when no edge passes within rounding of the line (the knotted core lies outside the
+/// cylinder, so its polygon cannot).
 pub fn turns_about_axis(points: &[DVec3], point: DVec3, axis: DVec3) -> f64 {
+    let Some(axis) = axis.try_normalize() else { return f64::NAN };
     let (u, v) = axis.any_orthonormal_pair();
     let angle = |x: DVec3| {
         let r = (x - point).reject_from_normalized(axis);
@@ -122,8 +124,9 @@ mod tests {
             assert!((turns_about_axis(&coil, origin, x) - turns).abs() < 1e-9, "{turns}");
             let reversed: Vec<DVec3> = coil.iter().rev().copied().collect();
             assert!((turns_about_axis(&reversed, origin, x) + turns).abs() < 1e-9);
-            // The axis may point either way and pass through any of its points.
-            let shifted = turns_about_axis(&coil, DVec3::new(7.0, 0.0, 0.0), -x);
+            // The axis may point either way, have any length and pass through any of its
+            // points.
+            let shifted = turns_about_axis(&coil, DVec3::new(7.0, 0.0, 0.0), -3.0 * x);
             assert!((shifted + turns).abs() < 1e-9);
         }
         // A loop of radius 2 about a line 5 cm away does not go round it.
@@ -135,5 +138,6 @@ mod tests {
         let above = turns_about_axis(&half, DVec3::new(0.0, 0.0, 0.1), x);
         assert!((above.abs() - 1.0).abs() < 1e-9, "{above}");
         assert!(turns_about_axis(&half, DVec3::new(0.0, 0.0, -0.1), x).abs() < 1e-9);
+        assert!(turns_about_axis(&half, origin, DVec3::ZERO).is_nan());
     }
 }
