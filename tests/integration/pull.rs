@@ -1,8 +1,9 @@
 //! A pull at prescribed speed (docs/physics.md, "Pulls at prescribed speed (grip)"): the
 //! clamped–clamped rod of `data/validation/clamped_buckling.ron`, its tail gripped and pushed
 //! toward the head, carries Euler's load 4π²B/L² through its last joint (`internal.csv`, the
-//! backward pass over the tree: not the grip's own reading), and a run stopped in the middle
-//! of the pull resumes to the same bytes (the grip's anchor is in the checkpoint).
+//! backward pass over the tree: not the grip's own reading), which is the grip's push in
+//! `metrics.csv`; and a run stopped in the middle of the pull resumes to the same bytes (the
+//! grip's anchor is in the checkpoint).
 
 use crate::common::{code_and_stderr, csv_rows, fresh_dir, manifest, run_hagfish};
 
@@ -25,6 +26,14 @@ fn a_gripped_rod_carries_euler_s_load_and_resumes_mid_pull_bit_for_bit() {
     let tension: f64 = last[4].parse().expect("a tension");
     let euler = 4.0 * std::f64::consts::PI.powi(2) * 490.9 / 100.0;
     assert!((-tension / euler - 1.0).abs() < 0.02, "compression {} against {euler}", -tension);
+    // The grip's own reading in metrics.csv: the push on the rod's end, toward the head, is
+    // the load its last joint carries.
+    let header = std::fs::read_to_string(straight.join("metrics.csv")).expect("metrics.csv");
+    let header = header.lines().next().expect("a header");
+    let column = header.split(',').position(|c| c == "grip_force_x_dyn").expect("grip force");
+    let metrics = csv_rows(&straight.join("metrics.csv"));
+    let push: f64 = metrics.last().expect("a frame")[column].parse().expect("a force");
+    assert!((push / tension - 1.0).abs() < 1e-3, "grip {push} against the last joint's {tension}");
 
     let stopped = dir.join("stopped");
     let output = run(&stopped, &["--stop-after-frames", "60"]);

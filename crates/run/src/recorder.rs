@@ -30,7 +30,7 @@ use crate::output_file::OutputFile;
 use crate::scientific::Scientific;
 use hagfish_sim::StepReport;
 use hagfish_sim::{DofLabel, GroupForces, RECORDED_GROUPS};
-use hagfish_sim::{IntervalMaxima, JointLoad};
+use hagfish_sim::{GripLoad, IntervalMaxima, JointLoad};
 
 /// Header of `forces.csv`: generalized constraint forces per joint, axis and group, averaged
 /// over the steps since the previous frame (dyn·cm).
@@ -39,16 +39,17 @@ pub const FORCES_HEADER: &str = "frame,time_s,joint,axis,group,value_dyn_cm";
 /// Header of `centreline.csv`.
 pub const CENTRELINE_HEADER: &str = "frame,time_s,body,x_cm,y_cm,z_cm";
 
-/// Header of `metrics.csv`. Contact and solver columns describe the step that ended at the
-/// frame (measured at its start); penetration and limit columns are maxima over the steps since
-/// the previous frame; knot columns describe the frame's centreline.
+/// Header of `metrics.csv`. Contact, solver and grip columns describe the step that ended at
+/// the frame (contacts measured at its start); penetration and limit columns are maxima over
+/// the steps since the previous frame; knot columns describe the frame's centreline.
 pub const METRICS_HEADER: &str = "frame,time_s,phase,self_contacts,wall_contacts,\
 knot,knot_agreement,knot_first_body,knot_last_body,knot_position_cm,\
 knot_core_start_cm,knot_core_end_cm,knot_core_length_cm,\
 knot_core_start_L,knot_core_mid_L,knot_core_length_L,knot_core_length_D,knot_writhe,\
 max_self_penetration_cm,max_self_penetration_rel,max_skin_compression,max_wall_penetration_cm,max_limit_excess_deg,\
 contacts_start_cm,contacts_end_cm,first_contact_cm,last_contact_cm,\
-contact_span_cm,contact_midpoint_cm,solver_path,solver_status,solver_iterations,slack_rows,slack_max_cm_s";
+contact_span_cm,contact_midpoint_cm,solver_path,solver_status,solver_iterations,slack_rows,slack_max_cm_s,\
+grip_x_cm,grip_y_cm,grip_z_cm,grip_force_x_dyn,grip_force_y_dyn,grip_force_z_dyn";
 
 /// Header of `contacts.csv`: the self contacts of the step that ended at the frame (detected
 /// at its start): spline parameters, arc lengths from the head, gap and the two points.
@@ -108,6 +109,8 @@ pub struct Frame<'a> {
     /// The load each joint transmitted in the step that ended at the frame (zeros for frame
     /// 0).
     pub internal: &'a [JointLoad],
+    /// The grip's pull in the step that ended at the frame, if a grip held the tail end.
+    pub grip: Option<GripLoad>,
 }
 
 /// An output file and its length in bytes at a checkpoint.
@@ -309,8 +312,13 @@ impl Recorder {
                 k.midpoint_cm()
             )
         });
+        let grip = frame.grip.map_or(",,,,,".to_string(), |g| {
+            let [x, y, z] = g.point.to_array();
+            let [fx, fy, fz] = g.force.to_array();
+            format!("{x:.6},{y:.6},{z:.6},{fx:.6e},{fy:.6e},{fz:.6e}")
+        });
         self.metrics.line(format_args!(
-            "{prefix},{},{},{},{knot},{agreement},{first},{last},{position},{core},{writhe},{:.6},{:.6},{:.6},{:.6},{:.4},{span},{:?},{:?},{},{},{:.3e}",
+            "{prefix},{},{},{},{knot},{agreement},{first},{last},{position},{core},{writhe},{:.6},{:.6},{:.6},{:.6},{:.4},{span},{:?},{:?},{},{},{:.3e},{grip}",
             CsvText(frame.phase),
             s.self_contacts,
             s.wall_contacts,

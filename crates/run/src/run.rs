@@ -428,6 +428,7 @@ impl Recording {
             labels: &self.labels,
             forces: &self.tally.forces,
             internal: &data.internal.loads,
+            grip: data.internal.grip,
         })?;
         summary.maxima.merge(&self.tally.maxima);
         self.tally.maxima = IntervalMaxima::default();

@@ -59,6 +59,18 @@ pub struct InternalForces {
     wrenches: Vec<Spatial>,
     /// The loads of the last step, one per joint, head first.
     pub loads: Vec<JointLoad>,
+    /// The grip's pull in the last step, when a grip held the tail end.
+    pub grip: Option<GripLoad>,
+}
+
+/// What a grip ([`hagfish_control::Grip`]) did in a step: where it held its body and the force
+/// its rows exerted there, F = Σ λ_k e_k / h over its three force rows.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct GripLoad {
+    /// The gripped point (cm, world).
+    pub point: DVec3,
+    /// The force on the body at that point (dyn, world).
+    pub force: DVec3,
 }
 
 impl InternalForces {
@@ -68,6 +80,7 @@ impl InternalForces {
             external: vec![Spatial::ZERO; bodies],
             wrenches: vec![Spatial::ZERO; bodies],
             loads: vec![JointLoad::default(); bodies],
+            grip: None,
         }
     }
 }
@@ -174,9 +187,10 @@ fn collect_row_wrenches(data: &mut StepData, h: f64, friction: Option<Friction>)
             Some(RowGroup::Head | RowGroup::Limit | RowGroup::Grip) | None => {}
         }
     }
-    if let Some(grip) = &data.actuation.grip {
+    data.internal.grip = data.actuation.grip.as_ref().map(|grip| {
         let (force, moment) = grip_wrench(&data.rows, multipliers, h);
         external[grip.body] +=
             Spatial::point_force(grip.point, force) + Spatial::new(moment, DVec3::ZERO);
-    }
+        GripLoad { point: grip.point, force }
+    });
 }

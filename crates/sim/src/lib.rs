@@ -64,7 +64,7 @@ pub use forces::{
     DofLabel, GroupForces, RECORDED_GROUPS, dof_arc_lengths, dof_labels, rest_dof_arc_lengths,
 };
 pub use hash::{fnv1a64, state_hash};
-pub use internal_forces::{InternalForces, JointLoad};
+pub use internal_forces::{GripLoad, InternalForces, JointLoad};
 pub use maxima::IntervalMaxima;
 pub use memory::{
     MemoryBound, MemoryHeadroom, available_memory, check_memory, step_memory_estimate,
