@@ -108,7 +108,7 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
         }
         Measure::Cylinder => {
             let axis = crate::family_cylinder::cylinder_axis(&loaded)?;
-            print_command(request, members.len() * request.rounding.max(1), "cylinder");
+            print_command(request, members.len(), "cylinder");
             let step = loaded.scenario.time_step_s;
             return crate::family_cylinder::run(&runner, &members, axis, step);
         }
@@ -124,7 +124,7 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
         rows.iter().for_each(|row| println!("{row}"));
         return Ok(());
     }
-    print_command(request, members.len() * request.rounding.max(1), measure);
+    print_command(request, members.len(), measure);
     let passing = format!("pass {}", SlideBounds::for_knot(request.knot));
     let step = loaded.scenario.time_step_s;
     run_judged(&runner, &members, header, &passing, |case| runner.slide_row(case, step))
