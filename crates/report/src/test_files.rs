@@ -104,7 +104,7 @@ pub fn synthetic(name: &str) -> TestDir {
         }
         let _ = writeln!(
             metrics,
-            "{f},{t:.4},form,{f},0,0_1,1.000,,,,,,,,,,,,0,0,0,0,0,,,,,,,Kkt,Solved,1,0,0e0"
+            "{f},{t:.4},form,{f},0,0_1,1.000,,,,,,,,,,,,0,0,0,0,0,,,,,,,Kkt,Solved,1,0,0e0,,,,,,"
         );
         for j in 0..2 {
             for (axis, group) in [("X", "thigmo"), ("Y", "thigmo"), ("Y", "limit")] {
