@@ -51,6 +51,18 @@ pub fn run_scenario(name: &str, scenario: &str, sets: &[String]) -> PathBuf {
     dir
 }
 
+/// Checks that the run in `stopped` was interrupted, resumes it to the end and asserts that
+/// each of `files` then holds the same bytes as in the uninterrupted run `straight`.
+pub fn assert_resumes_to_the_same_bytes(straight: &Path, stopped: &Path, files: &[&str]) {
+    assert_eq!(manifest(stopped)["status"], "interrupted");
+    let resumed = run_hagfish(["run", "--resume", &stopped.to_string_lossy(), "--quiet"]);
+    assert!(resumed.status.success(), "{}", code_and_stderr(&resumed).1);
+    for file in files {
+        let (a, b) = (std::fs::read(straight.join(file)), std::fs::read(stopped.join(file)));
+        assert!(a.expect(file) == b.expect(file), "{file} differs after the resume");
+    }
+}
+
 /// The exit code and stderr of `output`.
 pub fn code_and_stderr(output: &Output) -> (Option<i32>, String) {
     (output.status.code(), String::from_utf8_lossy(&output.stderr).into_owned())

@@ -5,7 +5,10 @@
 
 use std::path::Path;
 
-use crate::common::{code_and_stderr, csv_rows, fresh_dir, manifest, metrics_table, run_hagfish};
+use crate::common::{
+    assert_resumes_to_the_same_bytes, code_and_stderr, csv_rows, fresh_dir, manifest,
+    metrics_table, run_hagfish,
+};
 
 /// The first 15 s of `figure_eight.ron` (its tie ends at 13.1 s), into `out`, with `extra`
 /// arguments.
@@ -35,13 +38,11 @@ fn the_figure_eight_is_tied_by_following_its_template_and_resumes_bit_for_bit() 
     let stopped = dir.join("stopped");
     let output = tie_only(&stopped, &["--stop-after-frames", "80"]);
     assert!(output.status.success(), "{}", code_and_stderr(&output).1);
-    assert_eq!(manifest(&stopped)["status"], "interrupted");
-    let resumed = run_hagfish(["run", "--resume", &stopped.to_string_lossy(), "--quiet"]);
-    assert!(resumed.status.success(), "{}", code_and_stderr(&resumed).1);
-    for file in ["metrics.csv", "centreline.csv", "q.npy"] {
-        let (a, b) = (std::fs::read(straight.join(file)), std::fs::read(stopped.join(file)));
-        assert!(a.expect(file) == b.expect(file), "{file} differs after the resume");
-    }
+    assert_resumes_to_the_same_bytes(
+        &straight,
+        &stopped,
+        &["metrics.csv", "centreline.csv", "q.npy"],
+    );
     assert!(csv_rows(&straight.join("metrics.csv")).len() > 100);
 }
 

@@ -5,7 +5,9 @@
 //! `metrics.csv`; and a run stopped in the middle of the pull resumes to the same bytes (the
 //! grip's anchor is in the checkpoint).
 
-use crate::common::{code_and_stderr, csv_rows, fresh_dir, manifest, run_hagfish};
+use crate::common::{
+    assert_resumes_to_the_same_bytes, code_and_stderr, csv_rows, fresh_dir, manifest, run_hagfish,
+};
 
 #[test]
 fn a_gripped_rod_carries_euler_s_load_and_resumes_mid_pull_bit_for_bit() {
@@ -38,11 +40,9 @@ fn a_gripped_rod_carries_euler_s_load_and_resumes_mid_pull_bit_for_bit() {
     let stopped = dir.join("stopped");
     let output = run(&stopped, &["--stop-after-frames", "60"]);
     assert!(output.status.success(), "{}", code_and_stderr(&output).1);
-    assert_eq!(manifest(&stopped)["status"], "interrupted");
-    let resumed = run_hagfish(["run", "--resume", &stopped.to_string_lossy(), "--quiet"]);
-    assert!(resumed.status.success(), "{}", code_and_stderr(&resumed).1);
-    for file in ["metrics.csv", "internal.csv", "q.npy"] {
-        let (a, b) = (std::fs::read(straight.join(file)), std::fs::read(stopped.join(file)));
-        assert!(a.expect(file) == b.expect(file), "{file} differs after the resume");
-    }
+    assert_resumes_to_the_same_bytes(
+        &straight,
+        &stopped,
+        &["metrics.csv", "internal.csv", "q.npy"],
+    );
 }
