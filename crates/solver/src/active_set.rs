@@ -136,6 +136,8 @@ pub(crate) struct ActiveSet {
     version: usize,
     /// The warm-started rows in the order they join F.
     warm: Vec<usize>,
+    /// The rows at their upper bound, in row order (gathered for each subproblem).
+    at_upper: Vec<usize>,
 }
 
 impl ActiveSet {
@@ -158,7 +160,7 @@ impl ActiveSet {
         self.free.try_reserve(rows)?;
         self.free.reset(rows);
         try_capacity(&mut self.saved, rows + 1, "the active set's saved multipliers")?;
-        for buffer in [&mut self.implied, &mut self.warm] {
+        for buffer in [&mut self.implied, &mut self.warm, &mut self.at_upper] {
             try_capacity(buffer, rows, "an active-set index")?;
         }
         Ok(())
@@ -356,11 +358,10 @@ impl ActiveSet {
     fn solve_subproblem(&mut self, dual: &ContactSpace) {
         let (w, r) = (dual.w(), dual.r());
         let f = self.free.indices().len();
+        self.at_upper.clear();
+        self.at_upper.extend((0..self.bound.len()).filter(|&j| self.bound[j] == Bound::Upper));
         for (target, &i) in self.compact.iter_mut().zip(self.free.indices()) {
-            let fixed: f64 = (0..self.bound.len())
-                .filter(|&j| self.bound[j] == Bound::Upper)
-                .map(|j| w[(i, j)] * self.upper[j])
-                .sum();
+            let fixed: f64 = self.at_upper.iter().map(|&j| w[(i, j)] * self.upper[j]).sum();
             *target = r[i] - fixed;
         }
         self.free.solve(&mut self.compact[..f]);
