@@ -40,15 +40,13 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use faer::MatRef;
-
 mod release;
 mod verification;
 
-use crate::contact_space::ContactSpace;
+use crate::contact_space::{ContactSpace, ReducedScratch};
 use crate::error::SolverError;
 use crate::free_set::FreeSet;
-use crate::linalg::{try_capacity, zeroed};
+use crate::linalg::{Entries, try_capacity, zeroed};
 use crate::rows::RowKind;
 
 /// A row counts as linearly dependent on F when its pivot is below this fraction of Wᵢᵢ
@@ -138,6 +136,8 @@ pub(crate) struct ActiveSet {
     warm: Vec<usize>,
     /// The rows at their upper bound, in row order (gathered for each subproblem).
     at_upper: Vec<usize>,
+    /// Scratch of the dual gradient.
+    reduced: ReducedScratch,
 }
 
 impl ActiveSet {
@@ -163,7 +163,7 @@ impl ActiveSet {
         for buffer in [&mut self.implied, &mut self.warm, &mut self.at_upper] {
             try_capacity(buffer, rows, "an active-set index")?;
         }
-        Ok(())
+        self.reduced.try_reserve(rows)
     }
 
     /// The free rows and their factor at the end of the last run (for refinement).
@@ -268,8 +268,7 @@ impl ActiveSet {
         self.warm.extend(
             (0..m).filter(|&i| kinds[i] != RowKind::Equality && self.bound[i] == Bound::Free),
         );
-        let w = dual.w();
-        self.join_equalities(w, kinds, lambda);
+        self.join_equalities(dual, kinds, lambda);
         // A warm row that depends on the rows already in F is left at its bound (λ = 0),
         // unless it carried a larger impulse (λᵢ√Wᵢᵢ, the size of M̃⁻¹cᵢλᵢ in the M̃ norm) than
         // every warm row that joined before it: then the warm rows join again, largest impulse
@@ -279,12 +278,12 @@ impl ActiveSet {
         // tests/integration/random_problems.rs, kept as a regression). Every other start is the
         // row-order one, bit for bit (so are the shipped scenarios' runs); the order depends on λ
         // alone, so a run resumed from saved multipliers joins alike.
-        let impulse = |lambda: &[f64], i: usize| lambda[i] * w[(i, i)].sqrt();
+        let impulse = |lambda: &[f64], i: usize| lambda[i] * dual.entry(i, i).sqrt();
         let mut largest_joined = 0.0_f64;
         let mut reorder = false;
         for k in 0..self.warm.len() {
             let row = self.warm[k];
-            if self.try_join(w, row, DEPENDENCE) == Join::Joined {
+            if self.try_join(dual, row, DEPENDENCE) == Join::Joined {
                 largest_joined = largest_joined.max(impulse(lambda, row));
                 continue;
             }
@@ -305,12 +304,12 @@ impl ActiveSet {
             self.bound[row] = Bound::Free;
         }
         self.saved.clear();
-        self.join_equalities(w, kinds, lambda);
+        self.join_equalities(dual, kinds, lambda);
         let key = |i: usize| impulse(lambda, i);
         self.warm.sort_unstable_by(|&a, &b| key(b).total_cmp(&key(a)).then(a.cmp(&b)));
         for k in 0..self.warm.len() {
             let row = self.warm[k];
-            if self.try_join(w, row, DEPENDENCE) != Join::Joined {
+            if self.try_join(dual, row, DEPENDENCE) != Join::Joined {
                 self.fix(lambda, row, Bound::Lower);
             }
         }
@@ -318,12 +317,12 @@ impl ActiveSet {
 
     /// Starts F afresh with the equalities; one dependent on earlier ones (a pivot at rounding
     /// level) is set aside as redundant with λ = 0.
-    fn join_equalities(&mut self, w: MatRef<'_, f64>, kinds: &[RowKind], lambda: &mut [f64]) {
+    fn join_equalities(&mut self, dual: &ContactSpace, kinds: &[RowKind], lambda: &mut [f64]) {
         self.free.reset(kinds.len());
         self.version = 0;
         for row in (0..kinds.len()).filter(|&i| kinds[i] == RowKind::Equality) {
             if self.bound[row] != Bound::Redundant
-                && self.try_join(w, row, ROUNDING) == Join::Joined
+                && self.try_join(dual, row, ROUNDING) == Join::Joined
             {
                 continue;
             }
@@ -335,10 +334,10 @@ impl ActiveSet {
     /// Adds `row` to F if it is independent of it (pivot > `threshold`·W_rr); otherwise
     /// leaves z with c_row ≈ Σ_p z_p c_p in `self.z[..|F|]`, its border in `self.border`,
     /// and returns the pivot.
-    fn try_join(&mut self, w: MatRef<'_, f64>, row: usize, threshold: f64) -> Join {
+    fn try_join(&mut self, dual: &ContactSpace, row: usize, threshold: f64) -> Join {
         let k = self.free.indices().len();
-        let pivot = self.free.border(w, row, &mut self.border);
-        if pivot > threshold * w[(row, row)] {
+        let pivot = self.free.border(dual, row, &mut self.border);
+        if pivot > threshold * dual.entry(row, row) {
             self.join(row, pivot);
             return Join::Joined;
         }
@@ -356,12 +355,12 @@ impl ActiveSet {
 
     /// `compact` ← λ_F* = W_FF⁻¹(r_F − Σ_{j at upper} W_Fj uⱼ), in factor order.
     fn solve_subproblem(&mut self, dual: &ContactSpace) {
-        let (w, r) = (dual.w(), dual.r());
+        let r = dual.r();
         let f = self.free.indices().len();
         self.at_upper.clear();
         self.at_upper.extend((0..self.bound.len()).filter(|&j| self.bound[j] == Bound::Upper));
         for (target, &i) in self.compact.iter_mut().zip(self.free.indices()) {
-            let fixed: f64 = self.at_upper.iter().map(|&j| w[(i, j)] * self.upper[j]).sum();
+            let fixed: f64 = self.at_upper.iter().map(|&j| dual.entry(i, j) * self.upper[j]).sum();
             *target = r[i] - fixed;
         }
         self.free.solve(&mut self.compact[..f]);
@@ -407,19 +406,8 @@ impl ActiveSet {
         lambda: &[f64],
         tolerance: f64,
     ) -> Option<usize> {
-        let (w, r) = (dual.w(), dual.r());
         let m = lambda.len();
-        for ((g, magnitude), ri) in self.gradient.iter_mut().zip(&mut self.magnitude).zip(r) {
-            *g = -ri;
-            *magnitude = ri.abs();
-        }
-        for (j, &lj) in lambda.iter().enumerate().filter(|(_, l)| **l != 0.0) {
-            for i in 0..m {
-                let term = w[(i, j)] * lj;
-                self.gradient[i] += term;
-                self.magnitude[i] += term.abs();
-            }
-        }
+        dual.gradient(lambda, &mut self.reduced, &mut self.gradient, &mut self.magnitude);
         let mut best: Option<(usize, f64)> = None;
         for i in 0..m {
             if self.implied[i] == self.version {
@@ -431,7 +419,7 @@ impl ActiveSet {
                 Bound::Upper => self.gradient[i],
             };
             if violation > tolerance * (1.0 + self.magnitude[i]) {
-                let score = violation / w[(i, i)].sqrt();
+                let score = violation / dual.entry(i, i).sqrt();
                 if best.is_none_or(|(_, top)| score > top) {
                     best = Some((i, score));
                 }

@@ -18,6 +18,12 @@
 //! make it singular, and the active-set method (`active_set.rs`) keeps the rows it factors
 //! linearly independent instead.
 //!
+//! W is never formed: with rows made of bases (`reduced_rows.rs`: a friction pyramid's edges
+//! over a contact's three bases) W = E W_R Eᵀ + E_c, and only W_R = Y_RᵀY_R of the p reduced
+//! columns is kept (with the compliances of rows of their own on its diagonal); the active
+//! set reads W's entries and Wλ through it (`dual_matrix.rs`). A knot pulled tight holds
+//! ≈ 600 contacts of 8 rows: m = 4800 rows of 1800 reduced columns, a W 7× larger than W_R.
+//!
 //! Trailing zeros: a row cᵢ vanishing from entry e on (a contact on body k in reduced
 //! coordinates rooted at the head: e = the end of the DOFs of joints 0..k) gives a column
 //! L⁻¹cᵢ that vanishes from some eᵢ ≥ e on when the factor keeps trailing zeros
@@ -27,19 +33,20 @@
 //! skips the zero tails. Other factors use eᵢ = n.
 
 use faer::linalg::matmul::matmul;
-use faer::{Accum, Mat, MatRef, Par};
+use faer::{Accum, Mat, Par};
 
 use crate::error::SolverError;
-use crate::linalg::{column, column_mut, try_capacity, try_matrix_capacity};
+use crate::linalg::{axpy, column, column_mut, dot, try_capacity, try_matrix_capacity};
 use crate::mass_operator::FactoredMass;
 use crate::problem::Problem;
 use crate::reduced_rows::ReducedRows;
 
+mod dual_matrix;
+
+pub(crate) use dual_matrix::ReducedScratch;
+
 /// Columns per block of the product W = YᵀY.
 const W_BLOCK: usize = 8;
-
-/// Side of the square tiles in which [`ContactSpace::expand`] mirrors W's lower triangle.
-const MIRROR_TILE: usize = 64;
 
 /// Columns of Y solved between two polls of the stop flag (a multiple of the tree factor's
 /// four-column batches, so that the columns are solved as in one call).
@@ -51,14 +58,14 @@ const Y_CHUNK: usize = 64;
 /// one block would otherwise run unpolled for a second.
 const W_POLLED_ENTRIES: usize = 1 << 24;
 
-/// Y, W, z, r and b of one solve (sizes n × m, m × m, n, m, m), the support eᵢ of Y's
-/// columns (entries eᵢ.. of column i are zero), and the scratch of the build: the reduced
+/// Y_R, W_R, z, r and b of one solve (sizes n × p, p × p, n, m, m), the support eᵢ of the
+/// rows' columns of Y = Y_R Eᵀ (entries eᵢ.. of column i are zero), and the scratch of the build: the reduced
 /// columns (`reduced_rows.rs`; the rows themselves when no row is a combination), their
-/// supports, the columns by decreasing support (`order`), their supports, Y and W in that
-/// order; for combinations, each reduced column's place in that order (`rank`), W of the
-/// reduced columns (`reduced_w`, p × p) and `reduced_w` Eᵀ (`reduced_t`, p × m).
+/// supports, the columns by decreasing support (`order`), their supports, Y_R and W_R in that
+/// order (`sorted`, `sorted_w`), and each reduced column's place in that order (`rank`).
 #[derive(Debug)]
 pub(crate) struct ContactSpace {
+    /// Y_R = L⁻¹ of the reduced columns, in their order (Y itself without combinations).
     y: Mat<f64>,
     support: Vec<usize>,
     reduced: ReducedRows,
@@ -68,16 +75,16 @@ pub(crate) struct ContactSpace {
     sorted: Mat<f64>,
     sorted_w: Mat<f64>,
     rank: Vec<usize>,
+    /// W_R = Y_RᵀY_R in the reduced columns' order, with εᵢ on the diagonal of a row of its
+    /// own (then W_R's entry is W's).
     reduced_w: Mat<f64>,
-    reduced_t: Mat<f64>,
-    /// The reduced columns and rows `reduced_w` and `reduced_t` have room for.
-    reduced_reserved: (usize, usize),
-    w: Mat<f64>,
+    /// b_own − Y_Rᵀz (p; [`ContactSpace::update_force`]).
+    reduced_r: Vec<f64>,
     compliance: Vec<f64>,
     z: Vec<f64>,
     r: Vec<f64>,
     b: Vec<f64>,
-    /// The DOFs and rows Y, its sorted copy, W and its sorted copy have room for.
+    /// The DOFs and rows Y, its sorted copy, W_R and its sorted copy have room for.
     reserved: (usize, usize),
 }
 
@@ -95,9 +102,7 @@ impl ContactSpace {
             sorted_w: Mat::zeros(0, 0),
             rank: Vec::new(),
             reduced_w: Mat::zeros(0, 0),
-            reduced_t: Mat::zeros(0, 0),
-            reduced_reserved: (0, 0),
-            w: Mat::zeros(0, 0),
+            reduced_r: Vec::new(),
             compliance: Vec::new(),
             z: Vec::new(),
             r: Vec::new(),
@@ -123,14 +128,14 @@ impl ContactSpace {
         for buffer in indices {
             try_capacity(buffer, rows, "a contact-space index")?;
         }
-        for buffer in [&mut self.compliance, &mut self.r, &mut self.b] {
+        for buffer in [&mut self.compliance, &mut self.r, &mut self.b, &mut self.reduced_r] {
             try_capacity(buffer, rows, "a contact-space row vector")?;
         }
         try_capacity(&mut self.z, dofs, "z = L⁻¹f̃")
     }
 
-    /// Room for Y and its sorted copy (`dofs` × `rows`), W and its sorted copy (`rows` ×
-    /// `rows`); nothing is allocated when they are that large already. Every build rewrites
+    /// Room for Y and its sorted copy (`dofs` × `rows`), W_R and its sorted copy (`rows` ×
+    /// `rows`: there are at most as many reduced columns as rows); nothing is allocated when they are that large already. Every build rewrites
     /// them whole, so they grow afresh (no copy of the old values) and by a quarter of their
     /// rows at least: rows added step by step (a knot forming on 100 000 bodies adds ≈ 100 a
     /// step to ≈ 1000) would otherwise copy gigabytes each step, unpolled by the stop flag.
@@ -141,10 +146,10 @@ impl ContactSpace {
         }
         let (dofs, rows) = (dofs.max(reserved_dofs), rows.max(reserved_rows + reserved_rows / 4));
         let matrices = [
-            (&mut self.y, dofs, "Y = L⁻¹Cᵀ"),
+            (&mut self.y, dofs, "Y_R = L⁻¹ of the reduced columns"),
             (&mut self.sorted, dofs, "Y's sorted copy"),
-            (&mut self.w, rows, "W = YᵀY + E"),
-            (&mut self.sorted_w, rows, "W's sorted copy"),
+            (&mut self.reduced_w, rows, "W_R = Y_RᵀY_R"),
+            (&mut self.sorted_w, rows, "W_R's sorted copy"),
         ];
         for (matrix, height, what) in matrices {
             *matrix = Mat::zeros(0, 0);
@@ -154,9 +159,9 @@ impl ContactSpace {
         Ok(())
     }
 
-    /// Forms Y = L⁻¹Cᵀ, W = YᵀY + E, z = L⁻¹f̃ and r = b − Yᵀz for `problem`, with `factor`
-    /// holding a factor of its M̃ (M̃ = L Lᵀ); skips the rows' trailing zeros when the factor
-    /// keeps them (module docs).
+    /// Forms Y = L⁻¹Cᵀ, W_R (module docs), z = L⁻¹f̃ and r = b − Yᵀz for `problem`, with
+    /// `factor` holding a factor of its M̃ (M̃ = L Lᵀ); skips the rows' trailing zeros when
+    /// the factor keeps them (module docs).
     ///
     /// # Errors
     /// [`SolverError::Allocation`] if the matrices must grow and cannot (the contact space
@@ -198,111 +203,39 @@ impl ContactSpace {
         }
         problem.check_stop()?;
         self.form_sorted_w(p, W_POLLED_ENTRIES, problem)?;
-        if rows.has_combinations() {
-            self.expand(n, m, problem)?;
-        } else {
-            self.support.clone_from(&self.column_support);
-            self.y.resize_with(n, m, |_, _| 0.0);
-            self.w.resize_with(m, m, |_, _| 0.0);
-            for (k, &i) in self.order.iter().enumerate() {
-                self.y.col_as_slice_mut(i).copy_from_slice(self.sorted.col_as_slice(k));
-            }
-            // The upper triangle is scattered to both triangles of W in row order.
-            for (l, &j) in self.order.iter().enumerate() {
-                for (k, &i) in self.order[..=l].iter().enumerate() {
-                    let value = self.sorted_w[(k, l)];
-                    self.w[(i, j)] = value;
-                    self.w[(j, i)] = value;
-                }
-            }
-        }
-        self.compliance.clear();
-        self.compliance.extend(rows.kinds().iter().map(|kind| kind.compliance()));
-        for (i, &compliance) in self.compliance.iter().enumerate() {
-            if compliance != 0.0 {
-                self.w[(i, i)] += compliance;
-            }
-        }
-
-        self.update_force(factor, problem);
-        Ok(())
-    }
-
-    /// Y and W of the rows from those of the reduced columns (`reduced_rows.rs`): column i of Y
-    /// is Σ_t w_t Y_R[:, j_t], and W = E W_R Eᵀ, formed as T = W_R Eᵀ (p × m) and then
-    /// W[a, i] = Σ_t w_t T[j_t, i] over row a's terms. Row i's support is its terms' largest.
-    /// The stop flag is polled between the products and every [`Y_CHUNK`] columns of W.
-    fn expand(&mut self, n: usize, m: usize, problem: &Problem<'_>) -> Result<(), SolverError> {
-        let p = self.reduced.len();
-        let (reserved_p, reserved_m) = self.reduced_reserved;
-        if p > reserved_p || m > reserved_m {
-            // As `try_reserve_matrices`: afresh, and a quarter larger than asked.
-            let (p, m) = (p.max(reserved_p + reserved_p / 4), m.max(reserved_m + reserved_m / 4));
-            self.reduced_w = Mat::zeros(0, 0);
-            self.reduced_t = Mat::zeros(0, 0);
-            try_matrix_capacity(&mut self.reduced_w, p, p, "W of the reduced columns")?;
-            try_matrix_capacity(&mut self.reduced_t, p, m, "W_R Eᵀ")?;
-            self.reduced_reserved = (p, m);
-        }
         self.rank.clear();
         self.rank.resize(p, 0);
         for (k, &j) in self.order.iter().enumerate() {
             self.rank[j] = k;
         }
-        let (reduced, rank) = (&self.reduced, &self.rank);
-        self.support.clear();
-        self.support.extend((0..m).map(|i| {
-            reduced.terms(i).iter().map(|&(j, _)| self.column_support[j]).max().unwrap_or(0)
-        }));
-        self.y.resize_with(n, m, |_, _| 0.0);
-        for i in 0..m {
-            let column = self.y.col_as_slice_mut(i);
-            column.fill(0.0);
-            for &(j, weight) in reduced.terms(i) {
-                let end = self.column_support[j];
-                let solved = &self.sorted.col_as_slice(rank[j])[..end];
-                column[..end].iter_mut().zip(solved).for_each(|(y, s)| *y += weight * s);
-            }
-        }
-        problem.check_stop()?;
+        // The upper triangle is scattered to both triangles of W_R in the reduced order.
         self.reduced_w.resize_with(p, p, |_, _| 0.0);
-        for a in 0..p {
-            for b in 0..p {
-                let (k, l) = (rank[a].min(rank[b]), rank[a].max(rank[b]));
-                self.reduced_w[(a, b)] = self.sorted_w[(k, l)];
+        for (l, &j) in self.order.iter().enumerate() {
+            for (k, &i) in self.order[..=l].iter().enumerate() {
+                let value = self.sorted_w[(k, l)];
+                self.reduced_w[(i, j)] = value;
+                self.reduced_w[(j, i)] = value;
             }
         }
-        self.reduced_t.resize_with(p, m, |_, _| 0.0);
-        for i in 0..m {
-            let column = self.reduced_t.col_as_slice_mut(i);
-            column.fill(0.0);
-            for &(j, weight) in reduced.terms(i) {
-                let w_column = self.reduced_w.col_as_slice(j);
-                column.iter_mut().zip(w_column).for_each(|(t, w)| *t += weight * w);
+        self.compliance.clear();
+        self.compliance.extend(rows.kinds().iter().map(|kind| kind.compliance()));
+        for (i, &compliance) in self.compliance.iter().enumerate() {
+            if let Some(column) = self.reduced.own_column(i).filter(|_| compliance != 0.0) {
+                self.reduced_w[(column, column)] += compliance;
             }
         }
-        // The lower triangle column by column (contiguous), then mirrored tile by tile: W
-        // exactly symmetric, as the active set reads either triangle.
-        self.w.resize_with(m, m, |_, _| 0.0);
-        for i in 0..m {
-            if i % Y_CHUNK == 0 {
-                problem.check_stop()?;
-            }
-            let t = self.reduced_t.col_as_slice(i);
-            let column = &mut self.w.col_as_slice_mut(i)[i..];
-            for (value, a) in column.iter_mut().zip(i..) {
-                *value = reduced.terms(a).iter().map(|&(j, weight)| weight * t[j]).sum();
-            }
+        let (reduced, column_support) = (&self.reduced, &self.column_support);
+        self.support.clear();
+        self.support.extend(
+            (0..m).map(|i| {
+                reduced.terms(i).iter().map(|&(j, _)| column_support[j]).max().unwrap_or(0)
+            }),
+        );
+        self.y.resize_with(n, p, |_, _| 0.0);
+        for (k, &j) in self.order.iter().enumerate() {
+            self.y.col_as_slice_mut(j).copy_from_slice(self.sorted.col_as_slice(k));
         }
-        for tile_column in (0..m).step_by(MIRROR_TILE) {
-            for tile_row in (tile_column..m).step_by(MIRROR_TILE) {
-                for j in tile_column..(tile_column + MIRROR_TILE).min(m) {
-                    for i in tile_row.max(j + 1)..(tile_row + MIRROR_TILE).min(m) {
-                        self.w[(j, i)] = self.w[(i, j)];
-                    }
-                }
-            }
-        }
+        self.update_force(factor, problem);
         Ok(())
     }
 
@@ -317,7 +250,6 @@ impl ContactSpace {
         polled_entries: usize,
         problem: &Problem<'_>,
     ) -> Result<(), SolverError> {
-        self.w.resize_with(m, m, |_, _| 0.0);
         self.sorted_w.resize_with(m, m, |_, _| 0.0);
         for a in (0..m).step_by(W_BLOCK) {
             problem.check_stop()?;
@@ -341,23 +273,25 @@ impl ContactSpace {
 
     /// Recomputes z = L⁻¹f̃ and r = b − Yᵀz for a new f̃ and new right-hand sides b, keeping Y
     /// and W: for a problem whose M̃ and row coefficients are those of the last
-    /// [`build`](Self::build).
+    /// [`build`](Self::build). Through the reduced columns: t = b_own − Y_Rᵀz (b of a row of
+    /// its own, 0 for a base), then rᵢ = t of a row of its own, bᵢ + Σ_t w_t t_{j_t} of a
+    /// combination (without combinations the product of before, bit for bit).
     pub(crate) fn update_force(&mut self, factor: &dyn FactoredMass, problem: &Problem<'_>) {
         self.b.clear();
         self.b.extend_from_slice(problem.rhs());
         self.z.clear();
         self.z.extend_from_slice(problem.force());
         factor.solve_lower(column_mut(&mut self.z));
+        let (reduced, b) = (&self.reduced, &self.b);
+        self.reduced_r.clear();
+        self.reduced_r.extend((0..reduced.len()).map(|j| reduced.own_row(j).map_or(0.0, |i| b[i])));
+        let (t, z) = (column_mut(&mut self.reduced_r), column(&self.z));
+        matmul(t, Accum::Add, self.y.transpose(), z, -1.0, Par::Seq);
         self.r.clear();
-        self.r.extend_from_slice(&self.b);
-        matmul(
-            column_mut(&mut self.r),
-            Accum::Add,
-            self.y.transpose(),
-            column(&self.z),
-            -1.0,
-            Par::Seq,
-        );
+        self.r.extend(b.iter().enumerate().map(|(i, &bi)| match reduced.own_column(i) {
+            Some(j) => self.reduced_r[j],
+            None => bi + reduced.terms(i).iter().map(|&(j, w)| w * self.reduced_r[j]).sum::<f64>(),
+        }));
     }
 
     /// The rows' compliances εᵢ (the diagonal E in W; 0 but for compliant rows).
@@ -380,14 +314,27 @@ impl ContactSpace {
         &self.support
     }
 
-    /// Column i of Y = L⁻¹Cᵀ, i.e. L⁻¹cᵢ, up to its support eᵢ ≤ n (the rest is zero).
-    pub(crate) fn y_column(&self, i: usize) -> &[f64] {
-        &self.y.col_as_slice(i)[..self.support[i]]
+    /// Reduced column j of Y_R up to its support.
+    fn reduced_column(&self, j: usize) -> &[f64] {
+        &self.y.col_as_slice(j)[..self.column_support[j]]
     }
 
-    /// W = YᵀY (m × m).
-    pub(crate) fn w(&self) -> MatRef<'_, f64> {
-        self.w.as_ref()
+    /// yᵢᵀx with yᵢ = L⁻¹cᵢ, column i of Y = Y_R Eᵀ: Σ_t w_t Y_R[:, j_t]ᵀx.
+    pub(crate) fn y_dot(&self, i: usize, x: &[f64]) -> f64 {
+        match self.reduced.own_column(i) {
+            Some(j) => dot(self.reduced_column(j), x),
+            None => {
+                let terms = self.reduced.terms(i).iter();
+                terms.map(|&(j, w)| w * dot(self.reduced_column(j), x)).sum()
+            }
+        }
+    }
+
+    /// x ← x + a·yᵢ, yᵢ = L⁻¹cᵢ as in [`ContactSpace::y_dot`].
+    pub(crate) fn y_axpy(&self, i: usize, a: f64, x: &mut [f64]) {
+        for &(j, w) in self.reduced.terms(i) {
+            axpy(a * w, self.reduced_column(j), x);
+        }
     }
 
     /// r = b − C M̃⁻¹f̃ (m).
@@ -401,15 +348,22 @@ impl ContactSpace {
         &self.b
     }
 
-    /// out ← z + Yλ = Lᵀq̇(λ), whose norm is ‖q̇(λ)‖_M.
-    pub(crate) fn lift(&self, lambda: &[f64], out: &mut [f64]) {
+    /// out ← z + Yλ = z + Y_R Eᵀλ = Lᵀq̇(λ), whose norm is ‖q̇(λ)‖_M (`scratch` holds Eᵀλ).
+    pub(crate) fn lift(&self, lambda: &[f64], scratch: &mut ReducedScratch, out: &mut [f64]) {
+        let folded = self.fold(lambda, scratch);
         out.copy_from_slice(&self.z);
-        matmul(column_mut(out), Accum::Add, self.y.as_ref(), column(lambda), 1.0, Par::Seq);
+        matmul(column_mut(out), Accum::Add, self.y.as_ref(), column(folded), 1.0, Par::Seq);
     }
 
     /// q̇ ← M̃⁻¹(f̃ + Cᵀλ) = L⁻ᵀ(z + Yλ).
-    pub(crate) fn recover(&self, factor: &dyn FactoredMass, lambda: &[f64], qdot: &mut [f64]) {
-        self.lift(lambda, qdot);
+    pub(crate) fn recover(
+        &self,
+        factor: &dyn FactoredMass,
+        lambda: &[f64],
+        scratch: &mut ReducedScratch,
+        qdot: &mut [f64],
+    ) {
+        self.lift(lambda, scratch, qdot);
         factor.solve_upper(column_mut(qdot));
     }
 }
@@ -421,6 +375,7 @@ mod tests {
     use proptest::prelude::*;
 
     use super::*;
+    use crate::linalg::Entries;
     use crate::mass_factor::MassFactor;
     use crate::mass_factor::tests::{random_spd, relative_gap, stream};
     use crate::rows::{RowKind, RowSource, RowTag, Rows};
@@ -468,23 +423,48 @@ mod tests {
 
     /// Whether two contact spaces built from the same problem of `dofs` DOFs agree: W and r
     /// within 10⁻¹⁰ and the velocity recovered from λ (each with its factor) within 10⁻⁸,
-    /// relative, and the first one's W exactly symmetric (the active set reads either
-    /// triangle); or how they do not.
+    /// relative; the first one's W exactly symmetric (the active set reads either triangle),
+    /// its gradient Wλ − r the second one's W times λ less r within 10⁻¹⁰ of the terms' size,
+    /// and its magnitude no smaller than that size; or how they do not.
     fn agree(
         (a, a_factor): (&ContactSpace, &dyn FactoredMass),
         (b, b_factor): (&ContactSpace, &dyn FactoredMass),
         lambda: &[f64],
         dofs: usize,
     ) -> Result<(), String> {
-        let (w_a, m) = (a.w(), lambda.len());
+        let m = lambda.len();
+        let formed = |space: &ContactSpace| Mat::<f64>::from_fn(m, m, |i, j| space.entry(i, j));
+        let (w_a, w_b) = (formed(a), formed(b));
         let (mut qa, mut qb) = (vec![0.0; dofs], vec![0.0; dofs]);
-        a.recover(a_factor, lambda, &mut qa);
-        b.recover(b_factor, lambda, &mut qb);
-        let (w, r) = (relative_gap(w_a, b.w()), relative_gap(column(a.r()), column(b.r())));
+        a.recover(a_factor, lambda, &mut ReducedScratch::default(), &mut qa);
+        b.recover(b_factor, lambda, &mut ReducedScratch::default(), &mut qb);
+        let (w, r) =
+            (relative_gap(w_a.as_ref(), w_b.as_ref()), relative_gap(column(a.r()), column(b.r())));
         let qdot = relative_gap(column(&qa), column(&qb));
         let symmetric = (0..m).all(|i| (0..m).all(|j| w_a[(i, j)] == w_a[(j, i)]));
-        if w > 1e-10 || r > 1e-10 || qdot > 1e-8 || !symmetric {
-            return Err(format!("W {w:e}, r {r:e}, q̇ {qdot:e}, symmetric {symmetric}"));
+        // The gradient through W_R against the formed W's product, term by term.
+        let (mut gradient, mut magnitude) = (vec![0.0; m], vec![0.0; m]);
+        a.gradient(lambda, &mut ReducedScratch::default(), &mut gradient, &mut magnitude);
+        let mut worst = 0.0_f64;
+        for (i, &magnitude) in magnitude.iter().enumerate() {
+            let terms = (0..m).map(|j| w_b[(i, j)] * lambda[j]);
+            let (product, size) =
+                terms.fold((0.0, 0.0), |(sum, size), t| (sum + t, size + t.abs()));
+            let expected = product - b.r()[i];
+            let scale = 1.0 + b.r()[i].abs() + size;
+            worst = worst.max((gradient[i] - expected).abs() / scale);
+            if magnitude < (1.0 - 1e-12) * (b.r()[i].abs() + size) {
+                return Err(format!(
+                    "row {i}: magnitude {} below Σ|Wλ| + |r| = {}",
+                    magnitude,
+                    b.r()[i].abs() + size
+                ));
+            }
+        }
+        if w > 1e-10 || r > 1e-10 || qdot > 1e-8 || !symmetric || worst > 1e-10 {
+            return Err(format!(
+                "W {w:e}, r {r:e}, q̇ {qdot:e}, symmetric {symmetric}, Wλ − r {worst:e}"
+            ));
         }
         Ok(())
     }

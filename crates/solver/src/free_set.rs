@@ -14,10 +14,8 @@
 //!
 //! Both are O(|F|²).
 
-use faer::MatRef;
-
 use crate::error::SolverError;
-use crate::linalg::try_capacity;
+use crate::linalg::{Entries, try_capacity};
 
 /// Free rows in factor order and the lower-triangular factor (column-major, leading
 /// dimension `stride` ≥ number of rows m).
@@ -54,13 +52,13 @@ impl FreeSet {
 
     /// The border of row `row` (`w` = W): `l[..|F|]` ← L_F⁻¹W_{F,row}; returns the pivot
     /// d² = W_rr − lᵀl it would get (≈ 0 when c_row is in the span of F's rows).
-    pub(crate) fn border(&self, w: MatRef<'_, f64>, row: usize, l: &mut [f64]) -> f64 {
+    pub(crate) fn border(&self, w: &impl Entries, row: usize, l: &mut [f64]) -> f64 {
         let l = &mut l[..self.indices.len()];
         for (lp, &i) in l.iter_mut().zip(&self.indices) {
-            *lp = w[(i, row)];
+            *lp = w.entry(i, row);
         }
         self.forward(l);
-        w[(row, row)] - l.iter().map(|v| v * v).sum::<f64>()
+        w.entry(row, row) - l.iter().map(|v| v * v).sum::<f64>()
     }
 
     /// Adds row `row` with its border `l` and pivot d² > 0 from [`FreeSet::border`].
@@ -135,6 +133,12 @@ mod tests {
 
     use super::*;
 
+    impl Entries for Mat<f64> {
+        fn entry(&self, i: usize, j: usize) -> f64 {
+            self[(i, j)]
+        }
+    }
+
     /// A 6 × 6 positive semidefinite W with a duplicated row (rows 2 and 5 equal).
     fn dual_matrix() -> Mat<f64> {
         let y = Mat::from_fn(6, 6, |i, j| {
@@ -151,12 +155,12 @@ mod tests {
         let mut l = vec![0.0; 6];
         set.reset(6);
         for row in [0, 2, 3, 1, 4] {
-            let pivot = set.border(w.as_ref(), row, &mut l);
+            let pivot = set.border(&w, row, &mut l);
             assert!(pivot > 1e-3 * w[(row, row)], "row {row}: {pivot}");
             set.push(row, &l, pivot);
         }
         // Row 5 duplicates row 2: its pivot vanishes and z = L⁻ᵀl picks row 2.
-        let pivot = set.border(w.as_ref(), 5, &mut l);
+        let pivot = set.border(&w, 5, &mut l);
         assert!(pivot.abs() < 1e-12 * w[(5, 5)]);
         set.backward(&mut l[..5]);
         for (p, z) in l[..5].iter().enumerate() {
@@ -164,7 +168,7 @@ mod tests {
         }
         assert_eq!(set.remove(1), 2);
         assert_eq!(set.remove(2), 1);
-        let pivot = set.border(w.as_ref(), 5, &mut l);
+        let pivot = set.border(&w, 5, &mut l);
         set.push(5, &l, pivot);
         assert_eq!(set.indices(), &[0, 3, 4, 5]);
 

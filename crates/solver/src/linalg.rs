@@ -47,6 +47,13 @@ pub(crate) fn column_mut(x: &mut [f64]) -> MatMut<'_, f64> {
     MatMut::from_column_major_slice_mut(x, n, 1)
 }
 
+/// A symmetric matrix read entry by entry: the dual matrix W, which is never formed
+/// (`contact_space.rs`).
+pub(crate) trait Entries {
+    /// The entry (i, j), equal to (j, i).
+    fn entry(&self, i: usize, j: usize) -> f64;
+}
+
 /// Lanes of the partial sums in [`dot`] and [`dot_and_magnitude`]: independent sums the
 /// compiler can keep in vector registers (a single running sum cannot be vectorised without
 /// reordering it). The order of the additions is fixed, so results are deterministic.

@@ -96,6 +96,22 @@ impl ReducedRows {
     pub(crate) fn terms(&self, i: usize) -> &[(usize, f64)] {
         self.terms[i].as_slice()
     }
+
+    /// The reduced column that is row i itself, or `None` for a combination.
+    pub(crate) fn own_column(&self, i: usize) -> Option<usize> {
+        match self.terms[i].as_slice() {
+            &[(column, _)] => Some(column),
+            _ => None,
+        }
+    }
+
+    /// The row that reduced column `j` is, or `None` for a base.
+    pub(crate) fn own_row(&self, j: usize) -> Option<usize> {
+        match self.columns[j] {
+            ReducedColumn::Row(i) => Some(i),
+            ReducedColumn::Base(_) => None,
+        }
+    }
 }
 
 #[cfg(test)]
@@ -124,5 +140,7 @@ mod tests {
         assert_eq!(reduced.terms(0), [(0, 1.0)]);
         assert_eq!(reduced.terms(2), [(1, 0.5), (2, 0.0), (3, -1.0)]);
         assert_eq!(reduced.column(&rows, 3), [1.0, 1.0]);
+        assert_eq!((reduced.own_column(0), reduced.own_column(1)), (Some(0), None));
+        assert_eq!((reduced.own_row(0), reduced.own_row(2)), (Some(0), None));
     }
 }

@@ -20,7 +20,7 @@
 use crate::contact_space::ContactSpace;
 use crate::error::SolverError;
 use crate::free_set::FreeSet;
-use crate::linalg::{axpy, column_mut, dot, try_capacity, zeroed};
+use crate::linalg::{axpy, column_mut, try_capacity, zeroed};
 use crate::mass_operator::FactoredMass;
 use crate::problem::Problem;
 use crate::residuals::{Stationarity, row_residual};
@@ -92,12 +92,12 @@ impl Refinement {
             // u = L⁻¹r₁;  W_FF δλ = r₂ − Y_Fᵀu;  δq = L⁻ᵀ(u + Y_F δλ).
             mass.solve_lower(column_mut(&mut self.residual));
             for (r2, &i) in self.compact.iter_mut().zip(free.indices()) {
-                *r2 -= dot(dual.y_column(i), &self.residual);
+                *r2 -= dual.y_dot(i, &self.residual);
             }
             free.solve(&mut self.compact);
             for (&delta, &i) in self.compact.iter().zip(free.indices()) {
                 lambda[i] += delta;
-                axpy(delta, dual.y_column(i), &mut self.residual);
+                dual.y_axpy(i, delta, &mut self.residual);
             }
             mass.solve_upper(column_mut(&mut self.residual));
             axpy(1.0, &self.residual, qdot);

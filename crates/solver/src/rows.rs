@@ -422,7 +422,10 @@ mod tests {
         let mut workspace = crate::SolverWorkspace::new(crate::SolverOptions::default());
         workspace.try_reserve(10, 20).expect("a small workspace");
         let error = workspace.try_reserve(1 << 31, 1 << 31).expect_err("2⁶² values");
-        assert!(error.to_string().starts_with("cannot allocate Y = L⁻¹Cᵀ"), "{error}");
+        assert!(
+            error.to_string().starts_with("cannot allocate Y_R = L⁻¹ of the reduced columns"),
+            "{error}"
+        );
     }
 
     #[test]

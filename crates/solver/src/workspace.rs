@@ -33,7 +33,7 @@ use faer::Mat;
 
 use crate::active_set::{ActiveSet, ActiveSetLimits, Termination};
 use crate::clarabel_reference;
-use crate::contact_space::ContactSpace;
+use crate::contact_space::{ContactSpace, ReducedScratch};
 use crate::error::SolverError;
 use crate::linalg::{axpy, try_capacity, zeroed};
 use crate::mass_factor::MassFactor;
@@ -56,6 +56,8 @@ pub struct SolverWorkspace {
     dual: ContactSpace,
     active: ActiveSet,
     refinement: Refinement,
+    /// Eᵀλ when the velocity is recovered from λ.
+    folded: ReducedScratch,
     velocity: Vec<f64>,
     multipliers: Vec<f64>,
     impulses: Mat<f64>,
@@ -96,6 +98,7 @@ impl SolverWorkspace {
             dual: ContactSpace::new(),
             active: ActiveSet::default(),
             refinement: Refinement::default(),
+            folded: ReducedScratch::default(),
             velocity: Vec::new(),
             multipliers: Vec::new(),
             impulses: Mat::zeros(0, RowTag::COUNT),
@@ -119,6 +122,7 @@ impl SolverWorkspace {
         self.dual.try_reserve(dofs, rows)?;
         self.active.try_reserve(dofs, rows)?;
         self.refinement.try_reserve(dofs, rows)?;
+        self.folded.try_reserve(rows)?;
         for buffer in [&mut self.velocity, &mut self.residual, &mut self.work] {
             try_capacity(buffer, dofs, "a solver vector over the DOFs")?;
         }
@@ -293,7 +297,7 @@ impl SolverWorkspace {
         let mut refined = Refined { steps: 0, stationarity: None };
         for pass in 0..=VERIFICATION_PASSES {
             problem.check_stop()?;
-            self.dual.recover(factor, &self.multipliers, &mut self.velocity);
+            self.dual.recover(factor, &self.multipliers, &mut self.folded, &mut self.velocity);
             let system = FactoredSystem {
                 problem,
                 mass: factor,

@@ -36,11 +36,9 @@
 //!   one (a feasible q̇ would give dᵀb ≤ ‖Σ dⱼL⁻¹cⱼ‖·‖q̇‖_M; an ill-conditioned F can fake a
 //!   ray through an inaccurate z, and the row is then skipped like an implied one).
 
-use faer::MatRef;
-
 use super::{ActiveSet, Bound, DEPENDENCE, Join, ROUNDING};
 use crate::contact_space::ContactSpace;
-use crate::linalg::{axpy, dot, zeroed};
+use crate::linalg::{Entries, dot, zeroed};
 
 /// The rate ν of a dependent release is significant beyond this fraction of the size of its
 /// terms, |b_row| + Σ_p|z_p b_p| + ‖Σ dⱼL⁻¹cⱼ‖·‖z + Yλ‖.
@@ -84,9 +82,8 @@ impl ActiveSet {
     /// Releases `row` from its bound (see the module docs). Returns false when φ is unbounded
     /// below (hard rows infeasible).
     pub(super) fn release(&mut self, dual: &ContactSpace, lambda: &mut [f64], row: usize) -> bool {
-        let w = dual.w();
         let s = if self.bound[row] == Bound::Lower { 1.0 } else { -1.0 };
-        let Join::Dependent { pivot } = self.try_join(w, row, DEPENDENCE) else {
+        let Join::Dependent { pivot } = self.try_join(dual, row, DEPENDENCE) else {
             return true;
         };
         let rate = self.dependent_rate(dual, lambda, row, s);
@@ -94,8 +91,11 @@ impl ActiveSet {
             self.implied[row] = self.version;
             return true;
         }
-        let minimum =
-            if pivot > ROUNDING * w[(row, row)] { -rate.value / pivot } else { f64::INFINITY };
+        let minimum = if pivot > ROUNDING * dual.entry(row, row) {
+            -rate.value / pivot
+        } else {
+            f64::INFINITY
+        };
         let own =
             if s > 0.0 { self.upper[row] - lambda[row] } else { lambda[row] - self.lower[row] };
         let Some(block) = self.ratio_test(lambda, s) else {
@@ -112,7 +112,7 @@ impl ActiveSet {
         if minimum.min(own) <= block.step {
             return self.settle(lambda, row, pivot, minimum, own);
         }
-        self.swap(w, lambda, row, s, block);
+        self.swap(dual, lambda, row, s, block);
         true
     }
 
@@ -124,11 +124,11 @@ impl ActiveSet {
             terms.fold((0.0, b[row].abs()), |(sum, size), t| (sum + t, size + t.abs()));
         let rho = b[row] - implied;
         zeroed(&mut self.lift, dual.dofs());
-        dual.lift(lambda, &mut self.lift);
+        dual.lift(lambda, &mut self.reduced, &mut self.lift);
         zeroed(&mut self.ray, dual.dofs());
-        axpy(s, dual.y_column(row), &mut self.ray);
+        dual.y_axpy(row, s, &mut self.ray);
         for (&zp, &i) in self.z.iter().zip(self.free.indices()) {
-            axpy(-s * zp, dual.y_column(i), &mut self.ray);
+            dual.y_axpy(i, -s * zp, &mut self.ray);
         }
         let (ray, size) = (dot(&self.ray, &self.ray).sqrt(), dot(&self.lift, &self.lift).sqrt());
         let e = dual.compliance();
@@ -198,7 +198,7 @@ impl ActiveSet {
 
     /// Steps along d to the block, swaps the blocked free row out of F and `row` in; undoes
     /// the step if `row` is still dependent without it.
-    fn swap(&mut self, w: MatRef<'_, f64>, lambda: &mut [f64], row: usize, s: f64, block: Block) {
+    fn swap(&mut self, dual: &ContactSpace, lambda: &mut [f64], row: usize, s: f64, block: Block) {
         let Block { position, side, step } = block;
         let k = self.free.indices().len();
         self.saved.clear();
@@ -216,9 +216,11 @@ impl ActiveSet {
         // The span of c_F is unchanged and c_row = z_p c_p + (rows of the rest), so the new
         // pivot is z_p²·(the pivot of c_p against the rest): real when clear of rounding, or
         // when it matches that product (a z_p of rounding noise leaves a pivot that does not).
-        let expected = zp * zp * self.free.border(w, blocked, &mut self.border);
-        let pivot = self.free.border(w, row, &mut self.border);
-        if pivot > ROUNDING * w[(row, row)] || (pivot - expected).abs() <= AGREEMENT * expected {
+        let expected = zp * zp * self.free.border(dual, blocked, &mut self.border);
+        let pivot = self.free.border(dual, row, &mut self.border);
+        if pivot > ROUNDING * dual.entry(row, row)
+            || (pivot - expected).abs() <= AGREEMENT * expected
+        {
             self.join(row, pivot);
             self.fix(lambda, blocked, side);
             return;
@@ -226,7 +228,7 @@ impl ActiveSet {
         for &(i, value) in &self.saved {
             lambda[i] = value;
         }
-        if self.try_join(w, blocked, ROUNDING) == Join::Joined {
+        if self.try_join(dual, blocked, ROUNDING) == Join::Joined {
             // F holds the same rows again: earlier "implied" marks stay valid.
             self.version = version;
         } else {
