@@ -17,6 +17,11 @@
 //!   bodies on the sparse backend, `data/scenarios/tie.ron` at t = 19 s (a trefoil tied by
 //!   control, `hagfish_bench_support::long_knotted_world`), with the scenario's controller.
 //!   Per-stage benchmarks of the same state: `cargo bench -p hagfish-sim --bench stages`.
+//! - `step/overhand_9_1/SparseMaximal`: one whole step of Choi et al.'s 9₁ as published
+//!   (`data/validation/overhand_pull.ron` started from `data/knots/imc-der/n4.txt`: 600 bodies,
+//!   μ = 0.1 on the friction pyramid of decisions 0029–0030), held 0.5 s first: ≈ 480 self
+//!   contacts of 8 rows each, the solver's largest case (`cargo bench --bench step --
+//!   overhand_9_1`).
 //! - `step/thigmo_space/<space>`: one whole step in the knotted benchmark state under the
 //!   slide's thigmotaxis (2 cm/s at both contacts, four rows), with the rows confined to
 //!   `Full` (no projection) and to a modal space of k = 4 (`c̃ = B(Bᵀc)`, B four orthonormal
@@ -31,7 +36,7 @@ use hagfish_control::{
     ControllerState, ForceSpace, KindSelection, ModalBasis, ModalSpace, Phase, PhasedController,
     SlidingTargets, ThigmoParameters, ThigmoPhase, Until, WaterDrag,
 };
-use hagfish_scenario::LoadedScenario;
+use hagfish_scenario::{LoadedScenario, Override};
 use hagfish_sim::rows::RowGroup;
 use hagfish_sim::{DynamicsBackend, StepOptions, World, dof_labels, rest_dof_arc_lengths};
 use hagfish_solver::{QpBackend, SolverOptions};
@@ -152,6 +157,32 @@ fn long_knotted(c: &mut Criterion) {
     group.finish();
 }
 
+/// Choi et al.'s 9₁ held 0.5 s from its published shape, then one step timed at a time.
+fn overhand_9_1(c: &mut Criterion) {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/data/validation/overhand_pull.ron");
+    let shape =
+        r#"initial_shape=Some(Polyline((file: "../knots/imc-der/n4.txt", cm_per_unit: 100.0)))"#;
+    let overrides = [Override::parse(shape).expect("an override")];
+    let loaded = LoadedScenario::load_with(path, &overrides).expect("overhand_pull.ron loads");
+    let (mut world, mut controller) = loaded.build().expect("the 9₁ at rest");
+    while world.state().t < 0.5 {
+        world.step(&mut controller).expect("held");
+    }
+    let (start, saved) = (world.state().clone(), controller.state());
+    world.step(&mut controller).expect("warm-up step");
+    println!(
+        "the 9₁ held 0.5 s: {} self contacts, rows per group {:?}",
+        world.data().report.self_contacts,
+        RowGroup::values(&world.data().report.solve.rows_per_tag)
+    );
+    let mut group = c.benchmark_group("step");
+    group.sample_size(10);
+    group.bench_function("overhand_9_1/SparseMaximal", |b| {
+        time_steps_from(b, &mut world, &mut controller, &start, &saved)
+    });
+    group.finish();
+}
+
 /// The knotted state's step under the slide's thigmotaxis, `Full` against `Modes` k = 4.
 fn thigmo_space(c: &mut Criterion) {
     let (mut world, _) = knotted_world(env!("CARGO_MANIFEST_DIR").as_ref()).expect("knotted");
@@ -223,5 +254,5 @@ fn time_steps_from(
     })
 }
 
-criterion_group!(benches, unconstrained, knotted, long_knotted, thigmo_space);
+criterion_group!(benches, unconstrained, knotted, long_knotted, overhand_9_1, thigmo_space);
 criterion_main!(benches);

@@ -59,10 +59,10 @@ const Y_CHUNK: usize = 64;
 const W_POLLED_ENTRIES: usize = 1 << 24;
 
 /// Y_R, W_R, z, r and b of one solve (sizes n × p, p × p, n, m, m), the support eᵢ of the
-/// rows' columns of Y = Y_R Eᵀ (entries eᵢ.. of column i are zero), and the scratch of the build: the reduced
-/// columns (`reduced_rows.rs`; the rows themselves when no row is a combination), their
-/// supports, the columns by decreasing support (`order`), their supports, Y_R and W_R in that
-/// order (`sorted`, `sorted_w`), and each reduced column's place in that order (`rank`).
+/// rows' columns of Y = Y_R Eᵀ (entries eᵢ.. of column i are zero), and the scratch of the
+/// build: the reduced columns (`reduced_rows.rs`; the rows themselves when no row is a
+/// combination), their supports, the columns by decreasing support (`order`), their supports,
+/// and Y_R and W_R in that order (`sorted`, `sorted_w`).
 #[derive(Debug)]
 pub(crate) struct ContactSpace {
     /// Y_R = L⁻¹ of the reduced columns, in their order (Y itself without combinations).
@@ -74,7 +74,6 @@ pub(crate) struct ContactSpace {
     sorted_support: Vec<usize>,
     sorted: Mat<f64>,
     sorted_w: Mat<f64>,
-    rank: Vec<usize>,
     /// W_R = Y_RᵀY_R in the reduced columns' order, with εᵢ on the diagonal of a row of its
     /// own (then W_R's entry is W's).
     reduced_w: Mat<f64>,
@@ -84,7 +83,7 @@ pub(crate) struct ContactSpace {
     z: Vec<f64>,
     r: Vec<f64>,
     b: Vec<f64>,
-    /// The DOFs and rows Y, its sorted copy, W_R and its sorted copy have room for.
+    /// The DOFs and rows Y_R, its sorted copy, W_R and its sorted copy have room for.
     reserved: (usize, usize),
 }
 
@@ -100,7 +99,6 @@ impl ContactSpace {
             sorted_support: Vec::new(),
             sorted: Mat::zeros(0, 0),
             sorted_w: Mat::zeros(0, 0),
-            rank: Vec::new(),
             reduced_w: Mat::zeros(0, 0),
             reduced_r: Vec::new(),
             compliance: Vec::new(),
@@ -123,7 +121,6 @@ impl ContactSpace {
             &mut self.column_support,
             &mut self.order,
             &mut self.sorted_support,
-            &mut self.rank,
         ];
         for buffer in indices {
             try_capacity(buffer, rows, "a contact-space index")?;
@@ -134,11 +131,12 @@ impl ContactSpace {
         try_capacity(&mut self.z, dofs, "z = L⁻¹f̃")
     }
 
-    /// Room for Y and its sorted copy (`dofs` × `rows`), W_R and its sorted copy (`rows` ×
-    /// `rows`: there are at most as many reduced columns as rows); nothing is allocated when they are that large already. Every build rewrites
-    /// them whole, so they grow afresh (no copy of the old values) and by a quarter of their
-    /// rows at least: rows added step by step (a knot forming on 100 000 bodies adds ≈ 100 a
-    /// step to ≈ 1000) would otherwise copy gigabytes each step, unpolled by the stop flag.
+    /// Room for Y_R and its sorted copy (`dofs` × `rows`), W_R and its sorted copy (`rows` ×
+    /// `rows`: there are at most as many reduced columns as rows); nothing is allocated when
+    /// they are that large already. Every build rewrites them whole, so they grow afresh (no
+    /// copy of the old values) and by a quarter of their rows at least: rows added step by
+    /// step (a knot forming on 100 000 bodies adds ≈ 100 a step to ≈ 1000) would otherwise
+    /// copy gigabytes each step, unpolled by the stop flag.
     fn try_reserve_matrices(&mut self, dofs: usize, rows: usize) -> Result<(), SolverError> {
         let (reserved_dofs, reserved_rows) = self.reserved;
         if dofs <= reserved_dofs && rows <= reserved_rows {
@@ -147,7 +145,7 @@ impl ContactSpace {
         let (dofs, rows) = (dofs.max(reserved_dofs), rows.max(reserved_rows + reserved_rows / 4));
         let matrices = [
             (&mut self.y, dofs, "Y_R = L⁻¹ of the reduced columns"),
-            (&mut self.sorted, dofs, "Y's sorted copy"),
+            (&mut self.sorted, dofs, "Y_R's sorted copy"),
             (&mut self.reduced_w, rows, "W_R = Y_RᵀY_R"),
             (&mut self.sorted_w, rows, "W_R's sorted copy"),
         ];
@@ -159,9 +157,9 @@ impl ContactSpace {
         Ok(())
     }
 
-    /// Forms Y = L⁻¹Cᵀ, W_R (module docs), z = L⁻¹f̃ and r = b − Yᵀz for `problem`, with
-    /// `factor` holding a factor of its M̃ (M̃ = L Lᵀ); skips the rows' trailing zeros when
-    /// the factor keeps them (module docs).
+    /// Forms Y_R, W_R (module docs), the rows' supports, z = L⁻¹f̃ and r = b − Yᵀz for
+    /// `problem`, with `factor` holding a factor of its M̃ (M̃ = L Lᵀ); skips the rows'
+    /// trailing zeros when the factor keeps them (module docs).
     ///
     /// # Errors
     /// [`SolverError::Allocation`] if the matrices must grow and cannot (the contact space
@@ -203,11 +201,6 @@ impl ContactSpace {
         }
         problem.check_stop()?;
         self.form_sorted_w(p, W_POLLED_ENTRIES, problem)?;
-        self.rank.clear();
-        self.rank.resize(p, 0);
-        for (k, &j) in self.order.iter().enumerate() {
-            self.rank[j] = k;
-        }
         // The upper triangle is scattered to both triangles of W_R in the reduced order.
         self.reduced_w.resize_with(p, p, |_, _| 0.0);
         for (l, &j) in self.order.iter().enumerate() {

@@ -17,8 +17,9 @@ use super::ContactSpace;
 use crate::error::SolverError;
 use crate::linalg::{Entries, try_capacity, zeroed};
 
-/// Scratch of [`ContactSpace::gradient`], p each: Eᵀλ, |E|ᵀ|λ|, the reduced gradient and its
-/// magnitude (grow-only).
+/// Scratch of the products through the reduced columns ([`ContactSpace::gradient`],
+/// [`ContactSpace::lift`]), p each: Eᵀλ, |E|ᵀ|λ|, the reduced gradient and its magnitude
+/// (grow-only).
 #[derive(Debug, Default)]
 pub(crate) struct ReducedScratch {
     lambda: Vec<f64>,
