@@ -139,22 +139,10 @@ fn bench_knotted_step(c: &mut Criterion, name: &str, mut world: World) {
 
 fn long_knotted(c: &mut Criterion) {
     let root = env!("CARGO_MANIFEST_DIR");
-    let (mut world, mut controller) =
+    let (world, controller) =
         long_knotted_world(root.as_ref(), &std::env::temp_dir()).expect("long knotted state");
-    let (start, saved) = (world.state().clone(), controller.state());
-    world.step(&mut controller).expect("warm-up step");
-    println!(
-        "long knotted state: {} bodies, {} self contacts, rows per group {:?}",
-        world.model().body_count(),
-        world.data().report.self_contacts,
-        RowGroup::values(&world.data().report.solve.rows_per_tag)
-    );
-    let mut group = c.benchmark_group("step");
-    group.sample_size(20);
-    group.bench_function("knotted_1000/SparseMaximal", |b| {
-        time_steps_from(b, &mut world, &mut controller, &start, &saved)
-    });
-    group.finish();
+    let label = format!("long knotted state, {} bodies", world.model().body_count());
+    bench_steps(c, ("knotted_1000/SparseMaximal", &label, 20), world, controller);
 }
 
 /// Choi et al.'s 9₁ held 0.5 s from its published shape, then one step timed at a time.
@@ -168,18 +156,28 @@ fn overhand_9_1(c: &mut Criterion) {
     while world.state().t < 0.5 {
         world.step(&mut controller).expect("held");
     }
+    bench_steps(c, ("overhand_9_1/SparseMaximal", "the 9₁ held 0.5 s", 10), world, controller);
+}
+
+/// Benchmarks one step of `world` under `controller` from their current states as
+/// `step/{id}` with `samples` samples, after a warm-up step that prints the contacts and rows
+/// under `label`.
+fn bench_steps(
+    c: &mut Criterion,
+    (id, label, samples): (&str, &str, usize),
+    mut world: World,
+    mut controller: PhasedController,
+) {
     let (start, saved) = (world.state().clone(), controller.state());
     world.step(&mut controller).expect("warm-up step");
     println!(
-        "the 9₁ held 0.5 s: {} self contacts, rows per group {:?}",
+        "{label}: {} self contacts, rows per group {:?}",
         world.data().report.self_contacts,
         RowGroup::values(&world.data().report.solve.rows_per_tag)
     );
     let mut group = c.benchmark_group("step");
-    group.sample_size(10);
-    group.bench_function("overhand_9_1/SparseMaximal", |b| {
-        time_steps_from(b, &mut world, &mut controller, &start, &saved)
-    });
+    group.sample_size(samples);
+    group.bench_function(id, |b| time_steps_from(b, &mut world, &mut controller, &start, &saved));
     group.finish();
 }
 
