@@ -497,33 +497,37 @@ mod tests {
     }
 
     /// Rows made of bases (`Rows::combine_last`: a pyramid's edges over a contact's three
-    /// bases, with trailing zeros) give the W, r and q̇(λ) of the same rows written out, and
-    /// an exactly symmetric W.
+    /// bases, with trailing zeros; some compliant, as rows of their own between contacts) give
+    /// the W, r, Wλ − r and q̇(λ) of the same rows written out, and an exactly symmetric W.
     fn combinations_are_their_rows(n: usize, contacts: usize, seed: u64) -> Result<(), String> {
         let mut next = stream(seed);
         let mass = random_spd(n, &mut next);
         let force: Vec<f64> = (0..n).map(|_| next()).collect();
         let (mut combined, mut own) = (Rows::new(n), Rows::new(n));
-        let source = RowSource::new(RowTag::new(3), 0);
+        let (source, inequality) = (RowSource::new(RowTag::new(3), 0), RowKind::Inequality);
         for contact in 0..contacts {
             let end = ((next() + 1.0) * 0.5 * (n + 1) as f64) as usize % (n + 1);
             let first = combined.push_bases();
             for k in 0..3 {
                 combined.base_mut(first + k)[..end].iter_mut().for_each(|c| *c = next());
             }
-            // A row of its own between contacts, as a joint limit's.
+            // A row of its own between contacts, as a joint limit's (compliant, as a skin's,
+            // every other time); and the first edge of every other contact compliant: εᵢ on
+            // W_R's diagonal for a row of its own, on W's alone for a combination.
+            let compliant = RowKind::Compliant { compliance: 0.1 + next().abs() };
             if contact % 2 == 1 {
                 let row: Vec<f64> = (0..n).map(|_| next()).collect();
-                let rhs = next();
-                combined.push_zeroed(RowKind::Inequality, source, rhs).copy_from_slice(&row);
-                own.push_zeroed(RowKind::Inequality, source, rhs).copy_from_slice(&row);
+                let (rhs, kind) = (next(), if contact % 4 == 3 { compliant } else { inequality });
+                combined.push_zeroed(kind, source, rhs).copy_from_slice(&row);
+                own.push_zeroed(kind, source, rhs).copy_from_slice(&row);
             }
-            for _ in 0..8 {
+            for edge in 0..8 {
                 let (weights, rhs) = ([next(), next(), next()], next());
-                combined.push_zeroed(RowKind::Inequality, source, rhs);
+                let kind = if edge == 0 && contact % 2 == 0 { compliant } else { inequality };
+                combined.push_zeroed(kind, source, rhs);
                 combined.combine_last(first, weights);
                 let written = combined.row(combined.len() - 1).to_vec();
-                own.push_zeroed(RowKind::Inequality, source, rhs).copy_from_slice(&written);
+                own.push_zeroed(kind, source, rhs).copy_from_slice(&written);
             }
         }
         let m = own.len();
