@@ -7,8 +7,8 @@
 //! each of these sixteen trajectories; with the tighten asked for 30 % instead of 28 %, 2 of
 //! them failed). Over 48 the trefoil holds in all; the tighten reaches 24 % instead of 25 % in
 //! one (δh/h = 39e-12) — docs/physics.md, which has those rates. And on a body 35 cm long,
-//! on four of these trajectories. A tighten control whose loosened knot comes undone during
-//! that phase (2 of the 4 on the 35 cm body) counts as not tightened.
+//! on eight of these trajectories, of which two may lose the knot while tightening. A tighten
+//! control whose loosened knot comes undone during that phase counts as not tightened.
 
 use crate::common::{es103_with, fresh_dir, run_scenario};
 use hagfish_bench_support::length_edits;
@@ -21,8 +21,14 @@ fn sizes(name: &str, sets: &[String]) -> LoosenTighten {
 }
 
 /// Runs `loosen_tighten.ron` with `sets` for δh/h = k·1e-12, k in `perturbations`, with
-/// both controls, and asserts every bound on each; `name` labels the runs.
-fn check_loosen_and_tighten(name: &str, sets: &[String], perturbations: std::ops::Range<u32>) {
+/// both controls, and asserts every bound on each, except on at most `may_lose` runs whose
+/// knot comes undone while tightening; `name` labels the runs.
+fn check_loosen_and_tighten(
+    name: &str,
+    sets: &[String],
+    perturbations: std::ops::Range<u32>,
+    may_lose: usize,
+) {
     let zero = |phase: usize| {
         ["head", "tail"]
             .map(|end| format!("phases[{phase}].Thigmotaxis.parameters.{end}=(0.0, 0.0)"))
@@ -53,24 +59,35 @@ fn check_loosen_and_tighten(name: &str, sets: &[String], perturbations: std::ops
     let find = |k, control| {
         results.iter().find(|(j, c, _)| *j == k && *c == control).map(|(_, _, s)| s).expect("run")
     };
+    let mut lost = Vec::new();
     for k in perturbations {
         let (run, loosen_control, tighten_control) =
             (find(k, None), find(k, Some(1)), find(k, Some(2)));
+        if run.lost_in.as_deref() == Some("tighten") {
+            lost.push(k);
+            continue;
+        }
         let label = format!("{name}, δh/h = {k}e-12");
         let failures = run.failures(loosen_control, tighten_control);
         assert!(failures.is_empty(), "{label}: {}", failures.join("; "));
     }
+    assert!(
+        lost.len() <= may_lose,
+        "{name}: the knot came undone tightening at δh/h = {lost:?}e-12"
+    );
 }
 
 #[test]
 fn loosen_and_tighten_change_the_core_because_of_their_targets() {
-    check_loosen_and_tighten("knot_size", &[], 0..16);
+    check_loosen_and_tighten("knot_size", &[], 0..16, 0);
 }
 
 /// The same on a body 35 cm long (mass ∝ length: 21.4 local diameters instead of 26), as
-/// written and with δh/h = 1…3e-12: the tie's `min_tail_d` puts the crossover at ≈ 0.15 L
+/// written and with δh/h = 1…7e-12: the tie's `min_tail_d` puts the crossover at ≈ 0.15 L
 /// and the loosen's tail feed keeps the tail end beyond the knot (without the feed the
-/// trefoil was lost while tightening in 6 of 16 perturbations; docs/physics.md).
+/// trefoil was lost while tightening in 6 of 16 perturbations). With it the knot still comes
+/// undone while tightening on 2 of 16 (δh/h = 0…15e-12, before decision 0031 and after it
+/// alike; docs/physics.md), so 2 of the 8 may; every run that keeps it meets every bound.
 #[test]
 fn loosen_and_tighten_carry_over_to_a_shorter_body() {
     let dir = fresh_dir("knot_size_short_body");
@@ -78,6 +95,7 @@ fn loosen_and_tighten_carry_over_to_a_shorter_body() {
     check_loosen_and_tighten(
         "knot_size_35",
         &[format!("body={:?}", body.display().to_string())],
-        0..4,
+        0..8,
+        2,
     );
 }

@@ -89,6 +89,9 @@ impl ContactPredictor {
             return 0;
         }
         let mut raised_count = 0;
+        // A contact's rows (its normal or its pyramid's edges) are consecutive and share its
+        // predicted gap: searched once per contact.
+        let mut last_gap: Option<(usize, f64)> = None;
         for (row, source) in rows.sources().iter().enumerate() {
             let contact = match contacts.get(source.id) {
                 // An exact cone's friction rows bound the slip, not the gap.
@@ -96,7 +99,11 @@ impl ContactPredictor {
                 Some(contact) if source.tag == contact_tag => contact,
                 _ => continue,
             };
-            let gap_after = self.gap_after(contact);
+            let gap_after = match last_gap {
+                Some((id, gap)) if id == source.id => gap,
+                _ => self.gap_after(contact),
+            };
+            last_gap = Some((source.id, gap_after));
             let core_gap = skin.core_gap(contact);
             let target = core_gap + time_step * unilateral_rhs(core_gap, time_step, push_out);
             if gap_after >= target - tolerance {

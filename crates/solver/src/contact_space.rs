@@ -42,11 +42,12 @@ use crate::problem::Problem;
 use crate::reduced_rows::ReducedRows;
 
 mod dual_matrix;
+mod row_products;
 
 pub(crate) use dual_matrix::ReducedScratch;
 
 /// Columns per block of the product W = YᵀY.
-const W_BLOCK: usize = 8;
+const W_BLOCK: usize = 96;
 
 /// Columns of Y solved between two polls of the stop flag (a multiple of the tree factor's
 /// four-column batches, so that the columns are solved as in one call).
@@ -59,31 +60,29 @@ const Y_CHUNK: usize = 64;
 const W_POLLED_ENTRIES: usize = 1 << 24;
 
 /// Y_R, W_R, z, r and b of one solve (sizes n × p, p × p, n, m, m), the support eᵢ of the
-/// rows' columns of Y = Y_R Eᵀ (entries eᵢ.. of column i are zero), and the scratch of the
-/// build: the reduced columns (`reduced_rows.rs`; the rows themselves when no row is a
-/// combination), their supports, the columns by decreasing support (`order`), their supports,
-/// and Y_R and W_R in that order (`sorted`, `sorted_w`).
+/// rows' columns of Y = Y_R Eᵀ (entries eᵢ.. of column i are zero), the reduced columns
+/// (`reduced_rows.rs`; the rows themselves when no row is a combination), numbered by
+/// decreasing support, and their supports; `order` and `position` are the build's scratch.
 #[derive(Debug)]
 pub(crate) struct ContactSpace {
     /// Y_R = L⁻¹ of the reduced columns, in their order (Y itself without combinations).
     y: Mat<f64>,
     support: Vec<usize>,
     reduced: ReducedRows,
+    /// The reduced columns' supports, decreasing.
     column_support: Vec<usize>,
     order: Vec<usize>,
-    sorted_support: Vec<usize>,
-    sorted: Mat<f64>,
-    sorted_w: Mat<f64>,
-    /// W_R = Y_RᵀY_R in the reduced columns' order, with εᵢ on the diagonal of a row of its
-    /// own (then W_R's entry is W's).
-    reduced_w: Mat<f64>,
+    position: Vec<usize>,
+    /// W_R = Y_RᵀY_R, both triangles, with εᵢ on the diagonal of a row of its own (then W_R's
+    /// entry is W's).
+    w: Mat<f64>,
     /// b_own − Y_Rᵀz (p; [`ContactSpace::update_force`]).
     reduced_r: Vec<f64>,
     compliance: Vec<f64>,
     z: Vec<f64>,
     r: Vec<f64>,
     b: Vec<f64>,
-    /// The DOFs and rows Y_R, its sorted copy, W_R and its sorted copy have room for.
+    /// The DOFs and rows Y_R and W_R have room for.
     reserved: (usize, usize),
 }
 
@@ -96,10 +95,8 @@ impl ContactSpace {
             reduced: ReducedRows::default(),
             column_support: Vec::new(),
             order: Vec::new(),
-            sorted_support: Vec::new(),
-            sorted: Mat::zeros(0, 0),
-            sorted_w: Mat::zeros(0, 0),
-            reduced_w: Mat::zeros(0, 0),
+            position: Vec::new(),
+            w: Mat::zeros(0, 0),
             reduced_r: Vec::new(),
             compliance: Vec::new(),
             z: Vec::new(),
@@ -116,12 +113,8 @@ impl ContactSpace {
     pub(crate) fn try_reserve(&mut self, dofs: usize, rows: usize) -> Result<(), SolverError> {
         self.try_reserve_matrices(dofs, rows)?;
         self.reduced.try_reserve(rows)?;
-        let indices = [
-            &mut self.support,
-            &mut self.column_support,
-            &mut self.order,
-            &mut self.sorted_support,
-        ];
+        let indices =
+            [&mut self.support, &mut self.column_support, &mut self.order, &mut self.position];
         for buffer in indices {
             try_capacity(buffer, rows, "a contact-space index")?;
         }
@@ -131,8 +124,8 @@ impl ContactSpace {
         try_capacity(&mut self.z, dofs, "z = L⁻¹f̃")
     }
 
-    /// Room for Y_R and its sorted copy (`dofs` × `rows`), W_R and its sorted copy (`rows` ×
-    /// `rows`: there are at most as many reduced columns as rows); nothing is allocated when
+    /// Room for Y_R (`dofs` × `rows`) and W_R (`rows` × `rows`: there are at most as many
+    /// reduced columns as rows); nothing is allocated when
     /// they are that large already. Every build rewrites them whole, so they grow afresh (no
     /// copy of the old values) and by a quarter of their rows at least: rows added step by
     /// step (a knot forming on 100 000 bodies adds ≈ 100 a step to ≈ 1000) would otherwise
@@ -145,9 +138,7 @@ impl ContactSpace {
         let (dofs, rows) = (dofs.max(reserved_dofs), rows.max(reserved_rows + reserved_rows / 4));
         let matrices = [
             (&mut self.y, dofs, "Y_R = L⁻¹ of the reduced columns"),
-            (&mut self.sorted, dofs, "Y_R's sorted copy"),
-            (&mut self.reduced_w, rows, "W_R = Y_RᵀY_R"),
-            (&mut self.sorted_w, rows, "W_R's sorted copy"),
+            (&mut self.w, rows, "W_R = Y_RᵀY_R"),
         ];
         for (matrix, height, what) in matrices {
             *matrix = Mat::zeros(0, 0);
@@ -181,40 +172,34 @@ impl ContactSpace {
             let end = column.iter().rposition(|&c| c != 0.0).map_or(0, |last| last + 1);
             factor.lower_support(end).unwrap_or(n)
         }));
-        // Columns by decreasing support (ties by index): Y's columns in `sorted`, their
-        // supports in `sorted_support`.
+        // The columns by decreasing support (ties by their order), so that W_R's blocks skip
+        // the zero tails.
         self.order.clear();
         self.order.extend(0..p);
         let support = &self.column_support;
         self.order.sort_unstable_by_key(|&j| (core::cmp::Reverse(support[j]), j));
-        self.sorted_support.clear();
-        self.sorted_support.extend(self.order.iter().map(|&j| support[j]));
-        self.sorted.resize_with(n, p, |_, _| 0.0);
-        for (k, &j) in self.order.iter().enumerate() {
-            self.sorted.col_as_slice_mut(k).copy_from_slice(self.reduced.column(rows, j));
+        self.reduced.reorder(&self.order, &mut self.position);
+        self.position.clear();
+        self.position.extend(self.order.iter().map(|&j| self.column_support[j]));
+        std::mem::swap(&mut self.column_support, &mut self.position);
+        self.y.resize_with(n, p, |_, _| 0.0);
+        for k in 0..p {
+            self.y.col_as_slice_mut(k).copy_from_slice(self.reduced.column(rows, k));
         }
         for first in (0..p).step_by(Y_CHUNK) {
             problem.check_stop()?;
             let count = Y_CHUNK.min(p - first);
-            let chunk = self.sorted.as_mut().submatrix_mut(0, first, n, count);
-            factor.solve_lower_supported(chunk, &self.sorted_support[first..first + count]);
+            let chunk = self.y.as_mut().submatrix_mut(0, first, n, count);
+            factor.solve_lower_supported(chunk, &self.column_support[first..first + count]);
         }
         problem.check_stop()?;
-        self.form_sorted_w(p, W_POLLED_ENTRIES, problem)?;
-        // The upper triangle is scattered to both triangles of W_R in the reduced order.
-        self.reduced_w.resize_with(p, p, |_, _| 0.0);
-        for (l, &j) in self.order.iter().enumerate() {
-            for (k, &i) in self.order[..=l].iter().enumerate() {
-                let value = self.sorted_w[(k, l)];
-                self.reduced_w[(i, j)] = value;
-                self.reduced_w[(j, i)] = value;
-            }
-        }
+        self.form_w(p, W_POLLED_ENTRIES, problem)?;
+        mirror_upper(&mut self.w);
         self.compliance.clear();
         self.compliance.extend(rows.kinds().iter().map(|kind| kind.compliance()));
         for (i, &compliance) in self.compliance.iter().enumerate() {
             if let Some(column) = self.reduced.own_column(i).filter(|_| compliance != 0.0) {
-                self.reduced_w[(column, column)] += compliance;
+                self.w[(column, column)] += compliance;
             }
         }
         let (reduced, column_support) = (&self.reduced, &self.column_support);
@@ -224,31 +209,26 @@ impl ContactSpace {
                 reduced.terms(i).iter().map(|&(j, _)| column_support[j]).max().unwrap_or(0)
             }),
         );
-        self.y.resize_with(n, p, |_, _| 0.0);
-        for (k, &j) in self.order.iter().enumerate() {
-            self.y.col_as_slice_mut(j).copy_from_slice(self.sorted.col_as_slice(k));
-        }
         self.update_force(factor, problem);
         Ok(())
     }
 
-    /// `sorted_w`'s upper triangle from `sorted` (Y with its columns sorted by decreasing
-    /// support), by column blocks [a, b): W[..b, a..b] = Y[..e_a, ..b]ᵀY[..e_a, a..b] (e_a,
-    /// the block's largest support, bounds every product in it), polling the stop flag before
-    /// each block, and between chunks of the block's rows when it reads more than
-    /// `polled_entries` entries of Y.
-    fn form_sorted_w(
+    /// W_R's upper triangle from Y_R (its columns by decreasing support), by column blocks
+    /// [a, b): W[..b, a..b] = Y[..e_a, ..b]ᵀY[..e_a, a..b] (e_a, the block's largest support,
+    /// bounds every product in it), polling the stop flag before each block, and between
+    /// chunks of the block's rows when it reads more than `polled_entries` entries of Y.
+    fn form_w(
         &mut self,
         m: usize,
         polled_entries: usize,
         problem: &Problem<'_>,
     ) -> Result<(), SolverError> {
-        self.sorted_w.resize_with(m, m, |_, _| 0.0);
+        self.w.resize_with(m, m, |_, _| 0.0);
         for a in (0..m).step_by(W_BLOCK) {
             problem.check_stop()?;
             let b = (a + W_BLOCK).min(m);
-            let rows_used = self.sorted_support[a];
-            let right = self.sorted.as_ref().submatrix(0, a, rows_used, b - a);
+            let rows_used = self.column_support[a];
+            let right = self.y.as_ref().submatrix(0, a, rows_used, b - a);
             // W's rows [c, d) of the block: all at once, or in polled chunks when large.
             let chunk = if rows_used * b > polled_entries { W_BLOCK } else { b };
             for c in (0..b).step_by(chunk) {
@@ -256,8 +236,8 @@ impl ContactSpace {
                 if c > 0 {
                     problem.check_stop()?;
                 }
-                let left = self.sorted.as_ref().submatrix(0, c, rows_used, d - c);
-                let target = self.sorted_w.as_mut().submatrix_mut(c, a, d - c, b - a);
+                let left = self.y.as_ref().submatrix(0, c, rows_used, d - c);
+                let target = self.w.as_mut().submatrix_mut(c, a, d - c, b - a);
                 matmul(target, Accum::Replace, left.transpose(), right, 1.0, Par::Seq);
             }
         }
@@ -358,6 +338,24 @@ impl ContactSpace {
     ) {
         self.lift(lambda, scratch, qdot);
         factor.solve_upper(column_mut(qdot));
+    }
+}
+
+/// Side of the square tiles in which [`mirror_upper`] copies (cache-sized).
+const MIRROR_TILE: usize = 32;
+
+/// Copies the upper triangle of the square `w` onto its lower one, tile by tile so that the
+/// transposed reads stay in cache.
+fn mirror_upper(w: &mut Mat<f64>) {
+    let p = w.ncols();
+    for tile_j in (0..p).step_by(MIRROR_TILE) {
+        for tile_i in (0..=tile_j).step_by(MIRROR_TILE) {
+            for j in tile_j..(tile_j + MIRROR_TILE).min(p) {
+                for i in tile_i..(tile_i + MIRROR_TILE).min(j) {
+                    w[(j, i)] = w[(i, j)];
+                }
+            }
+        }
     }
 }
 
@@ -483,22 +481,22 @@ mod tests {
         let mut space = ContactSpace::new();
         space.build(&reverse, &problem).expect("room for Y and W");
         let mut whole = Mat::<f64>::zeros(n, m);
-        for (k, &i) in space.order.iter().enumerate() {
-            whole.col_as_slice_mut(k).copy_from_slice(rows.row(i));
+        for k in 0..m {
+            whole.col_as_slice_mut(k).copy_from_slice(space.reduced.column(&rows, k));
         }
-        reverse.solve_lower_supported(whole.as_mut(), &space.sorted_support);
-        assert!(whole == space.sorted, "Y solved in chunks of {Y_CHUNK} columns");
-        let at_once = space.sorted_w.clone();
-        space.form_sorted_w(m, 0, &problem).expect("not stopped");
+        reverse.solve_lower_supported(whole.as_mut(), &space.column_support);
+        assert!(whole == space.y, "Y solved in chunks of {Y_CHUNK} columns");
+        let at_once = space.w.clone();
+        space.form_w(m, 0, &problem).expect("not stopped");
         let upper =
             |w: &Mat<f64>| Mat::<f64>::from_fn(m, m, |i, j| if i <= j { w[(i, j)] } else { 0.0 });
-        let gap = relative_gap(upper(&space.sorted_w).as_ref(), upper(&at_once).as_ref());
+        let gap = relative_gap(upper(&space.w).as_ref(), upper(&at_once).as_ref());
         assert!(gap < 1e-14, "W in polled chunks differs by {gap:e}");
     }
 
     /// Rows made of bases (`Rows::combine_last`: a pyramid's edges over a contact's three
     /// bases, with trailing zeros; some compliant, as rows of their own between contacts) give
-    /// the W, r, Wλ − r and q̇(λ) of the same rows written out, and an exactly symmetric W.
+    /// the W, r, Wλ − r, q̇(λ) and Cq̇ of the same rows written out, and an exactly symmetric W.
     fn combinations_are_their_rows(n: usize, contacts: usize, seed: u64) -> Result<(), String> {
         let mut next = stream(seed);
         let mass = random_spd(n, &mut next);
@@ -542,6 +540,22 @@ mod tests {
         agree((&from_bases, &reverse), (&from_rows, &reverse), &lambda, n)?;
         if from_bases.supports() != from_rows.supports() {
             return Err("the rows' supports differ".into());
+        }
+        // The rows' products with q̇ through the bases: the written rows' within 10⁻¹⁰ of
+        // their size, and a size no smaller than theirs.
+        let qdot: Vec<f64> = (0..n).map(|_| next()).collect();
+        let (mut through_bases, mut written) = (Vec::new(), Vec::new());
+        let scratch = &mut ReducedScratch::default();
+        from_bases.row_products(&combined, &qdot, scratch, &mut through_bases);
+        from_rows.row_products(&own, &qdot, scratch, &mut written);
+        for (i, (&(product, size), &(expected, least))) in
+            through_bases.iter().zip(&written).enumerate()
+        {
+            if (product - expected).abs() > 1e-10 * (1.0 + least) || size < (1.0 - 1e-12) * least {
+                return Err(format!(
+                    "row {i}: cᵀq̇ {product} (size {size}), rows {expected} ({least})"
+                ));
+            }
         }
         Ok(())
     }

@@ -39,12 +39,15 @@ pub(crate) struct ReducedRows {
     terms: Vec<Terms>,
     /// The reduced column of each base vector, or `usize::MAX` before it is met.
     base_column: Vec<usize>,
+    /// Scratch of [`ReducedRows::reorder`].
+    reordered: Vec<ReducedColumn>,
 }
 
 impl ReducedRows {
     /// Room for `rows` rows (and as many reduced columns).
     pub(crate) fn try_reserve(&mut self, rows: usize) -> Result<(), SolverError> {
         try_capacity(&mut self.columns, rows, "the reduced columns")?;
+        try_capacity(&mut self.reordered, rows, "the reduced columns")?;
         try_capacity(&mut self.terms, rows, "the rows' terms")
     }
 
@@ -76,6 +79,27 @@ impl ReducedRows {
                 }
             };
             self.terms.push(terms);
+        }
+    }
+
+    /// Renumbers the columns so that column k is the old column `order[k]` (`order` a
+    /// permutation of 0..p) and the rows' terms name them so; `position` is scratch (p).
+    pub(crate) fn reorder(&mut self, order: &[usize], position: &mut Vec<usize>) {
+        position.clear();
+        position.resize(order.len(), 0);
+        for (k, &j) in order.iter().enumerate() {
+            position[j] = k;
+        }
+        self.reordered.clear();
+        self.reordered.extend(order.iter().map(|&j| self.columns[j]));
+        std::mem::swap(&mut self.columns, &mut self.reordered);
+        for terms in &mut self.terms {
+            for (column, _) in &mut terms.terms[..terms.count] {
+                *column = position[*column];
+            }
+        }
+        for column in self.base_column.iter_mut().filter(|c| **c != usize::MAX) {
+            *column = position[*column];
         }
     }
 

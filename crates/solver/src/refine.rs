@@ -77,8 +77,9 @@ impl Refinement {
         let mut previous = f64::INFINITY;
         for step in 0..max_steps {
             // r₁ = f̃ + Cᵀλ − M̃q̇ and r₂ = b_F − C_F q̇ − E_F λ_F, with their relative size.
-            let measured =
-                Stationarity::measure(problem, qdot, lambda, &mut self.residual, &mut self.work);
+            let (residual, work) = (&mut self.residual, &mut self.work);
+            let supports = Some(dual.supports());
+            let measured = Stationarity::measure(problem, qdot, lambda, supports, residual, work);
             let mut relative = measured.norm / measured.scale;
             for (r2, &i) in self.compact.iter_mut().zip(free.indices()) {
                 let (v, s) = row_residual(problem, i, qdot, lambda, dual.supports()[i]);

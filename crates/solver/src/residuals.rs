@@ -7,10 +7,7 @@
 //! σᵢ = max(0, −vᵢ). The same evaluation serves the iterative refinement (which drives the
 //! free rows' vᵢ and t to rounding level) and the final report, for every backend.
 
-use faer::linalg::matmul::matmul;
-use faer::{Accum, Par};
-
-use crate::linalg::{column, column_mut, dot_and_magnitude, norm_max};
+use crate::linalg::{axpy, dot_and_magnitude, norm_max};
 use crate::problem::Problem;
 use crate::pyramid::{FrictionContact, friction_contacts};
 use crate::report::{Residuals, SlackUsage};
@@ -31,8 +28,18 @@ pub(crate) fn row_residual(
     support: usize,
 ) -> (f64, f64) {
     let coefficients = problem.rows().row(row);
+    residual_of_product(problem, row, lambda, dot_and_magnitude(coefficients, &qdot[..support]))
+}
+
+/// (vᵢ, sᵢ) of [`row_residual`] from the product cᵢᵀq̇ and its size Σⱼ|cᵢⱼq̇ⱼ| (or a bound on
+/// it from above).
+fn residual_of_product(
+    problem: &Problem<'_>,
+    row: usize,
+    lambda: &[f64],
+    (product, magnitude): (f64, f64),
+) -> (f64, f64) {
     let rhs = problem.rhs()[row];
-    let (product, magnitude) = dot_and_magnitude(coefficients, &qdot[..support]);
     match problem.rows().kinds()[row].compliance() {
         0.0 => (product - rhs, 1.0 + rhs.abs() + magnitude),
         compliance => {
@@ -59,29 +66,54 @@ pub(crate) fn row_residuals(
     }));
 }
 
+/// [`row_residuals`] from the rows' products and their sizes already in `out` (m pairs, e.g.
+/// `ContactSpace::row_products`), replaced by (vᵢ, sᵢ).
+pub(crate) fn row_residuals_of_products(
+    problem: &Problem<'_>,
+    lambda: &[f64],
+    out: &mut [(f64, f64)],
+) {
+    for (i, pair) in out.iter_mut().enumerate() {
+        *pair = residual_of_product(problem, i, lambda, *pair);
+    }
+}
+
 /// `residual` ← f̃ + Cᵀλ − M̃q̇ (the negated stationarity residual, the refinement's r₁) using
-/// `work` for Cᵀλ; returns the scale 1 + ‖f̃‖∞ + ‖M̃q̇‖∞ + ‖Cᵀλ‖∞.
+/// `work` for Cᵀλ; returns the scale 1 + ‖f̃‖∞ + ‖M̃q̇‖∞ + ‖Cᵀλ‖∞. `supports` as for
+/// [`row_residuals`].
 pub(crate) fn stationarity(
     problem: &Problem<'_>,
     qdot: &[f64],
     lambda: &[f64],
+    supports: Option<&[usize]>,
     residual: &mut [f64],
     work: &mut [f64],
 ) -> f64 {
     problem.apply_mass(qdot, residual);
-    matmul(
-        column_mut(work),
-        Accum::Replace,
-        problem.rows().transposed(),
-        column(lambda),
-        1.0,
-        Par::Seq,
-    );
+    transposed_product(problem, lambda, supports, work);
     let scale = 1.0 + norm_max(problem.force()) + norm_max(residual) + norm_max(work);
     for ((t, f), c) in residual.iter_mut().zip(problem.force()).zip(work.iter()) {
         *t = f + c - *t;
     }
     scale
+}
+
+/// `out` ← Cᵀλ = Σᵢ λᵢcᵢ, summed row by row over the rows with λᵢ ≠ 0 (most of a friction
+/// pyramid's edges are at rest on their bound 0) and each over its entries `..support` (as
+/// in [`row_residuals`]): a skipped term would add ±0 to each entry, so the sum is the
+/// one over every row and entry, up to the sign of a zero.
+fn transposed_product(
+    problem: &Problem<'_>,
+    lambda: &[f64],
+    supports: Option<&[usize]>,
+    out: &mut [f64],
+) {
+    out.fill(0.0);
+    let rows = problem.rows();
+    for (i, &multiplier) in lambda.iter().enumerate().filter(|&(_, &l)| l != 0.0) {
+        let support = supports.map_or(out.len(), |supports| supports[i]);
+        axpy(multiplier, &rows.row(i)[..support], &mut out[..support]);
+    }
 }
 
 /// The size of the stationarity residual t = M̃q̇ − f̃ − Cᵀλ of an answer: ‖t‖∞ and its
@@ -101,10 +133,11 @@ impl Stationarity {
         problem: &Problem<'_>,
         qdot: &[f64],
         lambda: &[f64],
+        supports: Option<&[usize]>,
         residual: &mut [f64],
         work: &mut [f64],
     ) -> Self {
-        let scale = stationarity(problem, qdot, lambda, residual, work);
+        let scale = stationarity(problem, qdot, lambda, supports, residual, work);
         Self { norm: norm_max(residual), scale }
     }
 }
@@ -263,7 +296,7 @@ mod tests {
         // Exact answer: q̇ = (0, 1), λ = (1, 1), slack 1 on the soft row.
         let (mut a, mut b, mut rows) = ([0.0; 2], [0.0; 2], Vec::new());
         let mut evaluate = |qdot: &[f64], lambda: &[f64]| {
-            let measured = Stationarity::measure(&problem, qdot, lambda, &mut a, &mut b);
+            let measured = Stationarity::measure(&problem, qdot, lambda, None, &mut a, &mut b);
             row_residuals(&problem, qdot, lambda, None, &mut rows);
             evaluate(&problem, lambda, measured, &rows, 1e-9)
         };

@@ -193,6 +193,9 @@ pub struct Rows {
     bases: Mat<f64>,
     /// Base vectors in use.
     base_count: usize,
+    /// The first base of the last combination and the end of its bases' nonzero entries, so
+    /// that a contact's edge rows find it once (cleared when a base is written).
+    bases_extent: Option<(usize, usize)>,
 }
 
 impl Rows {
@@ -206,6 +209,7 @@ impl Rows {
             basis: Vec::new(),
             bases: Mat::zeros(dofs, 0),
             base_count: 0,
+            bases_extent: None,
         }
     }
 
@@ -247,6 +251,7 @@ impl Rows {
         self.sources.clear();
         self.basis.clear();
         self.base_count = 0;
+        self.bases_extent = None;
     }
 
     /// Removes all rows and switches to `dofs` velocities (reallocates only if n changes).
@@ -314,6 +319,7 @@ impl Rows {
     /// Base vector `index` to fill (it must have been pushed).
     pub fn base_mut(&mut self, index: usize) -> &mut [f64] {
         debug_assert!(index < self.base_count, "base {index} not pushed");
+        self.bases_extent = None;
         self.bases.col_as_slice_mut(index)
     }
 
@@ -323,15 +329,26 @@ impl Rows {
     }
 
     /// Makes the last row `Σₖ weights[k] · g_{first+k}`, writing out its coefficients (the
-    /// bases `first..first + 3` must be filled).
+    /// bases `first..first + 3` must be filled): summed over the entries before the bases'
+    /// last nonzero (the contact's bodies' paths to the root), zero after it.
     pub fn combine_last(&mut self, first: usize, weights: [f64; 3]) {
         let Some(index) = self.len().checked_sub(1) else { return };
+        let extent = match self.bases_extent {
+            Some((bases, extent)) if bases == first => extent,
+            _ => {
+                let bases = (first..first + 3).map(|k| self.bases.col_as_slice(k));
+                let ends = bases.map(|g| g.iter().rposition(|&x| x != 0.0).map_or(0, |e| e + 1));
+                ends.max().unwrap_or(0)
+            }
+        };
+        self.bases_extent = Some((first, extent));
         let column = self.coefficients.col_as_slice_mut(index);
-        column.fill(0.0);
-        for (k, &w) in weights.iter().enumerate() {
-            let base = self.bases.col_as_slice(first + k);
-            column.iter_mut().zip(base).for_each(|(c, g)| *c += w * g);
+        let (used, zero) = column.split_at_mut(extent);
+        let [g0, g1, g2] = [0, 1, 2].map(|k| &self.bases.col_as_slice(first + k)[..extent]);
+        for (((c, a), b), d) in used.iter_mut().zip(g0).zip(g1).zip(g2) {
+            *c = weights[0] * a + weights[1] * b + weights[2] * d;
         }
+        zero.fill(0.0);
         self.basis[index] = RowBasis::Combination { first, weights };
     }
 

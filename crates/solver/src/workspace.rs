@@ -42,7 +42,9 @@ use crate::options::{QpBackend, SolverOptions, WarmStart};
 use crate::problem::Problem;
 use crate::refine::{FactoredSystem, Refined, Refinement};
 use crate::report::{SolvePath, SolveReport, SolveStatus};
-use crate::residuals::{Evaluation, Stationarity, evaluate, row_residuals};
+use crate::residuals::{
+    Evaluation, Stationarity, evaluate, row_residuals, row_residuals_of_products,
+};
 use crate::rows::{PerTag, RowKind, RowTag, Rows};
 
 /// How often a refined answer may send a violated bound row back to the active-set method.
@@ -208,7 +210,7 @@ impl SolverWorkspace {
         self.contact_space_ready = backend != Some(QpBackend::Clarabel);
         let stationarity = refined.stationarity.unwrap_or_else(|| {
             let (qdot, lambda) = (&self.velocity, &self.multipliers);
-            Stationarity::measure(problem, qdot, lambda, &mut self.residual, &mut self.work)
+            Stationarity::measure(problem, qdot, lambda, None, &mut self.residual, &mut self.work)
         });
         let evaluation = evaluate(
             problem,
@@ -311,9 +313,10 @@ impl SolverWorkspace {
                 self.options.max_refinement_steps,
             );
             refined = Refined { steps: refined.steps + run.steps, ..run };
-            let supports = Some(self.dual.supports());
             let (qdot, lambda) = (&self.velocity, &self.multipliers);
-            row_residuals(problem, qdot, lambda, supports, &mut self.row_residuals);
+            let residuals = &mut self.row_residuals;
+            self.dual.row_products(problem.rows(), qdot, &mut self.folded, residuals);
+            row_residuals_of_products(problem, lambda, residuals);
             if outcome.termination != Termination::Optimal || pass == VERIFICATION_PASSES {
                 break;
             }
@@ -369,9 +372,11 @@ impl SolverWorkspace {
             }
             self.impulses_written[tag] = count > 0;
         }
-        for (i, source) in rows.sources().iter().enumerate() {
+        // Rows with λᵢ = 0 would add ±0 to each entry: skipped (most pyramid edges).
+        let multipliers = self.multipliers.iter().zip(rows.sources()).enumerate();
+        for (i, (&multiplier, source)) in multipliers.filter(|&(_, (&l, _))| l != 0.0) {
             let impulse = self.impulses.col_as_slice_mut(source.tag.index());
-            axpy(self.multipliers[i], rows.row(i), impulse);
+            axpy(multiplier, rows.row(i), impulse);
         }
     }
 }
@@ -472,7 +477,7 @@ mod tests {
         let report = *workspace.solve(&problem).expect("SPD");
         let (mut residual, mut work) = (vec![0.0; n], vec![0.0; n]);
         let (qdot, lambda) = (workspace.velocity(), workspace.multipliers());
-        let fresh = Stationarity::measure(&problem, qdot, lambda, &mut residual, &mut work);
+        let fresh = Stationarity::measure(&problem, qdot, lambda, None, &mut residual, &mut work);
         let mut residuals = Vec::new();
         row_residuals(&problem, qdot, lambda, None, &mut residuals);
         let evaluation = evaluate(&problem, lambda, fresh, &residuals, options.acceptance);

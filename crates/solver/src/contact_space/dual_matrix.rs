@@ -15,17 +15,18 @@
 
 use super::ContactSpace;
 use crate::error::SolverError;
-use crate::linalg::{Entries, try_capacity, zeroed};
+use crate::linalg::{Entries, add_product_and_size, try_capacity, zeroed};
 
 /// Scratch of the products through the reduced columns ([`ContactSpace::gradient`],
-/// [`ContactSpace::lift`]), p each: Eᵀλ, |E|ᵀ|λ|, the reduced gradient and its magnitude
-/// (grow-only).
+/// [`ContactSpace::lift`], [`ContactSpace::row_products`]), p each: Eᵀλ, |E|ᵀ|λ|, the
+/// reduced gradient and its magnitude, or the reduced columns' products with q̇ and their
+/// sizes (grow-only).
 #[derive(Debug, Default)]
 pub(crate) struct ReducedScratch {
     lambda: Vec<f64>,
     lambda_size: Vec<f64>,
-    gradient: Vec<f64>,
-    magnitude: Vec<f64>,
+    pub(super) gradient: Vec<f64>,
+    pub(super) magnitude: Vec<f64>,
 }
 
 impl ReducedScratch {
@@ -45,7 +46,7 @@ impl Entries for ContactSpace {
     fn entry(&self, i: usize, j: usize) -> f64 {
         let (a, b) = (i.min(j), i.max(j));
         let (terms_a, terms_b) = (self.reduced.terms(a), self.reduced.terms(b));
-        let w = &self.reduced_w;
+        let w = &self.w;
         let sum = match (terms_a, terms_b) {
             (&[(c, _)], &[(d, _)]) => w[(c, d)],
             _ => terms_a
@@ -104,14 +105,7 @@ impl ContactSpace {
                 size[column] = self.r[i].abs();
             }
         }
-        let folded = folded.iter().zip(lambda_size.iter()).enumerate();
-        for (column, (&value, &value_size)) in folded.filter(|(_, (value, _))| **value != 0.0) {
-            let entries = self.reduced_w.col_as_slice(column);
-            for ((g, s), w) in reduced.iter_mut().zip(size.iter_mut()).zip(entries) {
-                *g += w * value;
-                *s += w.abs() * value_size;
-            }
-        }
+        add_product_and_size(&self.w, folded, lambda_size, reduced, size);
         for (i, (g, s)) in gradient.iter_mut().zip(magnitude.iter_mut()).enumerate() {
             if let Some(column) = self.reduced.own_column(i) {
                 (*g, *s) = (reduced[column], size[column]);
