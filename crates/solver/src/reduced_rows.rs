@@ -37,7 +37,8 @@ impl Terms {
 pub(crate) struct ReducedRows {
     columns: Vec<ReducedColumn>,
     terms: Vec<Terms>,
-    /// The reduced column of each base vector, or `usize::MAX` before it is met.
+    /// While [`ReducedRows::reduce`] runs: the reduced column of each base vector, or
+    /// `usize::MAX` before it is met (not renumbered by [`ReducedRows::reorder`]).
     base_column: Vec<usize>,
     /// Scratch of [`ReducedRows::reorder`].
     reordered: Vec<ReducedColumn>,
@@ -97,9 +98,6 @@ impl ReducedRows {
             for (column, _) in &mut terms.terms[..terms.count] {
                 *column = position[*column];
             }
-        }
-        for column in self.base_column.iter_mut().filter(|c| **c != usize::MAX) {
-            *column = position[*column];
         }
     }
 

@@ -8,7 +8,7 @@
 //! as [`dot_and_magnitude`] sums the row over its support, bit for bit.
 
 use super::{ContactSpace, ReducedScratch};
-use crate::linalg::{dot_and_magnitude, zeroed};
+use crate::linalg::dot_and_magnitude;
 use crate::rows::Rows;
 
 impl ContactSpace {
@@ -21,13 +21,13 @@ impl ContactSpace {
         scratch: &mut ReducedScratch,
         out: &mut Vec<(f64, f64)>,
     ) {
-        let p = self.reduced.len();
         let (products, sizes) = (&mut scratch.gradient, &mut scratch.magnitude);
-        zeroed(products, p);
-        zeroed(sizes, p);
-        for (j, (product, size)) in products.iter_mut().zip(sizes.iter_mut()).enumerate() {
-            let support = self.column_support[j];
-            (*product, *size) = dot_and_magnitude(self.reduced.column(rows, j), &qdot[..support]);
+        products.clear();
+        sizes.clear();
+        for (j, &support) in self.column_support.iter().enumerate() {
+            let (product, size) = dot_and_magnitude(self.reduced.column(rows, j), &qdot[..support]);
+            products.push(product);
+            sizes.push(size);
         }
         out.clear();
         out.extend((0..rows.len()).map(|i| match self.reduced.own_column(i) {
