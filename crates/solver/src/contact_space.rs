@@ -494,7 +494,7 @@ mod tests {
         assert!(gap < 1e-14, "W in polled chunks differs by {gap:e}");
     }
 
-    /// Rows made of bases (`Rows::combine_last`: a pyramid's edges over a contact's three
+    /// Rows made of bases (`Rows::push_combination`: a pyramid's edges over a contact's three
     /// bases, with trailing zeros; some compliant, as rows of their own between contacts) give
     /// the W, r, Wλ − r, q̇(λ) and Cq̇ of the same rows written out, and an exactly symmetric W.
     fn combinations_are_their_rows(n: usize, contacts: usize, seed: u64) -> Result<(), String> {
@@ -522,8 +522,7 @@ mod tests {
             for edge in 0..8 {
                 let (weights, rhs) = ([next(), next(), next()], next());
                 let kind = if edge == 0 && contact % 2 == 0 { compliant } else { inequality };
-                combined.push_zeroed(kind, source, rhs);
-                combined.combine_last(first, weights);
+                combined.push_combination(kind, source, rhs, (first, weights));
                 let written = combined.row(combined.len() - 1).to_vec();
                 own.push_zeroed(kind, source, rhs).copy_from_slice(&written);
             }

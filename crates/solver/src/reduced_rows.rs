@@ -151,8 +151,7 @@ mod tests {
             rows.base_mut(first + k).copy_from_slice(base);
         }
         for weights in [[1.0, 2.0, 3.0], [0.5, 0.0, -1.0]] {
-            rows.push_zeroed(RowKind::Inequality, source, 0.0);
-            rows.combine_last(first, weights);
+            rows.push_combination(RowKind::Inequality, source, 0.0, (first, weights));
         }
         assert_eq!(rows.row(1), [4.0, 5.0]);
         assert_eq!(rows.row(2), [-0.5, -1.0]);

@@ -33,7 +33,7 @@
 //! ([`crate::FrictionPyramid`]).
 //!
 //! A row may be stored as a combination of three base vectors, `cᵢ = Σₖ wₖ g_{f+k}`
-//! ([`Rows::push_bases`], [`Rows::combine_last`]): a contact's rows along the edges of its
+//! ([`Rows::push_bases`], [`Rows::push_combination`]): a contact's rows along the edges of its
 //! friction pyramid are all `dᵀG` for the same 3 × n Jacobian G of the contact's relative
 //! velocity. The row's own coefficients are still written out (every path reads them); the
 //! contact-space build solves L⁻¹ for the three bases once instead of once per row
@@ -300,7 +300,7 @@ impl Rows {
     }
 
     /// Appends three zeroed base vectors and returns the index of the first; fill them with
-    /// [`Rows::base_mut`], then make rows of them with [`Rows::combine_last`].
+    /// [`Rows::base_mut`], then make rows of them with [`Rows::push_combination`].
     pub fn push_bases(&mut self) -> usize {
         let first = self.base_count;
         while self.base_count + 3 > self.bases.ncols() {
@@ -323,16 +323,44 @@ impl Rows {
         self.bases.col_as_slice_mut(index)
     }
 
+    /// The three base vectors pushed at `first` by [`Rows::push_bases`], to fill at once.
+    pub fn bases_mut(&mut self, first: usize) -> [&mut [f64]; 3] {
+        debug_assert!(first + 3 <= self.base_count, "bases {first}.. not pushed");
+        self.bases_extent = None;
+        let bases = self.bases.as_mut().subcols_mut(first, 3);
+        let (g0, rest) = bases.split_at_col_mut(1);
+        let (g1, g2) = rest.split_at_col_mut(1);
+        [g0, g1, g2].map(|g| {
+            g.col_mut(0)
+                .try_as_col_major_mut()
+                .expect("a Mat's columns are contiguous")
+                .as_slice_mut()
+        })
+    }
+
     /// Base vector `index` (crate-internal indices only).
     pub(crate) fn base(&self, index: usize) -> &[f64] {
         self.bases.col_as_slice(index)
     }
 
-    /// Makes the last row `Σₖ weights[k] · g_{first+k}`, writing out its coefficients (the
-    /// bases `first..first + 3` must be filled): summed over the entries before the bases'
+    /// Appends the row `Σₖ weights[k] · g_{first+k}` (the bases `first..first + 3` must be
+    /// filled), writing out its coefficients once: summed over the entries before the bases'
     /// last nonzero (the contact's bodies' paths to the root), zero after it.
-    pub fn combine_last(&mut self, first: usize, weights: [f64; 3]) {
-        let Some(index) = self.len().checked_sub(1) else { return };
+    pub fn push_combination(
+        &mut self,
+        kind: RowKind,
+        source: RowSource,
+        rhs: f64,
+        (first, weights): (usize, [f64; 3]),
+    ) {
+        let index = self.len();
+        if index == self.coefficients.ncols() {
+            self.grow();
+        }
+        self.rhs.push(rhs);
+        self.kinds.push(kind);
+        self.sources.push(source);
+        self.basis.push(RowBasis::Combination { first, weights });
         let extent = match self.bases_extent {
             Some((bases, extent)) if bases == first => extent,
             _ => {
@@ -349,7 +377,6 @@ impl Rows {
             *c = weights[0] * a + weights[1] * b + weights[2] * d;
         }
         zero.fill(0.0);
-        self.basis[index] = RowBasis::Combination { first, weights };
     }
 
     /// How each row is made (one per row).

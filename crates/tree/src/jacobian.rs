@@ -79,13 +79,7 @@ pub fn add_point_row(
 
 /// Adds `Σ_k scale_k · nᵀ P_{b_k}(x_k)` to `row` for the points `(b_k, x_k, scale_k)` (at most
 /// 64), in one walk from the highest-numbered body to its root instead of one walk per
-/// point: a DOF a on that path gets `n·v_a C + ((X × n)·ω_a)` with `C = Σ scale_k` and
-/// `X = Σ scale_k x_k` over the points at or below it. Once the walk has passed the
-/// lowest-numbered point's body (if that is on the path), C and X no longer change, and the
-/// rest of the path is added run by run over [`crate::Data::axis_components`] as
-/// `s_a · (X × n; C n)`. Points whose bodies are not on the path are added one by one
-/// ([`add_point_row`]). Equal to the sum of the single-point
-/// rows up to rounding.
+/// point: [`add_point_rows_along`] with one direction.
 pub fn add_point_rows(
     model: &Model,
     data: &Data,
@@ -93,14 +87,37 @@ pub fn add_point_rows(
     n: DVec3,
     row: &mut [f64],
 ) {
+    add_point_rows_along(model, data, points, [n], [row]);
+}
+
+/// Adds `Σ_k scale_k · n_jᵀ P_{b_k}(x_k)` to `rows[j]` for each direction `n_j` (a contact's
+/// three base rows in one walk), for the points `(b_k, x_k, scale_k)` (at most 64), in one
+/// walk from the highest-numbered body to its root instead of one walk per point and
+/// direction: a DOF a on that path gets `n_j·v_a C + ((X × n_j)·ω_a)` with `C = Σ scale_k`
+/// and `X = Σ scale_k x_k` over the points at or below it. Once the walk has passed the
+/// lowest-numbered point's body (if that is on the path), C and X no longer change, and the
+/// rest of the path is added run by run over [`crate::Data::axis_components`] as
+/// `s_a · (X × n_j; C n_j)`. Points whose bodies are not on the path are added one by one
+/// ([`add_point_row`]). Each row gets the operations of a walk of its own, in the same order:
+/// equal to the sum of the single-point rows up to rounding, and bit for bit to one call per
+/// direction.
+pub fn add_point_rows_along<const K: usize>(
+    model: &Model,
+    data: &Data,
+    points: &[(usize, DVec3, f64)],
+    directions: [DVec3; K],
+    mut rows: [&mut [f64]; K],
+) {
     let (Some(deepest), Some(shallowest)) =
         (points.iter().map(|p| p.0).max(), points.iter().map(|p| p.0).min())
     else {
         return;
     };
     if points.len() > 64 {
-        for &(body, x, scale) in points {
-            add_point_row(model, data, body, x, n, scale, row);
+        for (row, n) in rows.iter_mut().zip(directions) {
+            for &(body, x, scale) in points {
+                add_point_row(model, data, body, x, n, scale, row);
+            }
         }
         return;
     }
@@ -115,10 +132,12 @@ pub fn add_point_rows(
             }
         }
         let joint = &model.joints()[body];
-        let moment_arm = moment.cross(n);
-        for a in joint.dofs() {
-            let s = &data.axes[a];
-            row[a] += total * n.dot(s.linear) + moment_arm.dot(s.angular);
+        for (row, n) in rows.iter_mut().zip(directions) {
+            let moment_arm = moment.cross(n);
+            for a in joint.dofs() {
+                let s = &data.axes[a];
+                row[a] += total * n.dot(s.linear) + moment_arm.dot(s.angular);
+            }
         }
         next = joint.parent;
         if body == shallowest {
@@ -126,17 +145,16 @@ pub fn add_point_rows(
         }
     }
     if let Some(parent) = next {
-        let coefficients = Spatial::new(moment.cross(n), total * n);
+        let coefficients = directions.map(|n| Spatial::new(moment.cross(n), total * n));
         for run in model.path_dof_runs(parent) {
-            let products = data.axis_components.dots(run.clone(), &coefficients);
-            for (entry, product) in row[run.clone()].iter_mut().zip(products) {
-                *entry += product;
-            }
+            data.axis_components.add_dots(run.clone(), &coefficients, &mut rows);
         }
     }
-    for (k, &(body, x, scale)) in points.iter().enumerate() {
-        if on_path & (1 << k) == 0 {
-            add_point_row(model, data, body, x, n, scale, row);
+    for (row, n) in rows.iter_mut().zip(directions) {
+        for (k, &(body, x, scale)) in points.iter().enumerate() {
+            if on_path & (1 << k) == 0 {
+                add_point_row(model, data, body, x, n, scale, row);
+            }
         }
     }
 }

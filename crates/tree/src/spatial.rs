@@ -117,6 +117,29 @@ impl SpatialComponents {
             (wx[i] * a.x + wy[i] * a.y + wz[i] * a.z) + (vx[i] * l.x + vy[i] * l.y + vz[i] * l.z)
         })
     }
+
+    /// `outs[j][a] += s_a · w[j]` for each stored vector `s_a` with index `a` in `range` and
+    /// each of the K vectors `w[j]`: [`dots`](Self::dots) of K vectors in one pass over the
+    /// components (each read once for all K), with the same operations (so the same values).
+    ///
+    /// # Panics
+    /// If `range` reaches past the stored vectors or past an output.
+    pub fn add_dots<const K: usize>(
+        &self,
+        range: Range<usize>,
+        w: &[Spatial; K],
+        outs: &mut [&mut [f64]; K],
+    ) {
+        let [wx, wy, wz, vx, vy, vz] = self.components.each_ref().map(|c| &c[range.clone()]);
+        let mut outs = outs.each_mut().map(|out| &mut out[range.clone()]);
+        for i in 0..range.len() {
+            for (out, w) in outs.iter_mut().zip(w) {
+                let (a, l) = (w.angular, w.linear);
+                out[i] += (wx[i] * a.x + wy[i] * a.y + wz[i] * a.z)
+                    + (vx[i] * l.x + vy[i] * l.y + vz[i] * l.z);
+            }
+        }
+    }
 }
 
 /// A spatial motion vector `(ω; v)` (twist) or force vector `(n; f)` (wrench); which one is

@@ -17,7 +17,6 @@ use glam::DVec3;
 use hagfish_solver::{FrictionPyramid, RowKind, Rows};
 use serde::{Deserialize, Serialize};
 
-use super::RowGroup;
 use super::stabilisation::unilateral_rhs;
 use crate::error::SimError;
 
@@ -119,20 +118,18 @@ pub fn contact_directions(
     friction.edges
 }
 
-/// Pushes row `k` of a contact's rows, the first of which is row `first` of `rows`, and
-/// returns its coefficients to fill: a unilateral row on the contact's `gap`
-/// ([`unilateral_rhs`]) for the normal and for every edge of a pyramid, or with the exact cone
-/// (k = 1, 2) a friction row of the cone whose normal row is `first`, target 0. On a moving
-/// surface the row bounds the velocity relative to it: `surface_speed` (the row's direction
-/// · the surface's velocity) is added to the bound (zero adds nothing, bit for bit).
-pub(super) fn push_contact_row(
-    rows: &mut Rows,
-    (group, id): (RowGroup, usize),
+/// The kind and bound of row `k` of a contact's rows, the first of which is row `first` of
+/// the rows: a unilateral row on the contact's `gap` ([`unilateral_rhs`]) for the normal and
+/// for every edge of a pyramid, or with the exact cone (k = 1, 2) a friction row of the cone
+/// whose normal row is `first`, target 0. On a moving surface the row bounds the velocity
+/// relative to it: `surface_speed` (the row's direction · the surface's velocity) is added to
+/// the bound (zero adds nothing, bit for bit).
+pub(super) fn contact_row(
     (gap, surface_speed): (f64, f64),
     (time_step, push_out): (f64, f64),
     friction: Option<Friction>,
     (k, first): (usize, usize),
-) -> &mut [f64] {
+) -> (RowKind, f64) {
     let (kind, target) = match friction {
         Some(Friction { coefficient, cone: ConeForm::Exact, .. }) if k > 0 => {
             (RowKind::Friction { normal: first, coefficient }, 0.0)
@@ -140,28 +137,26 @@ pub(super) fn push_contact_row(
         _ => (RowKind::Inequality, unilateral_rhs(gap, time_step, push_out)),
     };
     let rhs = if surface_speed == 0.0 { target } else { target + surface_speed };
-    rows.push_zeroed(kind, group.source(id), rhs)
+    (kind, rhs)
 }
 
 /// The three base rows of a contact whose `edges` rows run along the edges of a friction
 /// pyramid, or `None` (frictionless, or the exact cone: one row per direction already): each
 /// edge row `dᵀG` is then `Σₖ d_k g_k` with `g_k` the row along world axis k, which `fill`
-/// writes (`Rows::combine_last`), so that the contact-space build solves for three rows
-/// instead of `edges`.
+/// writes, given the three axes and their rows (`Rows::push_combination`), so that the
+/// contact-space build solves for three rows instead of `edges`.
 pub(super) fn push_pyramid_bases(
     rows: &mut Rows,
     friction: Option<Friction>,
     edges: usize,
-    mut fill: impl FnMut(DVec3, &mut [f64]),
+    fill: impl FnOnce([DVec3; 3], [&mut [f64]; 3]),
 ) -> Option<usize> {
     let pyramid = friction.is_some_and(|f| f.cone == ConeForm::Pyramid);
     if !pyramid || edges < 2 {
         return None;
     }
     let first = rows.push_bases();
-    for (k, axis) in [DVec3::X, DVec3::Y, DVec3::Z].into_iter().enumerate() {
-        fill(axis, rows.base_mut(first + k));
-    }
+    fill([DVec3::X, DVec3::Y, DVec3::Z], rows.bases_mut(first));
     Some(first)
 }
 

@@ -8,12 +8,12 @@
 use glam::DVec3;
 use hagfish_geometry::{Centreline, SelfContact, SplineWeights};
 use hagfish_solver::{RowKind, Rows};
-use hagfish_tree::jacobian::add_point_rows;
+use hagfish_tree::jacobian::{add_point_rows, add_point_rows_along};
 use hagfish_tree::{Data, Model};
 
 use super::RowGroup;
 use super::friction::{
-    Friction, MAX_FRICTION_EDGES, contact_directions, push_contact_row, push_pyramid_bases,
+    Friction, MAX_FRICTION_EDGES, contact_directions, contact_row, push_pyramid_bases,
 };
 use crate::skin::SkinLayer;
 
@@ -49,17 +49,22 @@ pub fn add_self_contact_rows(
         let edges =
             contact_directions(contact.normal, contact.tangent_a, friction, &mut directions);
         let contact_points = &points[..count];
-        let bases = push_pyramid_bases(rows, friction, edges, |axis, base| {
-            add_point_rows(model, data, contact_points, axis, base);
+        let bases = push_pyramid_bases(rows, friction, edges, |axes, bases| {
+            add_point_rows_along(model, data, contact_points, axes, bases);
         });
         let first = rows.len();
         for (k, &direction) in directions[..edges].iter().enumerate() {
-            let (place, stabilisation) = ((RowGroup::Contact, i), (time_step, push_out));
+            let (source, stabilisation) = (RowGroup::Contact.source(i), (time_step, push_out));
             let gap = (core_gap, 0.0);
-            let row = push_contact_row(rows, place, gap, stabilisation, friction, (k, first));
+            let (kind, rhs) = contact_row(gap, stabilisation, friction, (k, first));
             match bases {
-                Some(bases) => rows.combine_last(bases, direction.to_array()),
-                None => add_point_rows(model, data, contact_points, direction, row),
+                Some(bases) => {
+                    rows.push_combination(kind, source, rhs, (bases, direction.to_array()))
+                }
+                None => {
+                    let row = rows.push_zeroed(kind, source, rhs);
+                    add_point_rows(model, data, contact_points, direction, row);
+                }
             }
         }
         let carries_spring = skin_carriers.is_none_or(|carriers| carriers[i]);

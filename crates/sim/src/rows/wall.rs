@@ -13,7 +13,7 @@ use hagfish_tree::{Data, Model};
 
 use super::RowGroup;
 use super::friction::{
-    Friction, MAX_FRICTION_EDGES, contact_directions, push_contact_row, push_pyramid_bases,
+    Friction, MAX_FRICTION_EDGES, contact_directions, contact_row, push_pyramid_bases,
     wall_contact_offset,
 };
 
@@ -34,17 +34,24 @@ pub fn add_wall_rows(
         let offset = wall_contact_offset(edges, radii[contact.body], contact.normal);
         // The centre itself, bit for bit, where there is no offset.
         let point = if edges == 1 { centre } else { centre + offset };
-        let bases = push_pyramid_bases(rows, friction, edges, |axis, base| {
-            add_point_row(model, data, contact.body, point, axis, 1.0, base);
+        let bases = push_pyramid_bases(rows, friction, edges, |axes, bases| {
+            for (axis, base) in axes.into_iter().zip(bases) {
+                add_point_row(model, data, contact.body, point, axis, 1.0, base);
+            }
         });
         let first = rows.len();
         for (k, &direction) in directions[..edges].iter().enumerate() {
-            let (place, stabilisation) = ((RowGroup::Wall, i), (time_step, push_out));
+            let (source, stabilisation) = (RowGroup::Wall.source(i), (time_step, push_out));
             let gap = (contact.gap, direction.dot(contact.surface_velocity));
-            let row = push_contact_row(rows, place, gap, stabilisation, friction, (k, first));
+            let (kind, rhs) = contact_row(gap, stabilisation, friction, (k, first));
             match bases {
-                Some(bases) => rows.combine_last(bases, direction.to_array()),
-                None => add_point_row(model, data, contact.body, point, direction, 1.0, row),
+                Some(bases) => {
+                    rows.push_combination(kind, source, rhs, (bases, direction.to_array()))
+                }
+                None => {
+                    let row = rows.push_zeroed(kind, source, rhs);
+                    add_point_row(model, data, contact.body, point, direction, 1.0, row);
+                }
             }
         }
     }

@@ -5,8 +5,8 @@ use crate::common::{self, *};
 use faer::Mat;
 use glam::DVec3;
 use hagfish_tree::jacobian::{
-    add_point_row, add_point_rows, body_bias_acceleration, body_jacobian, body_twist,
-    point_jacobian,
+    add_point_row, add_point_rows, add_point_rows_along, body_bias_acceleration, body_jacobian,
+    body_twist, point_jacobian,
 };
 use proptest::prelude::*;
 
@@ -40,7 +40,8 @@ fn spread_points(
         .collect()
 }
 
-/// `add_point_rows` against the sum of `add_point_row` over the points.
+/// `add_point_rows` against the sum of `add_point_row` over the points, and
+/// `add_point_rows_along` three directions against `add_point_rows` along each.
 fn check_blended_rows(
     model: &hagfish_tree::Model,
     data: &hagfish_tree::Data,
@@ -57,6 +58,15 @@ fn check_blended_rows(
     let scale = single.iter().fold(1.0_f64, |m, v| m.max(v.abs()));
     for (a, (x, y)) in blended.iter().zip(&single).enumerate() {
         prop_assert!((x - y).abs() <= 1e-12 * scale, "dof {a}: {x} vs {y}");
+    }
+    // Along three directions in one walk: each row bit for bit the walk of its own.
+    let directions = [normal, normal.cross(DVec3::X) + DVec3::Y, DVec3::new(0.3, -2.0, 0.7)];
+    let mut together = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
+    add_point_rows_along(model, data, points, directions, together.each_mut().map(|r| &mut r[..]));
+    for (row, direction) in together.iter().zip(directions) {
+        let mut alone = vec![0.0; n];
+        add_point_rows(model, data, points, direction, &mut alone);
+        prop_assert_eq!(row, &alone, "along {}", direction);
     }
     Ok(())
 }
