@@ -59,6 +59,7 @@ mod narrow_phase;
 mod nearby;
 mod obstacle;
 mod obstacle_path;
+mod obstacle_spin;
 mod pair_queue;
 mod sampled_segment;
 mod seeds;
@@ -80,6 +81,7 @@ pub use narrow_phase::{
 pub use nearby::{NearbyClosestPoints, closest_points_near};
 pub use obstacle::Obstacle;
 pub use obstacle_path::{MovingObstacle, ObstaclePath};
+pub use obstacle_spin::Spin;
 pub use segment::Segment;
 pub use wall::{Wall, WallContact, WallOptions};
 pub use weights::SplineWeights;

@@ -90,6 +90,15 @@ impl Obstacle {
         }
     }
 
+    /// The point a turn is about ([`crate::Spin`]): the plane's point, the sphere's centre, the
+    /// cylinder's axis point.
+    pub fn reference_point(&self) -> DVec3 {
+        match *self {
+            Obstacle::Plane { point, .. } | Obstacle::Cylinder { point, .. } => point,
+            Obstacle::Sphere { centre, .. } => centre,
+        }
+    }
+
     /// The signed distance of `c` from the surface (cm, negative inside) and the outward unit
     /// normal at the nearest surface point (module docs).
     pub fn distance(&self, c: DVec3) -> (f64, DVec3) {

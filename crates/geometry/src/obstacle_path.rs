@@ -1,13 +1,15 @@
 //! Obstacles that move on a prescribed path: offsets from their pose at given times,
 //! linear between them (so the obstacle moves at a constant velocity along each leg) and held
-//! beyond the ends. A moving obstacle's contacts carry its velocity, and the contact rows
-//! bound the body's velocity relative to it: nᵀ(ċ_k − v_o) ≥ b.
+//! beyond the ends; it may also turn about an axis of its symmetry (`obstacle_spin.rs`). A
+//! moving obstacle's contacts carry its surface's velocity v_o, and the contact rows bound the
+//! body's velocity relative to it: dᵀ(ċ_k − v_o) ≥ b.
 
 use glam::DVec3;
 
 use crate::centreline::Centreline;
 use crate::error::GeometryError;
 use crate::obstacle::Obstacle;
+use crate::obstacle_spin::Spin;
 use crate::wall::WallContact;
 
 /// A path: (time s, offset cm) waypoints at strictly increasing times; none for a still
@@ -79,18 +81,21 @@ enum Leg {
     Moving { start: (f64, DVec3), end: (f64, DVec3) },
 }
 
-/// An obstacle and its path (a still one has an empty path).
+/// An obstacle, its path (a still one has an empty path) and its turn about an axis of its
+/// symmetry, if it turns.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MovingObstacle {
     /// The obstacle as posed at offset zero.
     pub shape: Obstacle,
     /// Its path.
     pub path: ObstaclePath,
+    /// Its turn, which moves its surface and not its shape.
+    pub spin: Option<Spin>,
 }
 
 impl From<Obstacle> for MovingObstacle {
     fn from(shape: Obstacle) -> Self {
-        MovingObstacle { shape, path: ObstaclePath::default() }
+        MovingObstacle { shape, path: ObstaclePath::default(), spin: None }
     }
 }
 
@@ -101,7 +106,9 @@ impl MovingObstacle {
     }
 
     /// Appends to `out` the contacts of [`Obstacle::contacts`] with the obstacle where it is
-    /// at time `t`, each carrying its velocity then.
+    /// at time `t`, each carrying the velocity of the surface point nearest its body's centre
+    /// c_k then: the path's v, plus ω × (s − p) where it turns, s = c_k − (gap + r_k) n the
+    /// surface point and p the obstacle's reference point.
     pub fn contacts(
         &self,
         centreline: &Centreline,
@@ -110,10 +117,19 @@ impl MovingObstacle {
         out: &mut Vec<WallContact>,
     ) {
         let first = out.len();
-        self.at(t).contacts(centreline, margin, out);
+        let obstacle = self.at(t);
+        obstacle.contacts(centreline, margin, out);
         let velocity = self.path.velocity(t);
         for contact in &mut out[first..] {
-            contact.surface_velocity = velocity;
+            contact.surface_velocity = match self.spin {
+                None => velocity,
+                Some(spin) => {
+                    let (centre, radius) =
+                        (centreline.centres()[contact.body], centreline.radii()[contact.body]);
+                    let surface = centre - (contact.gap + radius) * contact.normal;
+                    velocity + spin.surface_velocity(obstacle.reference_point(), surface)
+                }
+            };
         }
     }
 }

@@ -43,7 +43,7 @@ mod scenario_check;
 
 pub use error::{ECHO_HEAD, ECHO_TAIL, ScenarioError, echo};
 pub use initial_shape::{InitialShape, OpenTorusKnot};
-pub use obstacles::ObstacleSpec;
+pub use obstacles::{ObstacleSpec, SpinSpec};
 pub use overrides::{Override, apply_overrides};
 pub use parameters::{PARAMETERS, Parameter};
 pub use polyline_shape::PolylineShape;

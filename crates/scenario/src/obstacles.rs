@@ -2,7 +2,7 @@
 //! and cylinders posed in space, in cm, still or moving on a path.
 
 use glam::DVec3;
-use hagfish_geometry::{GeometryError, MovingObstacle, Obstacle, ObstaclePath};
+use hagfish_geometry::{GeometryError, MovingObstacle, Obstacle, ObstaclePath, Spin};
 use serde::{Deserialize, Serialize};
 
 /// One obstacle of a scenario's `obstacles` list, e.g.
@@ -41,23 +41,45 @@ pub enum ObstacleSpec {
     /// A still obstacle `shape` moved along `path`: (time s, offset cm) waypoints at
     /// increasing times, linear between them and held beyond the ends, e.g.
     /// `Moving(shape: Sphere(centre: (5.0, 3.0, 0.0), radius: 1.0), path: [(0.0, (0.0, 0.0,
-    /// 0.0)), (10.0, (20.0, 0.0, 0.0))])` (2 cm/s along x for 10 s).
+    /// 0.0)), (10.0, (20.0, 0.0, 0.0))])` (2 cm/s along x for 10 s); and optionally turning
+    /// about an axis of its symmetry, e.g. a roller turning in place:
+    /// `Moving(shape: Cylinder(…, axis: (0.0, 0.0, 1.0), …), path: [], spin: Some((axis:
+    /// (0.0, 0.0, 1.0), rate_rad_per_s: 0.5)))`.
     Moving {
         /// The obstacle at offset zero (not itself a moving one).
         shape: Box<ObstacleSpec>,
-        /// The waypoints.
+        /// The waypoints (none: it stays where `shape` puts it).
         path: Vec<(f64, [f64; 3])>,
+        /// Its turn (`None`, the default: it does not turn).
+        #[serde(default)]
+        spin: Option<SpinSpec>,
     },
+}
+
+/// A turn of an obstacle about an axis of its symmetry through its reference point (the
+/// sphere's centre, the cylinder's axis point, the plane's point; `hagfish_geometry::Spin`):
+/// any axis for a sphere, its own axis for a cylinder, its normal for a plane.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpinSpec {
+    /// The axis (any length but zero), right-handed with the rate.
+    pub axis: [f64; 3],
+    /// The angular speed (rad/s).
+    pub rate_rad_per_s: f64,
 }
 
 impl ObstacleSpec {
     /// The obstacle and its path (empty for a still one), its numbers checked.
     pub fn to_obstacle(&self) -> Result<MovingObstacle, GeometryError> {
         match self {
-            ObstacleSpec::Moving { shape, path } => {
+            ObstacleSpec::Moving { shape, path, spin } => {
                 let waypoints = path.iter().map(|&(t, offset)| (t, DVec3::from(offset))).collect();
                 let path = ObstaclePath::new(waypoints)?;
-                Ok(MovingObstacle { shape: shape.to_still_obstacle()?, path })
+                let shape = shape.to_still_obstacle()?;
+                let spin = spin
+                    .map(|spin| Spin::new(&shape, spin.axis.into(), spin.rate_rad_per_s))
+                    .transpose()?;
+                Ok(MovingObstacle { shape, path, spin })
             }
             still => still.to_still_obstacle().map(MovingObstacle::from),
         }
@@ -111,7 +133,17 @@ mod tests {
                          path: [(2.0, (0.0, 0.0, 0.0)), (1.0, (1.0, 0.0, 0.0))])";
         let backwards: ObstacleSpec = ron::from_str(backwards).expect("parses");
         assert!(backwards.to_obstacle().is_err(), "times must increase");
-        let nested = ObstacleSpec::Moving { shape: Box::new(moving), path: Vec::new() };
+        let nested = ObstacleSpec::Moving { shape: Box::new(moving), path: Vec::new(), spin: None };
         assert!(nested.to_obstacle().is_err(), "a moving shape on a path");
+        let roller = "Moving(shape: Cylinder(point: (0.0, 0.0, 0.0), axis: (0.0, 0.0, 1.0), \
+                      radius: 2.0), path: [], spin: Some((axis: (0.0, 0.0, 2.0), \
+                      rate_rad_per_s: 0.5)))";
+        let roller: ObstacleSpec = ron::from_str(roller).expect("a turning roller");
+        let spin = roller.to_obstacle().expect("valid").spin.expect("a spin");
+        assert_eq!(spin.angular_velocity(), glam::DVec3::new(0.0, 0.0, 0.5));
+        let ObstacleSpec::Moving { shape, path, .. } = roller else { unreachable!() };
+        let spin = Some(SpinSpec { axis: [1.0, 0.0, 0.0], rate_rad_per_s: 0.5 });
+        let across = ObstacleSpec::Moving { shape, path, spin };
+        assert!(across.to_obstacle().is_err(), "a roller turning across its axis");
     }
 }
