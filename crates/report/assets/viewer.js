@@ -186,13 +186,14 @@
       count: 6
     };
 
-    // The obstacles: grey line segments, moved to each frame's offset when they move.
+    // The obstacles: grey line segments, moved to each frame's pose (R row by row, then t)
+    // when they move or turn.
     var obstacles = (data.obstacles || []).map(function (o) {
       var base = new Float32Array(o.segments), n = base.length / 3;
       var up = new Float32Array(3 * n), index = new Uint16Array(n);
       for (var v = 0; v < n; v++) { up[3 * v + 2] = 1; index[v] = v; }
       return {
-        base: base, offsets: o.offsets, moved: new Float32Array(base.length),
+        base: base, poses: o.poses, moved: new Float32Array(base.length),
         position: buffer(gl.ARRAY_BUFFER, base, gl.DYNAMIC_DRAW),
         normal: buffer(gl.ARRAY_BUFFER, up, gl.STATIC_DRAW),
         colour: buffer(gl.ARRAY_BUFFER, new Float32Array(3 * n).fill(0.35), gl.STATIC_DRAW),
@@ -233,8 +234,12 @@
       bind(body);
       gl.drawElements(gl.TRIANGLES, body.count, gl.UNSIGNED_SHORT, 0);
       obstacles.forEach(function (o) {
-        if (o.offsets.length) {
-          for (var i = 0; i < o.base.length; i++) o.moved[i] = o.base[i] + o.offsets[3 * frame + i % 3];
+        if (o.poses.length) {
+          var p = o.poses.slice(12 * frame, 12 * frame + 12);
+          for (var i = 0; i < o.base.length; i += 3) {
+            var x = o.base[i], y = o.base[i + 1], z = o.base[i + 2];
+            for (var a = 0; a < 3; a++) o.moved[i + a] = p[3 * a] * x + p[3 * a + 1] * y + p[3 * a + 2] * z + p[9 + a];
+          }
           gl.bindBuffer(gl.ARRAY_BUFFER, o.position);
           gl.bufferSubData(gl.ARRAY_BUFFER, 0, o.moved);
         }

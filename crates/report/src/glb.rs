@@ -6,12 +6,13 @@
 
 use std::collections::HashMap;
 
+use glam::DQuat;
 use serde::{Serialize, Serializer};
 use serde_json::{Value, json};
 
 use crate::centreline::Centreline;
 use crate::colour::sequential;
-use crate::obstacles::ObstacleTrack;
+use crate::obstacles::{ObstacleTrack, Pose};
 
 /// glTF primitive mode of line segments (vertex pairs).
 const LINES: u32 = 1;
@@ -236,28 +237,54 @@ impl ObstacleParts {
                 "attributes": { "POSITION": positions }, "mode": LINES, "material": bodies
             }] }));
             let node = bodies + k;
-            let start = obstacle.offsets.first().map_or([0.0; 3], |p| to_gltf(*p));
-            parts.nodes.push(
-                json!({ "name": format!("obstacle {k}"), "mesh": node, "translation": start }),
-            );
-            if obstacle.offsets.is_empty() {
+            let translation = |pose: &Pose| to_gltf(pose.translation.to_array());
+            let start = obstacle.poses.first().map_or([0.0; 3], translation);
+            let rotation = obstacle.poses.first().map_or([0.0, 0.0, 0.0, 1.0], gltf_rotation);
+            parts.nodes.push(json!({
+                "name": format!("obstacle {k}"), "mesh": node, "translation": start,
+                "rotation": rotation
+            }));
+            if obstacle.poses.is_empty() {
                 continue;
             }
-            let track = obstacle.offsets.iter().flat_map(|p| to_gltf(*p));
-            let view = buffer.view(&floats(track), None);
-            let output = accessors + parts.accessors.len();
-            parts.accessors.push(json!({
-                "bufferView": view, "componentType": FLOAT, "count": obstacle.offsets.len(),
-                "type": "VEC3"
-            }));
-            let sampler = bodies + parts.samplers.len();
-            parts.samplers.push(json!({ "input": 3, "output": output, "interpolation": "LINEAR" }));
-            parts.channels.push(
-                json!({ "sampler": sampler, "target": { "node": node, "path": "translation" } }),
-            );
+            let translations = obstacle.poses.iter().flat_map(translation);
+            parts.animate(buffer, (accessors, bodies), node, ("translation", "VEC3"), translations);
+            if obstacle.poses.iter().any(|pose| pose.rotation != DQuat::IDENTITY) {
+                let rotations = obstacle.poses.iter().flat_map(gltf_rotation);
+                parts.animate(buffer, (accessors, bodies), node, ("rotation", "VEC4"), rotations);
+            }
         }
         parts
     }
+
+    /// Animates `path` (`translation` or `rotation`, values of glTF type `kind`, one per
+    /// frame in `values`) of `node`, linearly between frames (spherically for a rotation).
+    fn animate(
+        &mut self,
+        buffer: &mut Buffer,
+        (accessors, bodies): (usize, usize),
+        node: usize,
+        (path, kind): (&str, &str),
+        values: impl Iterator<Item = f32>,
+    ) {
+        let values: Vec<f32> = values.collect();
+        let count = values.len() / if kind == "VEC4" { 4 } else { 3 };
+        let view = buffer.view(&floats(values), None);
+        let output = accessors + self.accessors.len();
+        self.accessors.push(json!({
+            "bufferView": view, "componentType": FLOAT, "count": count, "type": kind
+        }));
+        let sampler = bodies + self.samplers.len();
+        self.samplers.push(json!({ "input": 3, "output": output, "interpolation": "LINEAR" }));
+        self.channels.push(json!({ "sampler": sampler, "target": { "node": node, "path": path } }));
+    }
+}
+
+/// A pose's rotation as a glTF quaternion (x, y, z, w) in [`to_gltf`]'s axes (x, z, −y): the
+/// same turn about the axis carried over.
+fn gltf_rotation(pose: &Pose) -> [f32; 4] {
+    let q = pose.rotation;
+    [q.x as f32, q.z as f32, -q.y as f32, q.w as f32]
 }
 
 /// The `.glb` bytes of the animated run: `radii` per body (cm), and the `obstacles` (their
@@ -373,6 +400,7 @@ pub fn encode(centreline: &Centreline, radii: &[f64], obstacles: &[ObstacleTrack
 mod tests {
     use super::*;
     use crate::test_files::two_frames;
+    use glam::DVec3;
 
     fn word(bytes: &[u8], at: usize) -> usize {
         u32::from_le_bytes([bytes[at], bytes[at + 1], bytes[at + 2], bytes[at + 3]]) as usize
@@ -483,20 +511,39 @@ mod tests {
     fn obstacles_are_grey_line_nodes_after_the_bodies_and_a_moving_one_is_animated() {
         let centreline = two_frames();
         let square = vec![vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0]]];
-        let still = ObstacleTrack { lines: square.clone(), offsets: Vec::new() };
-        let moving = ObstacleTrack { lines: square, offsets: vec![[0.0; 3], [0.0, 0.0, 10.0]] };
-        let glb = encode(&centreline, &[1.0, 0.5, 0.25], &[still, moving]);
+        let still = ObstacleTrack { lines: square.clone(), poses: Vec::new() };
+        let at = |z: f64| Pose { rotation: DQuat::IDENTITY, translation: DVec3::new(0.0, 0.0, z) };
+        let moving = ObstacleTrack { lines: square.clone(), poses: vec![at(0.0), at(10.0)] };
+        let turned = Pose { rotation: DQuat::from_rotation_z(0.5), translation: DVec3::ZERO };
+        let turning = ObstacleTrack { lines: square, poses: vec![at(0.0), turned] };
+        let glb = encode(&centreline, &[1.0, 0.5, 0.25], &[still, moving, turning]);
         let (document, _) = parse(&glb);
-        assert_eq!(document["nodes"].as_array().map(Vec::len), Some(5));
-        assert_eq!(document["scenes"][0]["nodes"].as_array().map(Vec::len), Some(5));
+        assert_eq!(document["nodes"].as_array().map(Vec::len), Some(6));
+        assert_eq!(document["scenes"][0]["nodes"].as_array().map(Vec::len), Some(6));
         let primitive = &document["meshes"][3]["primitives"][0];
         assert_eq!(primitive["mode"].as_u64(), Some(u64::from(LINES)));
         assert_eq!(primitive["material"].as_u64(), Some(3), "the grey material after the bodies'");
         let positions = primitive["attributes"]["POSITION"].as_u64().expect("positions") as usize;
         assert_eq!(document["accessors"][positions]["count"].as_u64(), Some(4), "two segments");
         let channels = document["animations"][0]["channels"].as_array().expect("channels");
-        assert_eq!(channels.len(), 4, "three bodies and the moving obstacle");
+        assert_eq!(channels.len(), 6, "three bodies, the moving obstacle, the turning one twice");
         assert_eq!(channels[3]["target"]["node"].as_u64(), Some(4));
         assert_eq!(document["nodes"][4]["translation"][2].as_f64(), Some(0.0));
+        let targets = [4, 5].map(|c| channels[c]["target"].clone());
+        assert_eq!(targets[0]["path"], "translation");
+        assert_eq!(
+            (targets[1]["node"].as_u64(), &targets[1]["path"]),
+            (Some(5), &json!("rotation"))
+        );
+        let sampler = channels[5]["sampler"].as_u64().expect("sampler") as usize;
+        let output = document["animations"][0]["samplers"][sampler]["output"].as_u64();
+        let accessor = &document["accessors"][output.expect("output") as usize];
+        assert_eq!(
+            (accessor["type"].as_str(), accessor["count"].as_u64()),
+            (Some("VEC4"), Some(2))
+        );
+        // A turn about the model's z (up) is a turn about glTF's y (up).
+        let q = gltf_rotation(&turned);
+        assert!(q[0] == 0.0 && q[1] > 0.0 && q[2] == 0.0 && q[3] > 0.0, "{q:?}");
     }
 }

@@ -76,15 +76,19 @@ fn run_data(run: &RunDir) -> String {
         .kept(m.frames())
         .map(|f| format!("phase {}, knot {}", m.phase[f], m.knot[f]))
         .collect();
-    // Each obstacle: its wireframe's segments (vertex pairs, cm) at offset zero, and its
-    // offset at each frame (none when it stands still).
+    // Each obstacle: its wireframe's segments (vertex pairs, cm) at offset zero, and its pose
+    // at each frame (none when it stands still): R row by row, then t, 12 numbers a frame.
     let obstacles: Vec<serde_json::Value> = obstacles::tracks(run)
         .iter()
         .map(|track| {
             let segments = track.lines.iter().flat_map(|line| line.windows(2).flatten());
+            let poses = track.poses.iter().flat_map(|pose| {
+                let r = glam::DMat3::from_quat(pose.rotation).transpose().to_cols_array();
+                r.into_iter().chain(pose.translation.to_array())
+            });
             serde_json::json!({
                 "segments": segments.flatten().copied().collect::<Vec<f64>>(),
-                "offsets": track.offsets.iter().flatten().copied().collect::<Vec<f64>>(),
+                "poses": poses.collect::<Vec<f64>>(),
             })
         })
         .collect();
@@ -196,13 +200,14 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_viewer_gets_each_obstacle_with_its_segments_and_offsets() {
+    fn the_viewer_gets_each_obstacle_with_its_segments_and_poses() {
         let dir = crate::test_files::synthetic("viewer-obstacles");
         let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
         let form = std::fs::read_to_string(root.join("data/scenarios/form.ron")).expect("form");
         let obstacles = "Scenario(\n    obstacles: [Sphere(centre: (1.0, 2.0, 3.0), radius: 0.5), \
                          Moving(shape: Sphere(centre: (0.0, 0.0, 0.0), radius: 1.0), \
-                         path: [(0.0, (0.0, 0.0, 0.0)), (1.0, (1.0, 0.0, 0.0))])],";
+                         path: [(0.0, (0.0, 0.0, 0.0)), (1.0, (1.0, 0.0, 0.0))], \
+                         spin: Some((axis: (0.0, 0.0, 1.0), rate_rad_per_s: 1.0)))],";
         std::fs::write(dir.join("scenario.ron"), form.replacen("Scenario(", obstacles, 1))
             .expect("write");
         let run = RunDir::read(&dir).expect("reads");
@@ -211,9 +216,17 @@ mod tests {
         assert_eq!(obstacles.len(), 2);
         let segments = obstacles[0]["segments"].as_array().expect("segments");
         assert_eq!(segments.len() % 6, 0, "vertex pairs of x, y, z");
-        assert!(obstacles[0]["offsets"].as_array().is_some_and(Vec::is_empty), "it stands still");
-        let offsets = obstacles[1]["offsets"].as_array().expect("offsets");
-        assert_eq!(offsets.len(), 3 * run.centreline.frames(), "one offset per frame");
+        assert!(obstacles[0]["poses"].as_array().is_some_and(Vec::is_empty), "it stands still");
+        let poses = obstacles[1]["poses"].as_array().expect("poses");
+        assert_eq!(poses.len(), 12 * run.centreline.frames(), "one pose per frame");
+        // The last frame's R row by row: a turn by ωt about z.
+        let last = &poses[poses.len() - 12..];
+        let t = run.centreline.times[run.centreline.frames() - 1];
+        let row0 = [t.cos(), -t.sin(), 0.0];
+        for (value, expected) in last[..3].iter().zip(row0) {
+            let value = value.as_f64().expect("a number");
+            assert!((value - expected).abs() < 1e-12, "R's first row: {value} against {expected}");
+        }
     }
 
     #[test]

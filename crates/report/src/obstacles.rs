@@ -1,14 +1,16 @@
 //! The run's obstacles (the `obstacles` of its `scenario.ron`) as wireframes: a few circles
 //! and lines per obstacle that show its shape in the animation, the report's 3-D view,
 //! ParaView (`vtk/`) and `run.glb`. Each is one [`ObstacleTrack`], its wireframe posed at
-//! offset zero and its offset at each frame; planes and infinite cylinders are cut to the
-//! run's surroundings.
+//! offset zero and its [`Pose`] at each frame (its offset on its path and its turn); planes
+//! and infinite cylinders are cut to the run's surroundings.
 
 use std::f64::consts::TAU;
 use std::path::Path;
 
-use glam::DVec3;
+use glam::{DQuat, DVec3};
 use hagfish_anatomy::DataFile;
+#[cfg(test)]
+use hagfish_geometry::Spin;
 use hagfish_geometry::{MovingObstacle, Obstacle, ObstaclePath};
 use hagfish_scenario::Scenario;
 
@@ -29,41 +31,69 @@ pub fn of_run(scenario: &Path) -> Vec<MovingObstacle> {
     file.value.obstacles.iter().filter_map(|spec| spec.to_obstacle().ok()).collect()
 }
 
-/// An obstacle of a run: its wireframe at offset zero and its offset at each frame (cm;
-/// empty when it stands still).
+/// Where an obstacle's wireframe is at one frame: x ↦ R x + t, a rotation R and a
+/// translation t (cm).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pose {
+    /// R.
+    pub rotation: DQuat,
+    /// t (cm).
+    pub translation: DVec3,
+}
+
+impl Pose {
+    /// The pose at time `t` (s) of an obstacle on `path` that turns by `spin`: its offset on
+    /// the path and its turn ω t about its reference point p, so x ↦ R(x − p) + p + offset.
+    pub fn of(obstacle: &MovingObstacle, t: f64) -> Self {
+        let rotation = obstacle
+            .spin
+            .map_or(DQuat::IDENTITY, |spin| DQuat::from_scaled_axis(spin.angular_velocity() * t));
+        let p = obstacle.shape.reference_point();
+        Pose { rotation, translation: obstacle.path.offset(t) + p - rotation * p }
+    }
+
+    /// R x + t.
+    pub fn apply(&self, x: [f64; 3]) -> [f64; 3] {
+        (self.rotation * DVec3::from_array(x) + self.translation).to_array()
+    }
+}
+
+/// An obstacle of a run: its wireframe at offset zero and its pose at each frame (empty when
+/// it neither moves nor turns).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ObstacleTrack {
     /// The wireframe, posed at offset zero (cm).
     pub lines: Wireframe,
-    /// The offset at each frame (cm), or none.
-    pub offsets: Vec<[f64; 3]>,
+    /// The pose at each frame, or none.
+    pub poses: Vec<Pose>,
 }
 
 /// The wireframe of every track where it is at frame `f`.
 pub fn at_frame(tracks: &[ObstacleTrack], f: usize) -> Wireframe {
     let mut wireframe = Wireframe::new();
     for track in tracks {
-        let d = track.offsets.get(f).copied().unwrap_or([0.0; 3]);
-        let moved = |p: &[f64; 3]| [p[0] + d[0], p[1] + d[1], p[2] + d[2]];
-        wireframe.extend(track.lines.iter().map(|line| line.iter().map(moved).collect()));
+        let lines = track.lines.iter();
+        match track.poses.get(f) {
+            Some(pose) => {
+                wireframe.extend(lines.map(|l| l.iter().map(|&p| pose.apply(p)).collect()))
+            }
+            None => wireframe.extend(lines.cloned()),
+        }
     }
     wireframe
 }
 
 /// The obstacles of `run`: each one's wireframe at offset zero around the region the body
-/// sweeps, and its offset at each frame when it moves.
+/// sweeps, and its pose at each frame when it moves or turns.
 pub fn tracks(run: &RunDir) -> Vec<ObstacleTrack> {
     let (centre, extent) = surroundings(run);
     let still = ObstaclePath::default();
-    let frame_offsets = |path: &ObstaclePath| -> Vec<[f64; 3]> {
-        if *path == still {
-            return Vec::new();
-        }
-        run.centreline.times.iter().map(|&t| path.offset(t).to_array()).collect()
-    };
     let track = |o: &MovingObstacle| ObstacleTrack {
         lines: wireframe(&o.shape, centre, extent),
-        offsets: frame_offsets(&o.path),
+        poses: match o.path == still && o.spin.is_none() {
+            true => Vec::new(),
+            false => run.centreline.times.iter().map(|&t| Pose::of(o, t)).collect(),
+        },
     };
     run.obstacles.iter().map(track).collect()
 }
@@ -161,15 +191,32 @@ mod tests {
     }
 
     #[test]
-    fn a_track_is_drawn_at_its_frames_offset_and_a_still_one_where_it_stands() {
+    fn a_track_is_drawn_at_its_frames_pose_and_a_still_one_where_it_stands() {
         let line = vec![vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]]];
-        let still = ObstacleTrack { lines: line.clone(), offsets: Vec::new() };
-        let moving = ObstacleTrack { lines: line, offsets: vec![[0.0; 3], [0.0, 2.0, 0.0]] };
+        let still = ObstacleTrack { lines: line.clone(), poses: Vec::new() };
+        let shifted = Pose { rotation: DQuat::IDENTITY, translation: DVec3::new(0.0, 2.0, 0.0) };
+        let moving = ObstacleTrack { lines: line, poses: vec![shifted; 2] };
         let drawn = at_frame(&[still, moving], 1);
         assert_eq!(
             drawn,
             vec![vec![[0.0; 3], [1.0, 0.0, 0.0]], vec![[0.0, 2.0, 0.0], [1.0, 2.0, 0.0]]]
         );
+    }
+
+    #[test]
+    fn a_turning_obstacle_turns_about_its_reference_point_and_moves_on_its_path() {
+        let roller =
+            Obstacle::cylinder(DVec3::new(1.0, 0.0, 0.0), DVec3::Z, 0.5, None).expect("a roller");
+        let spin = Spin::new(&roller, DVec3::Z, std::f64::consts::FRAC_PI_2).expect("a spin");
+        let path = ObstaclePath::new(vec![(0.0, DVec3::ZERO), (1.0, DVec3::new(0.0, 0.0, 3.0))])
+            .expect("a path");
+        let turning = MovingObstacle { shape: roller, path, spin: Some(spin) };
+        // After 1 s: a quarter turn about the axis through (1, 0, 0), then 3 cm up.
+        let pose = Pose::of(&turning, 1.0);
+        let moved = DVec3::from_array(pose.apply([1.5, 0.0, 0.0]));
+        assert!((moved - DVec3::new(1.0, 0.5, 3.0)).length() < 1e-15, "{moved}");
+        let axis_point = DVec3::from_array(pose.apply([1.0, 0.0, 2.0]));
+        assert!((axis_point - DVec3::new(1.0, 0.0, 5.0)).length() < 1e-15, "{axis_point}");
     }
 
     #[test]

@@ -124,7 +124,7 @@ fn make(dir: &Path, parts: Parts, sections: &[Section]) -> Result<Written, Repor
     }
     if parts.exports {
         let tracks = obstacles::tracks(&run);
-        let obstacles = match tracks.iter().any(|track| !track.offsets.is_empty()) {
+        let obstacles = match tracks.iter().any(|track| !track.poses.is_empty()) {
             false => vtk::ObstacleFrames::Still(obstacles::at_frame(&tracks, 0)),
             true => vtk::ObstacleFrames::Moving(
                 (0..run.centreline.frames()).map(|f| obstacles::at_frame(&tracks, f)).collect(),
