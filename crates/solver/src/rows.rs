@@ -286,6 +286,15 @@ impl Rows {
     /// Appends a row with zero coefficients and returns them for the builder to fill in place
     /// (sparse rows such as a joint limit eₖ set one entry; no temporary vector needed).
     pub fn push_zeroed(&mut self, kind: RowKind, source: RowSource, rhs: f64) -> &mut [f64] {
+        let index = self.push_row(kind, source, rhs, RowBasis::Own);
+        let column = self.coefficients.col_as_slice_mut(index);
+        column.fill(0.0);
+        column
+    }
+
+    /// Appends a row's kind, source, right-hand side and basis, with room for its
+    /// coefficients (as they were: the caller writes them), and returns its index.
+    fn push_row(&mut self, kind: RowKind, source: RowSource, rhs: f64, basis: RowBasis) -> usize {
         let index = self.len();
         if index == self.coefficients.ncols() {
             self.grow();
@@ -293,10 +302,8 @@ impl Rows {
         self.rhs.push(rhs);
         self.kinds.push(kind);
         self.sources.push(source);
-        self.basis.push(RowBasis::Own);
-        let column = self.coefficients.col_as_slice_mut(index);
-        column.fill(0.0);
-        column
+        self.basis.push(basis);
+        index
     }
 
     /// Appends three zeroed base vectors and returns the index of the first; fill them with
@@ -353,14 +360,7 @@ impl Rows {
         rhs: f64,
         (first, weights): (usize, [f64; 3]),
     ) {
-        let index = self.len();
-        if index == self.coefficients.ncols() {
-            self.grow();
-        }
-        self.rhs.push(rhs);
-        self.kinds.push(kind);
-        self.sources.push(source);
-        self.basis.push(RowBasis::Combination { first, weights });
+        let index = self.push_row(kind, source, rhs, RowBasis::Combination { first, weights });
         let extent = match self.bases_extent {
             Some((bases, extent)) if bases == first => extent,
             _ => {
