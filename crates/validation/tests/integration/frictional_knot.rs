@@ -12,12 +12,14 @@ fn root() -> &'static Path {
 }
 
 /// At a pull of 20 dyn and μ = 0.02 and 0.05, on both branches: the friction term has
-/// Audoly's sign on each branch, is linear in μ (the friction numbers at the two μ within
-/// 10 % of each other) and of one size on both branches (within 10 %): the form of their
-/// law. Its size is not converged at this resolution: the friction numbers are 1.35–1.37,
-/// σ = 0.67 rather than 0.492 (docs/validation.md, "Loose trefoil with friction").
+/// Audoly's sign on each branch, is linear in μ on the loosening branch (the friction numbers
+/// at the two μ within 10 % of each other; measured −1.369, −1.363) and of one size on both
+/// branches at μ = 0.05 (within 10 %; measured +1.340, −1.363): the form of their law, with
+/// σ = 0.66–0.67 rather than 0.492. On the tightening branch it is not linear in μ: the loop
+/// closes onto +1.158 at μ = 0.02 against +1.340 at 0.05 (held 120 s; after the scenario's
+/// 40 s it was still closing, at +1.363), docs/validation.md, "Loose trefoil with friction".
 #[test]
-fn the_frictional_loose_trefoil_holds_its_loop_by_a_term_linear_in_mu_on_both_branches() {
+fn the_frictional_loose_trefoil_holds_its_loop_by_a_term_of_audolys_form() {
     let cases = [
         (Branch::Tightening, 0.02),
         (Branch::Tightening, 0.05),
@@ -49,7 +51,6 @@ fn the_frictional_loose_trefoil_holds_its_loop_by_a_term_linear_in_mu_on_both_br
         [0, 1, 2, 3].map(|k| knots[k].friction_number);
     assert!(tight_low > 0.0 && tight_high > 0.0, "tightening: {tight_low}, {tight_high}");
     assert!(loose_low < 0.0 && loose_high < 0.0, "loosening: {loose_low}, {loose_high}");
-    assert!((tight_low / tight_high - 1.0).abs() < 0.1, "linear in μ: {tight_low}, {tight_high}");
     assert!((loose_low / loose_high - 1.0).abs() < 0.1, "linear in μ: {loose_low}, {loose_high}");
     assert!((tight_high / -loose_high - 1.0).abs() < 0.1, "symmetric: {tight_high}, {loose_high}");
 }
@@ -57,8 +58,8 @@ fn the_frictional_loose_trefoil_holds_its_loop_by_a_term_linear_in_mu_on_both_br
 /// The model is similar under h → h/2, F → 4F (B, L and the bodies per length of rod kept,
 /// the bodies doubled): the loose trefoil loosened to 20 dyn on the rod of half the shipped
 /// radius (800 bodies, h = 0.01 cm, time step 0.01 s) settles at the ε of the shipped rod
-/// loosened to 5 dyn, with the same friction number (measured ε 0.10089 and 0.10091,
-/// numbers −1.2589 and −1.2597). So the refinement of the frictionless check, which halves h
+/// loosened to 5 dyn, with the same friction number (measured ε 0.10089 and 0.10088,
+/// numbers −1.2589 and −1.2587). So the refinement of the frictionless check, which halves h
 /// at a fixed pull, moves the friction law along ε rather than refining it.
 #[test]
 fn halving_the_radius_at_four_times_the_pull_gives_the_same_frictional_knot() {
@@ -81,7 +82,7 @@ fn halving_the_radius_at_four_times_the_pull_gives_the_same_frictional_knot() {
 
 /// The excess over Audoly's σ is not a resolution error of the chain: at the shipped rod
 /// radius (h = 0.02 cm) twice the bodies (800, 3.75 h each) leave the loosening friction
-/// number within 2 % (measured −1.364 and −1.356; docs/validation.md, "Loose trefoil with
+/// number within 2 % (measured −1.363 and −1.355; docs/validation.md, "Loose trefoil with
 /// friction").
 #[test]
 fn at_the_shipped_rod_radius_the_friction_number_is_converged_in_the_bodies() {
