@@ -506,8 +506,8 @@ mod tests {
         for contact in 0..contacts {
             let end = ((next() + 1.0) * 0.5 * (n + 1) as f64) as usize % (n + 1);
             let first = combined.push_bases();
-            for k in 0..3 {
-                combined.base_mut(first + k)[..end].iter_mut().for_each(|c| *c = next());
+            for base in combined.bases_mut(first) {
+                base[..end].iter_mut().for_each(|c| *c = next());
             }
             // A row of its own between contacts, as a joint limit's (compliant, as a skin's,
             // every other time); and the first edge of every other contact compliant: εᵢ on

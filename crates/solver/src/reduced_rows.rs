@@ -147,8 +147,10 @@ mod tests {
         let source = RowSource::new(RowTag::new(0), 0);
         rows.push_zeroed(RowKind::Inequality, source, 0.0).copy_from_slice(&[1.0, 2.0]);
         let first = rows.push_bases();
-        for (k, base) in [[1.0, 0.0], [0.0, 1.0], [1.0, 1.0]].iter().enumerate() {
-            rows.base_mut(first + k).copy_from_slice(base);
+        for (base, values) in
+            rows.bases_mut(first).into_iter().zip([[1.0, 0.0], [0.0, 1.0], [1.0, 1.0]])
+        {
+            base.copy_from_slice(&values);
         }
         for weights in [[1.0, 2.0, 3.0], [0.5, 0.0, -1.0]] {
             rows.push_combination(RowKind::Inequality, source, 0.0, (first, weights));

@@ -170,7 +170,7 @@ impl<T> core::ops::IndexMut<RowTag> for PerTag<T> {
 pub enum RowBasis {
     /// Its own coefficients.
     Own,
-    /// `cᵢ = Σₖ weights[k] · g_{first+k}`, the bases filled through [`Rows::base_mut`].
+    /// `cᵢ = Σₖ weights[k] · g_{first+k}`, the bases filled through [`Rows::bases_mut`].
     Combination {
         /// The first of its three bases.
         first: usize,
@@ -307,7 +307,7 @@ impl Rows {
     }
 
     /// Appends three zeroed base vectors and returns the index of the first; fill them with
-    /// [`Rows::base_mut`], then make rows of them with [`Rows::push_combination`].
+    /// [`Rows::bases_mut`], then make rows of them with [`Rows::push_combination`].
     pub fn push_bases(&mut self) -> usize {
         let first = self.base_count;
         while self.base_count + 3 > self.bases.ncols() {
@@ -321,13 +321,6 @@ impl Rows {
             self.bases.col_as_slice_mut(k).fill(0.0);
         }
         first
-    }
-
-    /// Base vector `index` to fill (it must have been pushed).
-    pub fn base_mut(&mut self, index: usize) -> &mut [f64] {
-        debug_assert!(index < self.base_count, "base {index} not pushed");
-        self.bases_extent = None;
-        self.bases.col_as_slice_mut(index)
     }
 
     /// The three base vectors pushed at `first` by [`Rows::push_bases`], to fill at once.

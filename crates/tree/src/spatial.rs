@@ -111,11 +111,9 @@ impl SpatialComponents {
     /// # Panics
     /// If `range` reaches past the stored vectors.
     pub fn dots(&self, range: Range<usize>, w: &Spatial) -> impl Iterator<Item = f64> + '_ {
-        let [wx, wy, wz, vx, vy, vz] = self.components.each_ref().map(|c| &c[range.clone()]);
-        let (a, l) = (w.angular, w.linear);
-        (0..range.len()).map(move |i| {
-            (wx[i] * a.x + wy[i] * a.y + wz[i] * a.z) + (vx[i] * l.x + vy[i] * l.y + vz[i] * l.z)
-        })
+        let components = self.components.each_ref().map(|c| &c[range.clone()]);
+        let w = *w;
+        (0..range.len()).map(move |i| dot_at(&components, i, &w))
     }
 
     /// `outs[j][a] += s_a · w[j]` for each stored vector `s_a` with index `a` in `range` and
@@ -130,16 +128,23 @@ impl SpatialComponents {
         w: &[Spatial; K],
         outs: &mut [&mut [f64]; K],
     ) {
-        let [wx, wy, wz, vx, vy, vz] = self.components.each_ref().map(|c| &c[range.clone()]);
+        let components = self.components.each_ref().map(|c| &c[range.clone()]);
         let mut outs = outs.each_mut().map(|out| &mut out[range.clone()]);
         for i in 0..range.len() {
             for (out, w) in outs.iter_mut().zip(w) {
-                let (a, l) = (w.angular, w.linear);
-                out[i] += (wx[i] * a.x + wy[i] * a.y + wz[i] * a.z)
-                    + (vx[i] * l.x + vy[i] * l.y + vz[i] * l.z);
+                out[i] += dot_at(&components, i, w);
             }
         }
     }
+}
+
+/// [`Spatial::dot`] of the vector `i` of `components` (ω_x, ω_y, ω_z, v_x, v_y, v_z) with `w`,
+/// summed as `Spatial::dot` sums.
+#[inline(always)]
+fn dot_at(components: &[&[f64]; 6], i: usize, w: &Spatial) -> f64 {
+    let [wx, wy, wz, vx, vy, vz] = components;
+    let (a, l) = (w.angular, w.linear);
+    (wx[i] * a.x + wy[i] * a.y + wz[i] * a.z) + (vx[i] * l.x + vy[i] * l.y + vz[i] * l.z)
 }
 
 /// A spatial motion vector `(ω; v)` (twist) or force vector `(n; f)` (wrench); which one is
