@@ -42,8 +42,8 @@ pub struct Pose {
 }
 
 impl Pose {
-    /// The pose at time `t` (s) of an obstacle on `path` that turns by `spin`: its offset on
-    /// the path and its turn ω t about its reference point p, so x ↦ R(x − p) + p + offset.
+    /// The pose of `obstacle` at time `t` (s): its offset on its path and its turn ω t (if it
+    /// turns) about its reference point p, so x ↦ R(x − p) + p + offset.
     pub fn of(obstacle: &MovingObstacle, t: f64) -> Self {
         let rotation = obstacle
             .spin

@@ -10,9 +10,10 @@
 //! - Loosening: first pulled at [`TIGHT_PULL_DYN`] (ramped over 10 s and held), then at T
 //!   at once: the loop opens until friction holds it.
 //!
-//! Each is settled (the final pull held [`FINAL_PULL_S`]) and its loop radius R measured as the frictionless check
-//! measures it (`loose_knot.rs`); the friction term F h²/B − ε⁴/2 is reported over μσε³, the
-//! **friction number**: +1 on Audoly's tightening branch, −1 on the loosening one.
+//! Each is settled (the final pull held [`FINAL_PULL_S`]) and its loop radius R measured as
+//! the frictionless check measures it (`loose_knot.rs`); the friction term F h²/B − ε⁴/2 is
+//! reported over μσε³, the **friction number**: +1 on Audoly's tightening branch, −1 on the
+//! loosening one.
 
 use std::path::Path;
 
