@@ -96,7 +96,7 @@ fn bench_contact_solve(
 }
 
 fn stages(c: &mut Criterion) {
-    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
+    let root = env!("CARGO_MANIFEST_DIR");
     let (mut world, _) = knotted_world(root.as_ref()).expect("knotted state");
     let (model, options, state) =
         (world.model().clone(), world.options().clone(), world.state().clone());
@@ -163,7 +163,7 @@ fn stages(c: &mut Criterion) {
 /// `hagfish_bench_support::long_knotted_world`), where each crossing is seen by thousands of
 /// segment pairs.
 fn long_stages(c: &mut Criterion) {
-    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
+    let root = env!("CARGO_MANIFEST_DIR");
     let (world, mut controller) =
         long_knotted_world(root.as_ref(), &std::env::temp_dir()).expect("long knotted state");
     let (model, options, state) =
