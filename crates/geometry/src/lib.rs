@@ -13,7 +13,8 @@
 //!    body), the Newton [`closest_points`] search on the spline segments around each
 //!    candidate body pair (thesis Eq. 4.5), and merges duplicate records into
 //!    [`SelfContact`]s sorted head to tail;
-//! 3. [`Wall::contacts`] lists the bodies near the wall as [`WallContact`]s.
+//! 3. [`Wall::contacts`] lists the bodies near the wall as [`WallContact`]s, and
+//!    [`Obstacle::contacts`] the points of the tube's [`TubeSamples`] near an obstacle.
 //!
 //! Per-step functions reuse the buffers of their workspaces and write into caller-owned
 //! `Vec`s, so they do not allocate after the first call. Outputs are sorted over total
@@ -65,6 +66,7 @@ mod sampled_segment;
 mod seeds;
 mod segment;
 mod segment_pairs;
+mod tube_samples;
 mod wall;
 mod weights;
 
@@ -83,5 +85,6 @@ pub use obstacle::Obstacle;
 pub use obstacle_path::{MovingObstacle, ObstaclePath};
 pub use obstacle_spin::Spin;
 pub use segment::Segment;
+pub use tube_samples::{DEFAULT_GROOVE_FRACTION, TubeSample, TubeSamples};
 pub use wall::{Wall, WallContact, WallOptions};
 pub use weights::SplineWeights;

@@ -1,8 +1,8 @@
 //! Obstacles that move on a prescribed path: offsets from their pose at given times,
 //! linear between them (so the obstacle moves at a constant velocity along each leg) and held
-//! beyond the ends; it may also turn about an axis of its symmetry (`obstacle_spin.rs`). A
-//! moving obstacle's contacts carry its surface's velocity v_o, and the contact rows bound the
-//! body's velocity relative to it: dᵀ(ċ_k − v_o) ≥ b.
+//! beyond the ends; it may also turn about an axis through its reference point
+//! (`obstacle_spin.rs`). A moving obstacle's contacts carry its surface's velocity v_o, and the
+//! contact rows bound the body's velocity relative to it: dᵀ(ẋ(u) − v_o) ≥ b.
 
 use glam::DVec3;
 
@@ -10,6 +10,7 @@ use crate::centreline::Centreline;
 use crate::error::GeometryError;
 use crate::obstacle::Obstacle;
 use crate::obstacle_spin::Spin;
+use crate::tube_samples::TubeSamples;
 use crate::wall::WallContact;
 
 /// A path: (time s, offset cm) waypoints at strictly increasing times; none for a still
@@ -81,15 +82,14 @@ enum Leg {
     Moving { start: (f64, DVec3), end: (f64, DVec3) },
 }
 
-/// An obstacle, its path (a still one has an empty path) and its turn about an axis of its
-/// symmetry, if it turns.
+/// An obstacle, its path (a still one has an empty path) and its turn, if it turns.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MovingObstacle {
     /// The obstacle as posed at offset zero.
     pub shape: Obstacle,
     /// Its path.
     pub path: ObstaclePath,
-    /// Its turn, which moves its surface and not its shape.
+    /// Its turn: about an axis of its symmetry it moves the surface and not the shape.
     pub spin: Option<Spin>,
 }
 
@@ -100,33 +100,39 @@ impl From<Obstacle> for MovingObstacle {
 }
 
 impl MovingObstacle {
-    /// The obstacle where its path has it at time `t`.
+    /// The obstacle where its path and turn have it at time `t`: the shape turned by the
+    /// spin's R(t) about its reference point if the turn moves it ([`Spin::turns_shape`]),
+    /// then moved by the path's offset.
     pub fn at(&self, t: f64) -> Obstacle {
-        self.shape.translated(self.path.offset(t))
+        let turned = match self.spin {
+            Some(spin) if spin.turns_shape() => {
+                self.shape.rotated_about(spin.rotation(t), self.shape.reference_point())
+            }
+            _ => self.shape,
+        };
+        turned.translated(self.path.offset(t))
     }
 
     /// Appends to `out` the contacts of [`Obstacle::contacts`] with the obstacle where it is
-    /// at time `t`, each carrying the velocity of the surface point nearest its body's centre
-    /// c_k then: the path's v, plus ω × (s − p) where it turns, s = c_k − (gap + r_k) n the
+    /// at time `t`, each carrying the velocity of the surface point nearest its sample x(u)
+    /// then: the path's v, plus ω × (s − p) where it turns, s = x(u) − (gap + r(u)) n the
     /// surface point and p the obstacle's reference point.
     pub fn contacts(
         &self,
-        centreline: &Centreline,
+        (centreline, samples): (&Centreline, &TubeSamples),
         margin: f64,
         t: f64,
         out: &mut Vec<WallContact>,
     ) {
         let first = out.len();
         let obstacle = self.at(t);
-        obstacle.contacts(centreline, margin, out);
+        obstacle.contacts(centreline, samples, margin, out);
         let velocity = self.path.velocity(t);
         for contact in &mut out[first..] {
             contact.surface_velocity = match self.spin {
                 None => velocity,
                 Some(spin) => {
-                    let (centre, radius) =
-                        (centreline.centres()[contact.body], centreline.radii()[contact.body]);
-                    let surface = centre - (contact.gap + radius) * contact.normal;
+                    let surface = contact.point - (contact.gap + contact.radius) * contact.normal;
                     velocity + spin.surface_velocity(obstacle.reference_point(), surface)
                 }
             };

@@ -1,31 +1,38 @@
-//! An obstacle turning about an axis of its symmetry: a roller (a cylinder about its own
-//! axis), a ball (a sphere about any axis through its centre) or a turntable (a plane about its
-//! normal). The turn leaves the shape where it is, so contacts are detected as for a still
-//! obstacle; it moves the surface, at the point s with velocity ω × (s − p), ω = rate · axis and
-//! p the obstacle's reference point (the cylinder's axis point, the sphere's centre, the
-//! plane's point), which the contact rows take as the surface's velocity, as a path's.
+//! An obstacle turning at a constant rate about an axis through its reference point p (the
+//! cylinder's axis point, the sphere's centre, the plane's point). About an axis of its
+//! symmetry — a roller (a cylinder about its own axis), a ball (a sphere about any axis through
+//! its centre), a turntable (a plane about its normal) — the turn leaves the shape where it is,
+//! so contacts are detected as for a still obstacle (bit for bit); about any other axis the
+//! shape turns with it, by R(t) = exp(t ω×) about p (a plane tilting about a line in it, a
+//! cylinder swinging about a diameter). Either way the surface point s moves at ω × (s − p),
+//! ω = rate · axis, which the contact rows take as the surface's velocity, as a path's.
 
-use glam::DVec3;
+use glam::{DQuat, DVec3};
 
 use crate::error::GeometryError;
 use crate::obstacle::Obstacle;
 
 /// Largest |sin| of the angle between a spin axis and the shape's axis of symmetry (a
-/// cylinder's axis, a plane's normal): parallel up to the rounding of a normalised input.
+/// cylinder's axis, a plane's normal) for the turn to count as about it: parallel up to the
+/// rounding of a normalised input.
 const PARALLEL_SINE: f64 = 1e-9;
 
-/// A constant turn of an obstacle about an axis of its symmetry through its reference point
-/// (module docs).
+/// A constant turn of an obstacle about an axis through its reference point (module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Spin {
     /// The angular velocity ω = rate · axis (rad/s).
     angular_velocity: DVec3,
+    /// Whether the turn moves the shape: its axis is not one of the shape's symmetry.
+    turns_shape: bool,
 }
 
 impl Spin {
-    /// A turn of `shape` at `rate` rad/s (right-handed) about `axis` (normalised here), which
-    /// must be an axis of the shape's symmetry: any for a sphere, the axis of a cylinder, the
-    /// normal of a plane (either sense).
+    /// A turn of `shape` at `rate` rad/s (right-handed) about `axis` (normalised here) through
+    /// its reference point.
+    ///
+    /// # Errors
+    /// [`GeometryError::InvalidOption`] if the rate is not finite or the axis is zero or not
+    /// finite.
     pub fn new(shape: &Obstacle, axis: DVec3, rate: f64) -> Result<Self, GeometryError> {
         GeometryError::require_option(rate.is_finite(), "spin rate", "finite", rate)?;
         let axis = axis.try_normalize().ok_or(GeometryError::InvalidOption {
@@ -38,17 +45,19 @@ impl Spin {
             Obstacle::Cylinder { axis, .. } => Some(axis),
             Obstacle::Plane { normal, .. } => Some(normal),
         };
-        if let Some(symmetry) = symmetry {
-            let sine = axis.cross(symmetry).length();
-            GeometryError::require_option(
-                sine <= PARALLEL_SINE,
-                "spin axis",
-                "an axis of the shape's symmetry (a cylinder's own axis, a plane's normal); \
-                 sine of the angle to it",
-                sine,
-            )?;
-        }
-        Ok(Self { angular_velocity: rate * axis })
+        let turns_shape = symmetry.is_some_and(|s| axis.cross(s).length() > PARALLEL_SINE);
+        Ok(Self { angular_velocity: rate * axis, turns_shape })
+    }
+
+    /// Whether the turn moves the shape (its axis is not one of the shape's symmetry), so that
+    /// the obstacle at time t is the shape turned by [`Spin::rotation`].
+    pub fn turns_shape(&self) -> bool {
+        self.turns_shape
+    }
+
+    /// The rotation R(t) = exp(t ω×) the turn has made by time `t` (s).
+    pub fn rotation(&self, t: f64) -> DQuat {
+        DQuat::from_scaled_axis(self.angular_velocity * t)
     }
 
     /// The angular velocity ω (rad/s).
@@ -84,13 +93,21 @@ mod tests {
     }
 
     #[test]
-    fn a_turn_that_would_move_the_shape_or_is_not_a_number_is_refused() {
+    fn a_turn_about_another_axis_turns_the_shape_and_bad_numbers_are_refused() {
         let roller = Obstacle::cylinder(DVec3::ZERO, DVec3::Z, 2.0, Some(1.0)).expect("cylinder");
-        assert!(Spin::new(&roller, DVec3::X, 1.0).is_err(), "across a cylinder");
-        assert!(Spin::new(&roller, DVec3::new(0.0, 1e-6, 1.0), 1.0).is_err(), "tilted");
+        assert!(!Spin::new(&roller, -DVec3::Z, 1.0).expect("its own axis").turns_shape());
+        assert!(Spin::new(&roller, DVec3::X, 1.0).expect("across it").turns_shape());
+        let tilted = Spin::new(&roller, DVec3::new(0.0, 1e-6, 1.0), 1.0).expect("tilted");
+        assert!(tilted.turns_shape());
         let table = Obstacle::plane(DVec3::ZERO, DVec3::Y).expect("a plane");
-        assert!(Spin::new(&table, DVec3::X, 1.0).is_err(), "in the plane");
+        let tilting = Spin::new(&table, DVec3::X, 0.5).expect("about a line in it");
+        assert!(tilting.turns_shape());
+        let turned = tilting.rotation(1.0) * DVec3::Y;
+        assert!((turned - DVec3::new(0.0, 0.5_f64.cos(), 0.5_f64.sin())).length() < 1e-15);
+        let ball = Obstacle::sphere(DVec3::ZERO, 1.0).expect("a sphere");
+        assert!(!Spin::new(&ball, DVec3::ONE, 1.0).expect("any axis").turns_shape());
         assert!(Spin::new(&table, DVec3::ZERO, 1.0).is_err(), "no axis");
         assert!(Spin::new(&table, DVec3::Y, f64::NAN).is_err(), "no rate");
+        assert!(Spin::new(&table, DVec3::splat(f64::INFINITY), 1.0).is_err(), "no axis");
     }
 }

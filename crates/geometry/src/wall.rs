@@ -3,26 +3,59 @@
 //! The wall is the half-space boundary through p_w with unit normal n_w pointing into the
 //! water (the body side). Each body is tested as a sphere of radius r_k at its centre,
 //! with gap d_k = n_w·(c_k − p_w) − r_k; only the centre velocity enters
-//! the row n_wᵀ R_k [0 I₃] J_k, so the record needs just the body, gap and normal.
+//! the row n_wᵀ R_k [0 I₃] J_k. The wall holds the head, so the bodies near it are the head's,
+//! short against their radius: their spheres stand for the tube there (obstacles, which any
+//! part of the body may touch, sample the tube between centres too: `tube_samples.rs`).
 
 use glam::DVec3;
 
 use crate::centreline::Centreline;
 use crate::error::GeometryError;
+use crate::weights::SplineWeights;
 
-/// One body near or inside the wall (or an obstacle, `obstacle.rs`).
+/// A point of the tube near or inside the wall or an obstacle (`obstacle.rs`): a body's sphere
+/// (the wall's contacts) or a sphere of the tube's radius at a spline point between centres
+/// (`tube_samples.rs`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WallContact {
-    /// Body index k.
-    pub body: usize,
-    /// Signed gap d = n_w·(c_k − p_w) − r_k (cm); negative when the body penetrates.
+    /// Spline parameter u of the point (the body index k at a body's centre).
+    pub u: f64,
+    /// The bodies and weights whose blend Σ w_m c_m is the point x(u): the weight 1 on body k
+    /// alone at a centre.
+    pub weights: SplineWeights,
+    /// The tube's axis point x(u) (cm).
+    pub point: DVec3,
+    /// The tube's radius r(u) there (cm).
+    pub radius: f64,
+    /// Signed gap d = n·(x(u) − p) − r(u) for the wall (cm), the obstacle's distance less
+    /// r(u) for an obstacle; negative when the tube penetrates.
     pub gap: f64,
-    /// The unit normal n_w of the surface at the body (pointing to the body side).
+    /// The unit normal of the surface at the point (pointing to the body side).
     pub normal: DVec3,
     /// The velocity of the surface (cm/s): zero for the wall and still obstacles, the path's
     /// for a moving one (`obstacle_path.rs`). The contact's rows bound the body's velocity
     /// relative to it.
     pub surface_velocity: DVec3,
+}
+
+impl WallContact {
+    /// The contact of body `body`'s sphere (centre c, radius r) with gap `gap` along `normal`.
+    pub fn of_body(body: usize, (centre, radius): (DVec3, f64), gap: f64, normal: DVec3) -> Self {
+        WallContact {
+            u: body as f64,
+            weights: SplineWeights::single(body),
+            point: centre,
+            radius,
+            gap,
+            normal,
+            surface_velocity: DVec3::ZERO,
+        }
+    }
+
+    /// The body whose sphere this is, `None` for a point between centres.
+    pub fn body(&self) -> Option<usize> {
+        (self.weights.len == 1).then_some(self.weights.bodies[0])
+    }
 }
 
 /// Options of a [`Wall`].
@@ -104,11 +137,8 @@ impl Wall {
         out.extend(
             bodies
                 .skip(self.options.first_body)
-                .map(|(body, (&c, &r))| WallContact {
-                    body,
-                    gap: self.gap(c, r),
-                    normal: self.normal,
-                    surface_velocity: DVec3::ZERO,
+                .map(|(body, (&c, &r))| {
+                    WallContact::of_body(body, (c, r), self.gap(c, r), self.normal)
                 })
                 .filter(|contact| contact.gap < self.options.margin),
         );
@@ -158,13 +188,13 @@ mod tests {
         let mut out = Vec::new();
         let options = WallOptions { first_body: 0, ..WallOptions::default() };
         Wall::new(DVec3::ZERO, DVec3::X, options).expect("valid").contacts(&line, &mut out);
-        let bodies: Vec<_> = out.iter().map(|c| c.body).collect();
+        let bodies: Vec<_> = out.iter().filter_map(WallContact::body).collect();
         assert_eq!(bodies, vec![0, 1, 2, 4, 5]);
         assert!(out.iter().all(|c| c.normal == DVec3::X));
         let from_third = WallOptions { first_body: 3, ..WallOptions::default() };
         Wall::new(DVec3::ZERO, DVec3::X, from_third).expect("valid").contacts(&line, &mut out);
-        let bodies: Vec<_> = out.iter().map(|c| (c.body, c.gap < 0.0)).collect();
-        assert_eq!(bodies, vec![(4, true), (5, false)]);
+        let bodies: Vec<_> = out.iter().map(|c| (c.body(), c.gap < 0.0)).collect();
+        assert_eq!(bodies, vec![(Some(4), true), (Some(5), false)]);
     }
 
     #[test]

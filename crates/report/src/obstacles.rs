@@ -45,9 +45,7 @@ impl Pose {
     /// The pose of `obstacle` at time `t` (s): its offset on its path and its turn ω t (if it
     /// turns) about its reference point p, so x ↦ R(x − p) + p + offset.
     pub fn of(obstacle: &MovingObstacle, t: f64) -> Self {
-        let rotation = obstacle
-            .spin
-            .map_or(DQuat::IDENTITY, |spin| DQuat::from_scaled_axis(spin.angular_velocity() * t));
+        let rotation = obstacle.spin.map_or(DQuat::IDENTITY, |spin| spin.rotation(t));
         let p = obstacle.shape.reference_point();
         Pose { rotation, translation: obstacle.path.offset(t) + p - rotation * p }
     }

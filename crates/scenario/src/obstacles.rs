@@ -42,7 +42,7 @@ pub enum ObstacleSpec {
     /// increasing times, linear between them and held beyond the ends, e.g.
     /// `Moving(shape: Sphere(centre: (5.0, 3.0, 0.0), radius: 1.0), path: [(0.0, (0.0, 0.0,
     /// 0.0)), (10.0, (20.0, 0.0, 0.0))])` (2 cm/s along x for 10 s); and optionally turning
-    /// about an axis of its symmetry, e.g. a roller turning in place:
+    /// about an axis through its reference point, e.g. a roller turning in place:
     /// `Moving(shape: Cylinder(…, axis: (0.0, 0.0, 1.0), …), path: [], spin: Some((axis:
     /// (0.0, 0.0, 1.0), rate_rad_per_s: 0.5)))`.
     Moving {
@@ -56,9 +56,10 @@ pub enum ObstacleSpec {
     },
 }
 
-/// A turn of an obstacle about an axis of its symmetry through its reference point (the
+/// A turn of an obstacle at a constant rate about an axis through its reference point (the
 /// sphere's centre, the cylinder's axis point, the plane's point; `hagfish_geometry::Spin`):
-/// any axis for a sphere, its own axis for a cylinder, its normal for a plane.
+/// about an axis of its symmetry (any for a sphere, its own axis for a cylinder, its normal
+/// for a plane) only its surface moves; about another the shape turns too (a tilting plane).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SpinSpec {
@@ -141,9 +142,15 @@ mod tests {
         let roller: ObstacleSpec = ron::from_str(roller).expect("a turning roller");
         let spin = roller.to_obstacle().expect("valid").spin.expect("a spin");
         assert_eq!(spin.angular_velocity(), glam::DVec3::new(0.0, 0.0, 0.5));
+        assert!(!spin.turns_shape(), "a roller turns in place");
         let ObstacleSpec::Moving { shape, path, .. } = roller else { unreachable!() };
-        let spin = Some(SpinSpec { axis: [1.0, 0.0, 0.0], rate_rad_per_s: 0.5 });
-        let across = ObstacleSpec::Moving { shape, path, spin };
-        assert!(across.to_obstacle().is_err(), "a roller turning across its axis");
+        let swinging = Some(SpinSpec { axis: [1.0, 0.0, 0.0], rate_rad_per_s: 0.5 });
+        let across =
+            ObstacleSpec::Moving { shape: shape.clone(), path: path.clone(), spin: swinging };
+        let spin = across.to_obstacle().expect("valid").spin.expect("a spin");
+        assert!(spin.turns_shape(), "a cylinder turning across its axis swings");
+        let stalled = Some(SpinSpec { axis: [0.0; 3], rate_rad_per_s: 0.5 });
+        let no_axis = ObstacleSpec::Moving { shape, path, spin: stalled };
+        assert!(no_axis.to_obstacle().is_err(), "a turn about no axis");
     }
 }

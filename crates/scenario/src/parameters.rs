@@ -73,9 +73,10 @@ pub const PARAMETERS: &[Parameter] = &[
     p("obstacles.Moving", "-", "-", "an obstacle moving on a path: Moving(shape: Sphere(..), path: [(t, (x, y, z)), ...])"),
     p("obstacles.Moving.shape", "-", "required", "a Plane, Sphere or Cylinder as posed at offset zero"),
     p("obstacles.Moving.path", "s, cm", "required", "(time, offset) waypoints at increasing times, linear between them, held beyond the ends ([] for one that stays where its shape is)"),
-    p("obstacles.Moving.spin", "-", "None", "a turn about an axis of the shape's symmetry through its reference point (sphere: any, cylinder: its axis, plane: its normal), which moves its surface and not its shape"),
+    p("obstacles.Moving.spin", "-", "None", "a turn at a constant rate about an axis through the shape's reference point: about an axis of its symmetry (sphere: any, cylinder: its axis, plane: its normal) it moves the surface and not the shape; about another the shape turns too (a tilting plane)"),
     p("obstacles.Moving.spin.axis", "-", "required", "the axis direction (any length but zero), right-handed with the rate"),
     p("obstacles.Moving.spin.rate_rad_per_s", "rad/s", "required", "the angular speed"),
+    p("obstacle_groove", "-", "Some(0.05)", "how finely obstacles see the tube: the deepest groove an obstacle's edge may reach unseen between two of the points they touch, fraction of the local radius, in (0, 1] (segments long against their radius are sampled between their centres); None: the bodies' spheres alone"),
     p("backend", "-", "SparseMaximal", "velocity-step linear algebra: SparseMaximal (linear in the bodies), or DenseReduced"),
     p("acceptance", "-", "(...)", "when a step's result is kept; a rejected step is retried with substeps"),
     p("acceptance.max_self_penetration_relative", "-", "0.1", "deepest self penetration at a step's end, fraction of the local radius"),
@@ -240,6 +241,7 @@ mod tests {
                     spin: Some(crate::SpinSpec { axis: [0.0, 1.0, 0.0], rate_rad_per_s: 0.5 }),
                 },
             ],
+            obstacle_groove: Some(0.1),
             phases: vec![
                 Phase::Form(FormingScript {
                     gains: TailGains::default(),

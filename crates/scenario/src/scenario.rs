@@ -97,6 +97,16 @@ pub struct Scenario {
     /// body touches as it touches the wall (docs/physics.md, "Obstacles"; default none).
     #[serde(default)]
     pub obstacles: Vec<ObstacleSpec>,
+    /// How finely the obstacles see the body's tube (docs/physics.md, "Obstacles"): the
+    /// deepest groove an obstacle's edge may reach unseen between two of the points they
+    /// touch, as a fraction of the local radius, `Some(0.05)` (default) or any in (0, 1];
+    /// `None`: the bodies' spheres alone, a chain of beads.
+    #[serde(default = "default_obstacle_groove")]
+    pub obstacle_groove: Option<f64>,
+}
+
+fn default_obstacle_groove() -> Option<f64> {
+    Some(hagfish_geometry::DEFAULT_GROOVE_FRACTION)
 }
 
 /// The smallest time step a scenario may ask for (s): below it a run cannot make progress in
@@ -266,6 +276,7 @@ impl LoadedScenario {
             backend: self.scenario.backend,
             acceptance: self.scenario.acceptance,
             friction: self.scenario.friction,
+            obstacle_groove: self.scenario.obstacle_groove,
             ..StepOptions::default()
         };
         // The exact friction cone is solved by the reference backend only.

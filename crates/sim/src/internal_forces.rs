@@ -154,9 +154,9 @@ fn collect_row_wrenches(data: &mut StepData, h: f64, friction: Option<Friction>)
                     if edge == 0 {
                         edges = contact_directions(c.normal, DVec3::X, friction, &mut directions);
                     }
-                    let offset = wall_contact_offset(edges, data.radii[c.body], c.normal);
+                    let offset = wall_contact_offset(edges, c.radius, c.normal);
                     let along = (directions[edge.min(edges - 1)], offset);
-                    push(&SplineWeights::single(c.body), 1.0, along, force);
+                    push(&c.weights, 1.0, along, force);
                 }
             }
             Some(RowGroup::Contact) => {

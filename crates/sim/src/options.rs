@@ -1,7 +1,9 @@
 //! Options of the step: time step, constraint stabilisation, margins, contact and wall set-up.
 
 use glam::DVec3;
-use hagfish_geometry::{DetectorOptions, MovingObstacle, WallOptions};
+#[cfg(doc)]
+use hagfish_geometry::TubeSamples;
+use hagfish_geometry::{DEFAULT_GROOVE_FRACTION, DetectorOptions, MovingObstacle, WallOptions};
 use hagfish_solver::{QpBackend, SolverOptions};
 use hagfish_tree::Model;
 
@@ -85,6 +87,12 @@ pub struct StepOptions {
     /// (`StepData::wall_contacts`), with the wall's margin, rows, friction and acceptance bound
     /// (docs/physics.md, "Obstacles"). Default none.
     pub obstacles: Vec<MovingObstacle>,
+    /// How finely obstacles see the tube: the deepest groove an obstacle's edge may reach
+    /// unseen between two of the points they touch, as a fraction f of the local radius
+    /// (in (0, 1], default [`DEFAULT_GROOVE_FRACTION`] = 0.05): segments whose bodies are long
+    /// against their radius are sampled between their centres ([`TubeSamples`],
+    /// docs/physics.md, "Obstacles"). `None`: the bodies' spheres alone, a chain of beads.
+    pub obstacle_groove: Option<f64>,
     /// Whether the head rows hold the root joints at their rest values (default
     /// [`RootHold::Held`], the hagfish's head at the wall) or leave them free.
     pub root: RootHold,
@@ -120,6 +128,7 @@ impl Default for StepOptions {
             acceptance: StepAcceptance::default(),
             friction: None,
             obstacles: Vec::new(),
+            obstacle_groove: Some(DEFAULT_GROOVE_FRACTION),
             root: RootHold::Held,
         }
     }

@@ -68,7 +68,8 @@ pub fn detect_contacts(
     }
     let margin = options.wall_options.margin;
     for obstacle in &options.obstacles {
-        obstacle.contacts(&data.centreline, margin, time, &mut data.wall_contacts);
+        let tube = (&data.centreline, &data.tube_samples);
+        obstacle.contacts(tube, margin, time, &mut data.wall_contacts);
     }
     Ok(detection)
 }
@@ -117,8 +118,7 @@ pub fn build_rows(model: &Model, options: &StepOptions, state: &State, data: &mu
     }
     add_limit_rows(model, state, h, options.limit_margin, options.push_out, &mut data.rows);
     let stabilisation = (h, options.push_out, options.friction);
-    let wall_contacts = (data.wall_contacts.as_slice(), data.radii.as_slice());
-    add_wall_rows(model, &data.tree, wall_contacts, stabilisation, &mut data.rows);
+    add_wall_rows(model, &data.tree, &data.wall_contacts, stabilisation, &mut data.rows);
     let skin_carriers = if data.skin.is_present() {
         let detected_radius = data.detector.options().cluster_radius;
         data.skin_records.carriers(&data.self_contacts, detected_radius)
@@ -430,7 +430,7 @@ fn penetration(data: &StepData) -> Penetration {
     }
     for contact in &data.wall_contacts {
         deepest.wall_cm = deepest.wall_cm.max(-contact.gap);
-        deepest.wall_relative = deepest.wall_relative.max(-contact.gap / data.radii[contact.body]);
+        deepest.wall_relative = deepest.wall_relative.max(-contact.gap / contact.radius);
     }
     deepest
 }

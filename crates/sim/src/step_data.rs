@@ -4,8 +4,8 @@ use faer::Mat;
 use glam::DVec3;
 use hagfish_control::Actuation;
 use hagfish_geometry::{
-    Centreline, ContactDetector, DetectionReport, PAIRS_PER_BODY, SelfContact, Wall, WallContact,
-    WallOptions,
+    Centreline, ContactDetector, DetectionReport, PAIRS_PER_BODY, SelfContact, TubeSamples, Wall,
+    WallContact, WallOptions,
 };
 use hagfish_solver::{Rows, SolverError, SolverWorkspace};
 use hagfish_sparse::TreeFactor;
@@ -60,8 +60,11 @@ pub struct StepData {
     pub centreline: Centreline,
     /// Self contacts, sorted head to tail by the anterior parameter (stage `detect_contacts`).
     pub self_contacts: Vec<SelfContact>,
-    /// Bodies touching the wall or an obstacle (stage `detect_contacts`).
+    /// Bodies touching the wall, and points of the tube touching an obstacle (stage
+    /// `detect_contacts`).
     pub wall_contacts: Vec<WallContact>,
+    /// The points of the tube that obstacles touch (fixed for the model and options).
+    pub tube_samples: TubeSamples,
     /// What the controller asked for this step (stage `control`).
     pub actuation: Actuation,
     /// Constraint rows of this step (stage `build_rows`).
@@ -131,6 +134,8 @@ impl StepData {
         position_kinematics(model, &State::rest(model).q, &mut tree);
         let centres: Vec<DVec3> = (0..model.body_count()).map(|i| tree.body_centre(i)).collect();
         let centreline = Centreline::new(&centres, &radii).map_err(geometry)?;
+        let tube_samples =
+            TubeSamples::new(&lengths, &radii, options.obstacle_groove).map_err(geometry)?;
         let mut detector =
             ContactDetector::new(options.detector_options(model)).map_err(geometry)?;
         detector.reserve(model.body_count());
@@ -169,6 +174,7 @@ impl StepData {
             centreline,
             self_contacts: contacts()?,
             wall_contacts: Vec::new(),
+            tube_samples,
             actuation: Actuation::default(),
             rows,
             solver,

@@ -1,9 +1,10 @@
 //! A rigid rod on an incline with Coulomb friction: it sticks for tan θ < μ and slides with
-//! a = g(sin θ − μ cos θ) otherwise (the first friction check).
+//! a = g(sin θ − μ cos θ) otherwise (the first friction check); on a plane that tilts
+//! under it, it starts to slide as the tilt passes atan μ.
 
 use glam::{DMat3, DVec3};
 use hagfish_control::Passive;
-use hagfish_geometry::Obstacle;
+use hagfish_geometry::{MovingObstacle, Obstacle, ObstaclePath, Spin};
 use hagfish_sim::rows::{ConeForm, Friction};
 use hagfish_sim::{RootHold, StepOptions, World};
 use hagfish_solver::{QpBackend, SolverOptions};
@@ -174,5 +175,49 @@ fn on_the_exact_cone_a_block_follows_coulomb_in_every_direction() {
                 }
             }
         }
+    }
+}
+
+/// A plane tilting under a resting rod (turning at ω = 0.02 rad/s about the line in it under
+/// the rod's first centre: a spin about an axis other than its normal turns the shape) holds it
+/// while tan θ < μ and lets it slide from the friction angle on: for μ = 0.1 and 0.3 the rod's
+/// velocity down the slope first passes 0.01 cm/s at θ within 1 % above atan μ (the slide
+/// starts at a = 0 and needs ≈ 0.03 s to reach that speed), and stays below it until then.
+/// The rod does not turn (a translation root), so it rests on its first sphere alone.
+#[test]
+fn a_plane_tilting_under_a_rod_lets_it_slide_at_the_friction_angle() {
+    const RATE: f64 = 0.02;
+    for mu in [0.1_f64, 0.3] {
+        let model = rod_on_incline(2, 0.0, 0.0);
+        let plane = Obstacle::plane(DVec3::new(0.5, 0.0, 0.0), DVec3::Z).expect("a plane");
+        let spin = Spin::new(&plane, DVec3::Y, RATE).expect("a tilt");
+        let tilting =
+            MovingObstacle { shape: plane, path: ObstaclePath::default(), spin: Some(spin) };
+        let options = StepOptions {
+            self_contact: false,
+            wall: None,
+            root: RootHold::Free,
+            friction: Some(Friction::pyramid(mu, 8)),
+            obstacles: vec![tilting],
+            ..StepOptions::default()
+        };
+        let state = State::rest(&model);
+        let mut world = World::new(model, options, state).expect("world");
+        let friction_angle = mu.atan();
+        let onset = loop {
+            world.step(&mut Passive).expect("step");
+            let (t, qdot) = (world.state().t, &world.state().qdot);
+            let angle = RATE * t;
+            let down = qdot[0] * angle.cos() - qdot[2] * angle.sin();
+            if down > 0.01 {
+                break angle;
+            }
+            assert!(angle < 1.1 * friction_angle, "μ {mu}: no slide by θ = {angle}");
+        };
+        println!("μ {mu}: slides from θ = {onset:.5} rad, atan μ = {friction_angle:.5}");
+        assert!(
+            onset >= friction_angle && onset <= 1.01 * friction_angle,
+            "μ {mu}: slides from θ = {onset}, atan μ = {friction_angle}"
+        );
     }
 }

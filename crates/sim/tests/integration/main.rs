@@ -11,3 +11,4 @@ mod constraints;
 mod incline;
 mod linear_memory;
 mod moving_obstacle;
+mod thin_obstacle;

@@ -77,13 +77,14 @@ fn a_sphere_moving_on_its_path_pushes_a_free_block_at_its_own_speed() {
 }
 
 /// The block of [`block`] (2 g) lying on top of a roller: a cylinder of radius R = 10⁴ cm
-/// about an axis along z below the block's middle, where both its bodies' spheres touch it,
+/// about an axis along z below the block's middle, where its tube touches it (at the two
+/// centres and the eight samples between them),
 /// turning at ω = −5·10⁻⁴ rad/s, so that its top moves along +x at ωR = 5 cm/s; gravity −g ŷ,
 /// μ = 0.05 (8-edge pyramid, an edge along x). The block slips and is dragged along at a = μg
 /// until it moves with the surface (5 cm/s after 0.1 s, 0.26 cm along), then rides on it:
 /// Coulomb's kinetic friction, then sticking, on a surface that turns in place. The surface
-/// under the two bodies tilts by ±5·10⁻⁵ rad, and by 2.6·10⁻⁵ rad more along the slip: each
-/// 0.1 % of μ at most, however the two contacts share the load.
+/// under the block tilts by ±5·10⁻⁵ rad, and by 2.6·10⁻⁵ rad more along the slip: each
+/// 0.1 % of μ at most, however the contacts share the load.
 #[test]
 fn a_turning_roller_drags_a_block_at_mu_g_until_it_moves_with_its_surface() {
     const G: f64 = 980.0;
