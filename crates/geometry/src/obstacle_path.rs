@@ -133,7 +133,7 @@ impl MovingObstacle {
                 None => velocity,
                 Some(spin) => {
                     let surface = contact.point - (contact.gap + contact.radius) * contact.normal;
-                    velocity + spin.surface_velocity(obstacle.reference_point(), surface)
+                    velocity + spin.surface_velocity(t, obstacle.reference_point(), surface)
                 }
             };
         }

@@ -67,6 +67,10 @@ pub struct SpinSpec {
     pub axis: [f64; 3],
     /// The angular speed (rad/s).
     pub rate_rad_per_s: f64,
+    /// When the turn stops (s; `None`, the default: never): the obstacle holds the pose it has
+    /// then, e.g. a plane tilted by rate · until_s and held.
+    #[serde(default)]
+    pub until_s: Option<f64>,
 }
 
 impl ObstacleSpec {
@@ -78,7 +82,10 @@ impl ObstacleSpec {
                 let path = ObstaclePath::new(waypoints)?;
                 let shape = shape.to_still_obstacle()?;
                 let spin = spin
-                    .map(|spin| Spin::new(&shape, spin.axis.into(), spin.rate_rad_per_s))
+                    .map(|spin| {
+                        let turn = Spin::new(&shape, spin.axis.into(), spin.rate_rad_per_s)?;
+                        spin.until_s.map_or(Ok(turn), |stop| turn.until(stop))
+                    })
                     .transpose()?;
                 Ok(MovingObstacle { shape, path, spin })
             }
@@ -144,12 +151,12 @@ mod tests {
         assert_eq!(spin.angular_velocity(), glam::DVec3::new(0.0, 0.0, 0.5));
         assert!(!spin.turns_shape(), "a roller turns in place");
         let ObstacleSpec::Moving { shape, path, .. } = roller else { unreachable!() };
-        let swinging = Some(SpinSpec { axis: [1.0, 0.0, 0.0], rate_rad_per_s: 0.5 });
+        let swinging = Some(SpinSpec { axis: [1.0, 0.0, 0.0], rate_rad_per_s: 0.5, until_s: None });
         let across =
             ObstacleSpec::Moving { shape: shape.clone(), path: path.clone(), spin: swinging };
         let spin = across.to_obstacle().expect("valid").spin.expect("a spin");
         assert!(spin.turns_shape(), "a cylinder turning across its axis swings");
-        let stalled = Some(SpinSpec { axis: [0.0; 3], rate_rad_per_s: 0.5 });
+        let stalled = Some(SpinSpec { axis: [0.0; 3], rate_rad_per_s: 0.5, until_s: None });
         let no_axis = ObstacleSpec::Moving { shape, path, spin: stalled };
         assert!(no_axis.to_obstacle().is_err(), "a turn about no axis");
     }

@@ -221,3 +221,53 @@ fn a_plane_tilting_under_a_rod_lets_it_slide_at_the_friction_angle() {
         );
     }
 }
+
+/// A plane tilted at 0.5 rad/s under the resting rod and held at θ (the turn's `until`): held
+/// below the friction angle (tan θ = 0.8 μ) the rod comes to rest on it (every speed below
+/// 10⁻⁹ cm/s from 0.2 s after the stop); held above it (tan θ = 1.25 μ) the rod slides down the
+/// still plane at Coulomb's a = g(sin θ − μ cos θ) within 1 %, for μ = 0.1 and 0.3.
+#[test]
+fn a_plane_tilted_and_held_keeps_or_slides_the_rod_as_a_still_incline() {
+    const RATE: f64 = 0.5;
+    for mu in [0.1_f64, 0.3] {
+        for ratio in [0.8, 1.25] {
+            let angle = (ratio * mu).atan();
+            let model = rod_on_incline(2, 0.0, 0.0);
+            let plane = Obstacle::plane(DVec3::new(0.5, 0.0, 0.0), DVec3::Z).expect("a plane");
+            let spin = Spin::new(&plane, DVec3::Y, RATE).and_then(|s| s.until(angle / RATE));
+            let path = ObstaclePath::default();
+            let tilted = MovingObstacle { shape: plane, path, spin: Some(spin.expect("a tilt")) };
+            let options = StepOptions {
+                self_contact: false,
+                wall: None,
+                root: RootHold::Free,
+                friction: Some(Friction::pyramid(mu, 8)),
+                obstacles: vec![tilted],
+                ..StepOptions::default()
+            };
+            let state = State::rest(&model);
+            let mut world = World::new(model, options, state).expect("world");
+            let down = |qdot: &[f64]| qdot[0] * angle.cos() - qdot[2] * angle.sin();
+            let settle = angle / RATE + 0.2;
+            while world.state().t < settle {
+                world.step(&mut Passive).expect("step");
+            }
+            let start = down(&world.state().qdot);
+            for _ in 0..10 {
+                world.step(&mut Passive).expect("step");
+            }
+            let speed = down(&world.state().qdot);
+            let a = (speed - start) / 0.1;
+            let coulomb = G * (angle.sin() - mu * angle.cos());
+            println!(
+                "μ {mu}, tan θ = {ratio} μ, held: {start:.3e} → {speed:.3e} cm/s, a = {a:.4} (Coulomb {coulomb:.4})"
+            );
+            if ratio < 1.0 {
+                let moving = world.state().qdot.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+                assert!(moving < 1e-9, "μ {mu}, tan θ = {ratio} μ: moving at {moving} cm/s");
+            } else {
+                assert!((a / coulomb - 1.0).abs() < 0.01, "μ {mu}: a = {a}, Coulomb {coulomb}");
+            }
+        }
+    }
+}
