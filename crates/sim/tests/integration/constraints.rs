@@ -65,8 +65,9 @@ fn head_limits_and_wall_hold_under_a_sweeping_tail_force() {
     assert!(wall_depth < 0.02, "wall penetration {wall_depth} of a radius");
 }
 
-/// A planar chain of `bodies` 1 cm rods hinged about +Z, lying along +X from the origin.
-fn planar_chain(bodies: usize, limit: f64) -> Model {
+/// A planar chain of `bodies` 1 cm, 1 g rods of radius 0.2 cm hinged about +Z at their ends,
+/// lying along +X from the origin, each joint limited to ±`limit` rad.
+pub(crate) fn planar_chain(bodies: usize, limit: f64) -> Model {
     let mut builder = ModelBuilder::new();
     for i in 0..bodies {
         let dof = DofParams { lower: -limit, upper: limit, ..DofParams::default() };

@@ -178,6 +178,28 @@ fn on_the_exact_cone_a_block_follows_coulomb_in_every_direction() {
     }
 }
 
+/// The two-body rod of [`rod_on_incline`] lying flat on the plane z = 0 (its root free to
+/// translate), μ on an 8-edge pyramid, the plane tilting at `rate` rad/s about the line along
+/// y under the rod's first centre, until `stop` (s) if given: the plane's normal is
+/// (sin θ, 0, cos θ), θ = rate · min(t, stop), so the rod's way down the slope is +x.
+fn rod_on_a_tilting_plane(mu: f64, rate: f64, stop: Option<f64>) -> World {
+    let model = rod_on_incline(2, 0.0, 0.0);
+    let plane = Obstacle::plane(DVec3::new(0.5, 0.0, 0.0), DVec3::Z).expect("a plane");
+    let spin = Spin::new(&plane, DVec3::Y, rate).expect("a tilt");
+    let spin = stop.map_or(Ok(spin), |stop| spin.until(stop)).expect("a stop");
+    let tilting = MovingObstacle { shape: plane, path: ObstaclePath::default(), spin: Some(spin) };
+    let options = StepOptions {
+        self_contact: false,
+        wall: None,
+        root: RootHold::Free,
+        friction: Some(Friction::pyramid(mu, 8)),
+        obstacles: vec![tilting],
+        ..StepOptions::default()
+    };
+    let state = State::rest(&model);
+    World::new(model, options, state).expect("world")
+}
+
 /// A plane tilting under a resting rod (turning at ω = 0.02 rad/s about the line in it under
 /// the rod's first centre: a spin about an axis other than its normal turns the shape) holds it
 /// while tan θ < μ and lets it slide from the friction angle on: for μ = 0.1 and 0.3 the rod's
@@ -188,21 +210,7 @@ fn on_the_exact_cone_a_block_follows_coulomb_in_every_direction() {
 fn a_plane_tilting_under_a_rod_lets_it_slide_at_the_friction_angle() {
     const RATE: f64 = 0.02;
     for mu in [0.1_f64, 0.3] {
-        let model = rod_on_incline(2, 0.0, 0.0);
-        let plane = Obstacle::plane(DVec3::new(0.5, 0.0, 0.0), DVec3::Z).expect("a plane");
-        let spin = Spin::new(&plane, DVec3::Y, RATE).expect("a tilt");
-        let tilting =
-            MovingObstacle { shape: plane, path: ObstaclePath::default(), spin: Some(spin) };
-        let options = StepOptions {
-            self_contact: false,
-            wall: None,
-            root: RootHold::Free,
-            friction: Some(Friction::pyramid(mu, 8)),
-            obstacles: vec![tilting],
-            ..StepOptions::default()
-        };
-        let state = State::rest(&model);
-        let mut world = World::new(model, options, state).expect("world");
+        let mut world = rod_on_a_tilting_plane(mu, RATE, None);
         let friction_angle = mu.atan();
         let onset = loop {
             world.step(&mut Passive).expect("step");
@@ -232,21 +240,7 @@ fn a_plane_tilted_and_held_keeps_or_slides_the_rod_as_a_still_incline() {
     for mu in [0.1_f64, 0.3] {
         for ratio in [0.8, 1.25] {
             let angle = (ratio * mu).atan();
-            let model = rod_on_incline(2, 0.0, 0.0);
-            let plane = Obstacle::plane(DVec3::new(0.5, 0.0, 0.0), DVec3::Z).expect("a plane");
-            let spin = Spin::new(&plane, DVec3::Y, RATE).and_then(|s| s.until(angle / RATE));
-            let path = ObstaclePath::default();
-            let tilted = MovingObstacle { shape: plane, path, spin: Some(spin.expect("a tilt")) };
-            let options = StepOptions {
-                self_contact: false,
-                wall: None,
-                root: RootHold::Free,
-                friction: Some(Friction::pyramid(mu, 8)),
-                obstacles: vec![tilted],
-                ..StepOptions::default()
-            };
-            let state = State::rest(&model);
-            let mut world = World::new(model, options, state).expect("world");
+            let mut world = rod_on_a_tilting_plane(mu, RATE, Some(angle / RATE));
             let down = |qdot: &[f64]| qdot[0] * angle.cos() - qdot[2] * angle.sin();
             let settle = angle / RATE + 0.2;
             while world.state().t < settle {

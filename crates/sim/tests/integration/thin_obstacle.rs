@@ -1,6 +1,7 @@
 //! Obstacles touch the tube, not only the bodies' spheres: a thin bar under a rod of bodies
 //! long against their radius holds it where a chain of beads falls through.
 
+use crate::constraints::planar_chain;
 use glam::DVec3;
 use hagfish_control::Passive;
 use hagfish_geometry::{Centreline, DEFAULT_GROOVE_FRACTION, Obstacle, TubeSamples};
@@ -87,25 +88,10 @@ fn a_thin_bar_holds_the_tube_where_the_bodies_spheres_fall_through() {
     assert!(fallen > 40.0, "the beads fell {fallen} cm");
 }
 
-/// A planar chain of five 1 cm bodies of radius 0.2 cm hinged about z at their ends, bent at
-/// `q`: nine samples a segment at the default groove (δ_max = 0.1249 cm).
+/// [`planar_chain`] of five bodies bent at `q`: nine samples a segment at the default groove
+/// (δ_max = 0.1249 cm).
 fn bent_chain(q: &[f64]) -> (hagfish_tree::Model, State) {
-    let mut builder = ModelBuilder::new();
-    for i in 0..5_usize {
-        builder.add_body(BodySpec {
-            parent: i.checked_sub(1),
-            joint: JointKind::Revolute { axis: DVec3::Z },
-            joint_offset: Transform::from_translation(DVec3::X * if i == 0 { 0.0 } else { 1.0 }),
-            body_offset: Transform::from_translation(DVec3::X * 0.5),
-            mass: 1.0,
-            principal_inertia: DVec3::new(0.02, 0.1, 0.1),
-            radius: 0.2,
-            length: 1.0,
-            skin: None,
-            dofs: vec![DofParams { lower: -3.0, upper: 3.0, ..DofParams::default() }],
-        });
-    }
-    let model = builder.build().expect("a valid chain");
+    let model = planar_chain(5, 3.0);
     let mut state = State::rest(&model);
     state.q.copy_from_slice(q);
     (model, state)
