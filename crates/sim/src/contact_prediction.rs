@@ -109,7 +109,7 @@ impl ContactPredictor {
             if gap_after >= target - tolerance {
                 continue;
             }
-            let Some(coefficients) = rows.coefficients(row) else { continue };
+            let Some(coefficients) = rows.row(row) else { continue };
             let speed: f64 = coefficients.iter().zip(qdot).map(|(c, v)| c * v).sum();
             let raised = speed + (target - gap_after).min(MAX_CORRECTION) / time_step;
             if raised > bounds[row] {

@@ -90,7 +90,7 @@ pub(crate) fn solve(
     let mut slack_rows = Vec::new();
     for (constraint, &row) in equalities.iter().chain(&inequalities).enumerate() {
         let sign = if rows.kinds()[row] == RowKind::Equality { 1.0 } else { -1.0 };
-        for (j, &c) in rows.row(row).iter().enumerate().filter(|(_, c)| **c != 0.0) {
+        for (j, c) in rows.coefficients_of(row).iter().enumerate().filter(|(_, c)| *c != 0.0) {
             ai.push(constraint);
             aj.push(j);
             av.push(sign * c * scale[j]);
@@ -118,7 +118,7 @@ pub(crate) fn solve(
     for contact in &contacts {
         for row in contact.rows() {
             let factor = if row == contact.normal { 1.0 } else { contact.coefficient };
-            for (j, &c) in rows.row(row).iter().enumerate().filter(|(_, c)| **c != 0.0) {
+            for (j, c) in rows.coefficients_of(row).iter().enumerate().filter(|(_, c)| *c != 0.0) {
                 ai.push(constraint);
                 aj.push(j);
                 av.push(-factor * c * scale[j]);

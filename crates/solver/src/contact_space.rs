@@ -523,7 +523,7 @@ mod tests {
                 let (weights, rhs) = ([next(), next(), next()], next());
                 let kind = if edge == 0 && contact % 2 == 0 { compliant } else { inequality };
                 combined.push_combination(kind, source, rhs, (first, weights));
-                let written = combined.row(combined.len() - 1).to_vec();
+                let written = combined.coefficients_of(combined.len() - 1).to_vec();
                 own.push_zeroed(kind, source, rhs).copy_from_slice(&written);
             }
         }

@@ -80,6 +80,7 @@ mod reduced_rows;
 mod refine;
 mod report;
 mod residuals;
+mod row_coefficients;
 mod rows;
 mod workspace;
 
@@ -89,5 +90,6 @@ pub use options::{QpBackend, SolverOptions, WarmStart};
 pub use problem::Problem;
 pub use pyramid::FrictionPyramid;
 pub use report::{Residuals, SlackUsage, SolvePath, SolveReport, SolveStatus};
+pub use row_coefficients::RowCoefficients;
 pub use rows::{PerTag, RowBasis, RowKind, RowSource, RowTag, Rows};
 pub use workspace::{Factored, SolverWorkspace};

@@ -57,7 +57,7 @@ pub(crate) trait Entries {
 /// Lanes of the partial sums in [`dot`] and [`dot_and_magnitude`]: independent sums the
 /// compiler can keep in vector registers (a single running sum cannot be vectorised without
 /// reordering it). The order of the additions is fixed, so results are deterministic.
-const LANES: usize = 4;
+pub(crate) const LANES: usize = 4;
 
 /// xᵀy over the common length of x and y.
 pub(crate) fn dot(x: &[f64], y: &[f64]) -> f64 {

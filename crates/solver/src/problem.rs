@@ -15,11 +15,11 @@ use faer::linalg::matmul::matmul;
 use faer::{Accum, MatRef, Par};
 
 use crate::error::SolverError;
-use crate::linalg::{column, column_mut};
+use crate::linalg::{column, column_mut, norm_max};
 use crate::mass_operator::{Mass, MassOperator};
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use crate::rows::{RowKind, Rows};
+use crate::rows::{RowBasis, RowKind, Rows};
 
 /// Relative tolerance of the symmetry check: |M̃ᵢⱼ − M̃ⱼᵢ| ≤ tol·(|M̃ᵢⱼ| + |M̃ⱼᵢ|) + tol·max|M̃ₖₖ|.
 const SYMMETRY_TOLERANCE: f64 = 1e-12;
@@ -284,11 +284,10 @@ fn check_friction(
 }
 
 /// Finite coefficients, valid soft weights and compliances (the right-hand sides are checked with f̃). The
-/// coefficients are checked in one branch-free pass; only when it fails are they searched for
-/// the first offending entry.
+/// coefficients are checked in one branch-free pass ([`coefficients_finite`]); only when it
+/// fails are they searched for the first offending entry.
 fn check_rows(rows: &Rows) -> Result<(), SolverError> {
-    let finite = (0..rows.len()).all(|i| all_finite(rows.row(i)));
-    let transposed = rows.transposed();
+    let finite = coefficients_finite(rows);
     for (i, &kind) in rows.kinds().iter().enumerate() {
         if let RowKind::SoftInequality { weight } = kind
             && !(weight.is_finite() && weight > 0.0)
@@ -304,12 +303,38 @@ fn check_rows(rows: &Rows) -> Result<(), SolverError> {
             check_friction(rows.kinds(), i, normal, coefficient)?;
         }
         if !finite {
-            for j in 0..transposed.nrows() {
-                check_finite("row coefficients", i, j, transposed[(j, i)])?;
+            for (j, c) in rows.coefficients_of(i).iter().enumerate() {
+                check_finite("row coefficients", i, j, c)?;
             }
         }
     }
     Ok(())
+}
+
+/// True when every row's coefficients are finite, read where they are stored: each row of its
+/// own, each combination's bases once (over their extent: zero after it) and each combination
+/// Σₖ wₖgₖ by its bound Σₖ|wₖ| maxⱼ|gₖⱼ| (finite and below f64::MAX / 2 ⇒ every entry finite,
+/// rounding included), written out only where the bound fails.
+fn coefficients_finite(rows: &Rows) -> bool {
+    let mut bases: Option<(usize, [f64; 3])> = None;
+    rows.basis().iter().zip(rows.extents()).enumerate().all(|(i, (basis, &extent))| match *basis {
+        RowBasis::Own => all_finite(rows.own_row(i)),
+        RowBasis::Combination { first, weights } => {
+            let sizes = match bases {
+                Some((last, sizes)) if last == first => sizes,
+                _ => {
+                    let used = |k: usize| &rows.base(first + k)[..extent];
+                    if !(0..3).all(|k| all_finite(used(k))) {
+                        return false;
+                    }
+                    [0, 1, 2].map(|k| norm_max(used(k)))
+                }
+            };
+            bases = Some((first, sizes));
+            let bound: f64 = weights.iter().zip(sizes).map(|(w, size)| w.abs() * size).sum();
+            bound <= f64::MAX / 2.0 || rows.coefficients_of(i).iter().all(f64::is_finite)
+        }
+    })
 }
 
 #[cfg(test)]

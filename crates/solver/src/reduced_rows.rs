@@ -109,7 +109,7 @@ impl ReducedRows {
     /// Reduced column `j`'s coefficients in `rows`.
     pub(crate) fn column<'r>(&self, rows: &'r Rows, j: usize) -> &'r [f64] {
         match self.columns[j] {
-            ReducedColumn::Row(i) => rows.row(i),
+            ReducedColumn::Row(i) => rows.own_row(i),
             ReducedColumn::Base(k) => rows.base(k),
         }
     }
@@ -155,8 +155,8 @@ mod tests {
         for weights in [[1.0, 2.0, 3.0], [0.5, 0.0, -1.0]] {
             rows.push_combination(RowKind::Inequality, source, 0.0, (first, weights));
         }
-        assert_eq!(rows.row(1), [4.0, 5.0]);
-        assert_eq!(rows.row(2), [-0.5, -1.0]);
+        assert_eq!(rows.coefficients_of(1).to_vec(), [4.0, 5.0]);
+        assert_eq!(rows.coefficients_of(2).to_vec(), [-0.5, -1.0]);
         let mut reduced = ReducedRows::default();
         reduced.reduce(&rows);
         assert_eq!(reduced.len(), 4, "one row of its own and three bases");

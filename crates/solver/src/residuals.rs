@@ -7,7 +7,7 @@
 //! σᵢ = max(0, −vᵢ). The same evaluation serves the iterative refinement (which drives the
 //! free rows' vᵢ and t to rounding level) and the final report, for every backend.
 
-use crate::linalg::{axpy, dot_and_magnitude, norm_max};
+use crate::linalg::norm_max;
 use crate::problem::Problem;
 use crate::pyramid::{FrictionContact, friction_contacts};
 use crate::report::{Residuals, SlackUsage};
@@ -18,7 +18,7 @@ use crate::rows::{PerTag, RowKind};
 /// over the entries
 /// `..support` only: cᵢ must vanish from `support` on (n always does; the contact space
 /// knows each row's support). For a finite q̇ that is the full sum bit for bit: the partial
-/// sums of [`dot_and_magnitude`] take entry j in lane j mod 4 either way, and a zero term
+/// sums of [`dot_and_magnitude`](crate::linalg::dot_and_magnitude) take entry j in lane j mod 4 either way, and a zero term
 /// leaves a lane's sum as it is (a sum of terms from +0 is never −0).
 pub(crate) fn row_residual(
     problem: &Problem<'_>,
@@ -27,8 +27,8 @@ pub(crate) fn row_residual(
     lambda: &[f64],
     support: usize,
 ) -> (f64, f64) {
-    let coefficients = problem.rows().row(row);
-    residual_of_product(problem, row, lambda, dot_and_magnitude(coefficients, &qdot[..support]))
+    let product = problem.rows().coefficients_of(row).dot_and_magnitude(&qdot[..support]);
+    residual_of_product(problem, row, lambda, product)
 }
 
 /// (vᵢ, sᵢ) of [`row_residual`] from the product cᵢᵀq̇ and its size Σⱼ|cᵢⱼq̇ⱼ| (or a bound on
@@ -112,7 +112,7 @@ fn transposed_product(
     let rows = problem.rows();
     for (i, &multiplier) in lambda.iter().enumerate().filter(|&(_, &l)| l != 0.0) {
         let support = supports.map_or(out.len(), |supports| supports[i]);
-        axpy(multiplier, &rows.row(i)[..support], &mut out[..support]);
+        rows.coefficients_of(i).add_scaled_to(multiplier, &mut out[..support]);
     }
 }
 

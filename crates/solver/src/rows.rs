@@ -35,20 +35,23 @@
 //! A row may be stored as a combination of three base vectors, `cᵢ = Σₖ wₖ g_{f+k}`
 //! ([`Rows::push_bases`], [`Rows::push_combination`]): a contact's rows along the edges of its
 //! friction pyramid are all `dᵀG` for the same 3 × n Jacobian G of the contact's relative
-//! velocity. The row's own coefficients are still written out (every path reads them); the
+//! velocity. Such a row is kept as its bases and weights and never written out: the
 //! contact-space build solves L⁻¹ for the three bases once instead of once per row
-//! (`reduced_rows.rs`).
+//! (`reduced_rows.rs`), and the few readers of a row's coefficients (the rows with λᵢ ≠ 0, a
+//! predicted overshoot) write them out entry by entry as they read them
+//! ([`RowCoefficients`]). The bases must be filled before their rows are pushed, and kept.
 //!
-//! Storage: the coefficients sit in one column-major n × capacity matrix whose column i is
-//! cᵢ, i.e. the columns form Cᵀ. That is the layout the contact-space solve needs (it copies
-//! Cᵀ and solves L Y = Cᵀ in place) and each row is one contiguous slice. Capacity only grows:
+//! Storage: the coefficients of rows of their own sit in one column-major n × capacity matrix
+//! whose column i is cᵢ (a combination's column is left unused), so each row is one
+//! contiguous slice, the layout the contact-space solve reads. Capacity only grows:
 //! [`Rows::clear`] keeps every buffer, so refilling the same number of rows each step does not
 //! allocate.
 
-use faer::{Mat, MatRef};
+use faer::Mat;
 
 use crate::error::SolverError;
 use crate::linalg::{try_capacity, try_matrix_capacity};
+use crate::row_coefficients::RowCoefficients;
 
 /// How a row constrains q̇ (see the module table). Soft rows carry their penalty weight.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -182,13 +185,15 @@ pub enum RowBasis {
 /// Grow-only container of constraint rows over `dofs` reduced velocities.
 #[derive(Debug, Clone)]
 pub struct Rows {
-    /// n × capacity, column-major; column i holds cᵢ (so the first `len` columns are Cᵀ).
+    /// n × capacity, column-major; column i holds cᵢ if row i is a row of its own.
     coefficients: Mat<f64>,
     rhs: Vec<f64>,
     kinds: Vec<RowKind>,
     sources: Vec<RowSource>,
     /// How each row is made.
     basis: Vec<RowBasis>,
+    /// Each row's extent: its coefficients vanish from it on (n for a row of its own).
+    extents: Vec<usize>,
     /// n × capacity, column-major: the base vectors of combination rows.
     bases: Mat<f64>,
     /// Base vectors in use.
@@ -207,6 +212,7 @@ impl Rows {
             kinds: Vec::new(),
             sources: Vec::new(),
             basis: Vec::new(),
+            extents: Vec::new(),
             bases: Mat::zeros(dofs, 0),
             base_count: 0,
             bases_extent: None,
@@ -226,6 +232,7 @@ impl Rows {
         try_capacity(&mut rows.kinds, capacity, "the rows' kinds")?;
         try_capacity(&mut rows.sources, capacity, "the rows' sources")?;
         try_capacity(&mut rows.basis, capacity, "the rows' bases")?;
+        try_capacity(&mut rows.extents, capacity, "the rows' extents")?;
         Ok(rows)
     }
 
@@ -250,6 +257,7 @@ impl Rows {
         self.kinds.clear();
         self.sources.clear();
         self.basis.clear();
+        self.extents.clear();
         self.base_count = 0;
         self.bases_extent = None;
     }
@@ -286,15 +294,22 @@ impl Rows {
     /// Appends a row with zero coefficients and returns them for the builder to fill in place
     /// (sparse rows such as a joint limit eₖ set one entry; no temporary vector needed).
     pub fn push_zeroed(&mut self, kind: RowKind, source: RowSource, rhs: f64) -> &mut [f64] {
-        let index = self.push_row(kind, source, rhs, RowBasis::Own);
+        let index = self.push_row(kind, source, rhs, RowBasis::Own, self.dofs());
         let column = self.coefficients.col_as_slice_mut(index);
         column.fill(0.0);
         column
     }
 
-    /// Appends a row's kind, source, right-hand side and basis, with room for its
+    /// Appends a row's kind, source, right-hand side, basis and extent, with room for its
     /// coefficients (as they were: the caller writes them), and returns its index.
-    fn push_row(&mut self, kind: RowKind, source: RowSource, rhs: f64, basis: RowBasis) -> usize {
+    fn push_row(
+        &mut self,
+        kind: RowKind,
+        source: RowSource,
+        rhs: f64,
+        basis: RowBasis,
+        extent: usize,
+    ) -> usize {
         let index = self.len();
         if index == self.coefficients.ncols() {
             self.grow();
@@ -303,6 +318,7 @@ impl Rows {
         self.kinds.push(kind);
         self.sources.push(source);
         self.basis.push(basis);
+        self.extents.push(extent);
         index
     }
 
@@ -344,8 +360,8 @@ impl Rows {
     }
 
     /// Appends the row `Σₖ weights[k] · g_{first+k}` (the bases `first..first + 3` must be
-    /// filled), writing out its coefficients once: summed over the entries before the bases'
-    /// last nonzero (the contact's bodies' paths to the root), zero after it.
+    /// filled, and are not to change after), kept as its bases and weights: its extent is the
+    /// end of the bases' nonzero entries (the contact's bodies' paths to the root).
     pub fn push_combination(
         &mut self,
         kind: RowKind,
@@ -353,7 +369,6 @@ impl Rows {
         rhs: f64,
         (first, weights): (usize, [f64; 3]),
     ) {
-        let index = self.push_row(kind, source, rhs, RowBasis::Combination { first, weights });
         let extent = match self.bases_extent {
             Some((bases, extent)) if bases == first => extent,
             _ => {
@@ -363,13 +378,7 @@ impl Rows {
             }
         };
         self.bases_extent = Some((first, extent));
-        let column = self.coefficients.col_as_slice_mut(index);
-        let (used, zero) = column.split_at_mut(extent);
-        let [g0, g1, g2] = [0, 1, 2].map(|k| &self.bases.col_as_slice(first + k)[..extent]);
-        for (((c, a), b), d) in used.iter_mut().zip(g0).zip(g1).zip(g2) {
-            *c = weights[0] * a + weights[1] * b + weights[2] * d;
-        }
-        zero.fill(0.0);
+        self.push_row(kind, source, rhs, RowBasis::Combination { first, weights }, extent);
     }
 
     /// How each row is made (one per row).
@@ -383,13 +392,31 @@ impl Rows {
     }
 
     /// Coefficients cᵢ of row `index`, or `None` past the end.
-    pub fn coefficients(&self, index: usize) -> Option<&[f64]> {
-        (index < self.len()).then(|| self.coefficients.col_as_slice(index))
+    pub fn row(&self, index: usize) -> Option<RowCoefficients<'_>> {
+        (index < self.len()).then(|| self.coefficients_of(index))
     }
 
     /// Coefficients cᵢ of a row known to exist (crate-internal indices only).
-    pub(crate) fn row(&self, index: usize) -> &[f64] {
+    pub(crate) fn coefficients_of(&self, index: usize) -> RowCoefficients<'_> {
+        match self.basis[index] {
+            RowBasis::Own => RowCoefficients::own(self.own_row(index)),
+            RowBasis::Combination { first, weights } => {
+                let bases = [first, first + 1, first + 2].map(|k| self.base(k));
+                RowCoefficients::combination(bases, weights, self.extents[index])
+            }
+        }
+    }
+
+    /// The coefficients of a row of its own (crate-internal indices only; a combination's
+    /// column is unused).
+    pub(crate) fn own_row(&self, index: usize) -> &[f64] {
+        debug_assert!(matches!(self.basis[index], RowBasis::Own), "row {index} is a combination");
         self.coefficients.col_as_slice(index)
+    }
+
+    /// Each row's extent: its coefficients vanish from it on.
+    pub(crate) fn extents(&self) -> &[usize] {
+        &self.extents
     }
 
     /// Right-hand sides b (one per row), as pushed; to solve the same rows with other bounds,
@@ -406,11 +433,6 @@ impl Rows {
     /// Row sources (one per row): the caller's tag and id of each row.
     pub fn sources(&self) -> &[RowSource] {
         &self.sources
-    }
-
-    /// Cᵀ as an n × m view: column i is cᵢ.
-    pub fn transposed(&self) -> MatRef<'_, f64> {
-        self.coefficients.as_ref().subcols(0, self.len())
     }
 
     /// Number of rows with each tag.
@@ -432,7 +454,8 @@ impl Rows {
         let dofs = self.dofs();
         let capacity = (2 * self.coefficients.ncols()).max(8);
         let mut grown = Mat::zeros(dofs, capacity);
-        grown.as_mut().subcols_mut(0, self.len()).copy_from(self.transposed());
+        let used = self.coefficients.as_ref().subcols(0, self.len());
+        grown.as_mut().subcols_mut(0, self.len()).copy_from(used);
         self.coefficients = grown;
     }
 }
@@ -472,9 +495,8 @@ mod tests {
         let limit = rows.push_zeroed(RowKind::Inequality, RowSource::new(BOUND, 2), -2.0);
         limit[2] = -1.0;
         assert_eq!(rows.len(), 2);
-        assert_eq!(rows.coefficients(1), Some(&[0.0, 0.0, -1.0][..]));
-        assert_eq!(rows.coefficients(2), None);
-        assert_eq!(rows.transposed()[(2, 1)], -1.0);
+        assert_eq!(rows.row(1).map(|r| r.to_vec()), Some(vec![0.0, 0.0, -1.0]));
+        assert!(rows.row(2).is_none());
         assert_eq!(rows.rhs(), &[1.0, -2.0]);
         assert_eq!(rows.sources()[0], RowSource::new(FIXED, 7));
         let counts = rows.count_per_tag();
@@ -501,13 +523,13 @@ mod tests {
             let value = f64::from(i);
             rows.push(RowKind::Inequality, RowSource::new(BOUND, 0), value, &[value, -value])?;
         }
-        assert_eq!(rows.coefficients(13), Some(&[13.0, -13.0][..]));
+        assert_eq!(rows.row(13).map(|r| r.to_vec()), Some(vec![13.0, -13.0]));
         let capacity = rows.coefficients.ncols();
         rows.clear();
         assert!(rows.is_empty() && !rows.has_inequalities() && rows.sources().is_empty());
         rows.push_zeroed(RowKind::Equality, RowSource::new(FIXED, 0), 0.0);
         assert_eq!(rows.coefficients.ncols(), capacity);
-        assert_eq!(rows.coefficients(0), Some(&[0.0, 0.0][..]));
+        assert_eq!(rows.row(0).map(|r| r.to_vec()), Some(vec![0.0, 0.0]));
         rows.reset(4);
         assert_eq!((rows.dofs(), rows.len()), (4, 0));
         Ok(())

@@ -35,7 +35,7 @@ use crate::active_set::{ActiveSet, ActiveSetLimits, Termination};
 use crate::clarabel_reference;
 use crate::contact_space::{ContactSpace, ReducedScratch};
 use crate::error::SolverError;
-use crate::linalg::{axpy, try_capacity, zeroed};
+use crate::linalg::{try_capacity, zeroed};
 use crate::mass_factor::MassFactor;
 use crate::mass_operator::{FactoredMass, Mass};
 use crate::options::{QpBackend, SolverOptions, WarmStart};
@@ -376,7 +376,7 @@ impl SolverWorkspace {
         let multipliers = self.multipliers.iter().zip(rows.sources()).enumerate();
         for (i, (&multiplier, source)) in multipliers.filter(|&(_, (&l, _))| l != 0.0) {
             let impulse = self.impulses.col_as_slice_mut(source.tag.index());
-            axpy(multiplier, rows.row(i), impulse);
+            rows.coefficients_of(i).add_scaled_to(multiplier, impulse);
         }
     }
 }

@@ -35,7 +35,7 @@ fn each_skin_row_pushes_with_the_implicit_spring_of_its_contact() {
             let (r_a, r_b) =
                 (data.centreline.radius(contact.u_a), data.centreline.radius(contact.u_b));
             let stiffness = std::f64::consts::PI * PRESSURE_DYN_PER_CM2 * (r_a * r_b).sqrt();
-            let coefficients = rows.coefficients(i).expect("the row exists");
+            let coefficients = rows.row(i).expect("the row exists").to_vec();
             let speed: f64 = coefficients.iter().zip(qdot).map(|(c, v)| c * v).sum();
             let expected = h * stiffness * (-(contact.gap + h * speed)).max(0.0);
             let tolerance = 1e-7 * (1.0 + expected.abs());

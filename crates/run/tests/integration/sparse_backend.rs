@@ -81,10 +81,11 @@ fn compare_one_step(
     // the sparse step (its velocity-product refresh used its own first q̇).
     let (mass, force) = (&dense.tree.effective_mass, &sparse.tree.effective_momentum);
     let (mut worst, mut scale) = (0.0f64, 1.0f64);
+    let coefficients: Vec<Vec<f64>> =
+        (0..lambda.len()).filter_map(|i| sparse.rows.row(i)).map(|r| r.to_vec()).collect();
     for (a, f) in force.iter().enumerate() {
         let product: f64 = (0..qdot.len()).map(|b| mass[(a, b)] * qdot[b]).sum();
-        let impulse: f64 =
-            lambda.iter().enumerate().map(|(i, l)| l * sparse.rows.transposed()[(a, i)]).sum();
+        let impulse: f64 = lambda.iter().zip(&coefficients).map(|(l, c)| l * c[a]).sum();
         worst = worst.max((product - f - impulse).abs());
         scale = scale.max(product.abs()).max(f.abs()).max(impulse.abs());
     }

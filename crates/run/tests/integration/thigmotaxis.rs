@@ -297,7 +297,7 @@ fn thigmo_rows_reach_their_speeds_with_nonnegative_multipliers() {
                 continue;
             }
             thigmo_rows += 1;
-            let row = data.rows.coefficients(i).expect("row exists");
+            let row = data.rows.row(i).expect("row exists").to_vec();
             if speed > 0.0 {
                 positive_rows.push(row.to_vec());
             } else {
@@ -333,7 +333,7 @@ fn bending_only_rows_exert_no_twist_torque() {
         let data = world.data();
         let rows: Vec<Vec<f64>> = (0..data.rows.len())
             .filter(|&i| data.rows.sources()[i].tag == RowGroup::Thigmo.tag())
-            .map(|i| data.rows.coefficients(i).expect("row exists").to_vec())
+            .map(|i| data.rows.row(i).expect("row exists").to_vec().to_vec())
             .collect();
         rows_and_forces.push((rows, force));
     }

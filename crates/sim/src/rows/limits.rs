@@ -173,6 +173,6 @@ mod tests {
             add_overshooting_limit_rows(&model, &state, &thrown, h, margin, push_out, &mut rows),
             1
         );
-        assert_eq!(rows.coefficients(0), Some(&[-1.0][..]), "the upper row");
+        assert_eq!(rows.row(0).map(|r| r.to_vec()), Some(vec![-1.0]), "the upper row");
     }
 }

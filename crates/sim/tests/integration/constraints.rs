@@ -133,7 +133,7 @@ fn lower_limit_row_stops_the_joint() {
     let row = (0..data.rows.len())
         .find(|&i| data.rows.sources()[i].tag == RowGroup::Limit.tag())
         .expect("row");
-    assert_eq!(data.rows.coefficients(row).expect("row")[1], 1.0);
+    assert_eq!(data.rows.row(row).expect("row").to_vec()[1], 1.0);
     assert!(data.solver.multipliers()[row] > 0.0);
     assert!(
         (world.state().q[1] + 0.3).abs() < 1e-12,

@@ -132,7 +132,7 @@ fn a_sample_between_centres_bounds_the_velocity_of_its_spline_point() {
         }
         let contact = &data.wall_contacts[source.id];
         between += usize::from(contact.body().is_none());
-        let row = data.rows.coefficients(i).expect("a row of its own");
+        let row = data.rows.row(i).expect("a row of its own").to_vec();
         let rate: f64 = row.iter().zip(qdot).map(|(a, v)| a * v).sum();
         let velocity: DVec3 =
             contact.weights.iter().map(|(m, w)| w * (ahead[m] - behind[m]) / 2e-6).sum();

@@ -126,7 +126,8 @@ pub fn scenario(rng: &mut Rng, mass: Mat<f64>, shape: Shape) -> Scenario {
             let original = same_kind[rng.below(same_kind.len())];
             let factor = if rng.uniform() < 0.5 { 1.0 } else { rng.log_uniform(0.5, 2.0) };
             let row: Vec<f64> = rows
-                .coefficients(original)
+                .row(original)
+                .map(|r| r.to_vec())
                 .unwrap_or_default()
                 .iter()
                 .map(|c| factor * c)

@@ -92,7 +92,7 @@ fn with_compliant_rows(
     for k in 0..compliant {
         let (row, rhs) = if !hard.is_empty() && rng.uniform() < 0.5 {
             let original = hard[rng.below(hard.len())];
-            let c = s.rows.coefficients(original).unwrap_or_default().to_vec();
+            let c = s.rows.row(original).map(|r| r.to_vec()).unwrap_or_default().to_vec();
             let raised = s.rows.rhs()[original] + rng.uniform() * dot(&c, &c).sqrt();
             (c, raised)
         } else {

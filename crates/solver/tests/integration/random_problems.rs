@@ -93,7 +93,7 @@ pub(crate) fn check_kkt(s: &Scenario, qdot: &[f64], lambda: &[f64]) -> Outcome {
         *t -= f;
     }
     for (i, kind) in s.rows.kinds().iter().enumerate() {
-        let c = s.rows.coefficients(i).unwrap_or_default();
+        let c = &s.rows.row(i).map(|r| r.to_vec()).unwrap_or_default();
         for ((t, size), ci) in stationarity.iter_mut().zip(&mut terms).zip(c) {
             *t -= ci * lambda[i];
             *size += (ci * lambda[i]).abs();
@@ -159,7 +159,7 @@ fn check_kkt_relative(s: &Scenario, qdot: &[f64], lambda: &[f64]) -> Outcome {
         *t -= f;
     }
     for (i, kind) in s.rows.kinds().iter().enumerate() {
-        let c = s.rows.coefficients(i).unwrap_or_default();
+        let c = &s.rows.row(i).map(|r| r.to_vec()).unwrap_or_default();
         for (t, ci) in stationarity.iter_mut().zip(c) {
             *t -= ci * lambda[i];
         }
@@ -304,7 +304,7 @@ fn qp_equals_kkt(dofs: usize, equalities: usize, inactive: usize, seed: u64) -> 
 fn impulse(rows: &Rows, lambda: &[f64]) -> Vec<f64> {
     let mut sum = vec![0.0; rows.dofs()];
     for (i, l) in lambda.iter().enumerate() {
-        for (t, c) in sum.iter_mut().zip(rows.coefficients(i).unwrap_or_default()) {
+        for (t, c) in sum.iter_mut().zip(rows.row(i).map(|r| r.to_vec()).unwrap_or_default()) {
             *t += l * c;
         }
     }
@@ -348,7 +348,7 @@ fn warm_start(shape: Shape, seed: u64) -> Outcome {
     let shift: Vec<f64> = (0..shape.dofs).map(|_| 0.01 * rng.normal()).collect();
     let mut moved = Rows::new(shape.dofs);
     for i in 0..s.rows.len() {
-        let c = s.rows.coefficients(i).unwrap_or_default();
+        let c = &s.rows.row(i).map(|r| r.to_vec()).unwrap_or_default();
         let (kind, source) = (s.rows.kinds()[i], s.rows.sources()[i]);
         moved.push(kind, source, s.rows.rhs()[i] + dot(c, &shift), c).map_err(fail)?;
     }
