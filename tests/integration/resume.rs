@@ -9,7 +9,8 @@
 //! - stopped by SIGTERM, it ends after a frame with exit code 130, status `interrupted`, and
 //!   resumes bit for bit;
 //! - `thesis.ron` with friction and an obstacle, stopped after frame 120 and resumed, gives the
-//!   straight run's bytes.
+//!   straight run's bytes;
+//! - `slide.ron` stopped mid-slide and resumed gives the straight run's bytes.
 
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
@@ -235,6 +236,37 @@ fn a_run_with_friction_and_an_obstacle_resumes_bit_for_bit() {
     assert_eq!(manifest(&stopped)["status"], "interrupted");
     resume(&stopped);
     for file in ["metrics.csv", "centreline.csv", "contacts.csv", "q.npy"] {
+        let (a, b) = (std::fs::read(straight.join(file)), std::fs::read(stopped.join(file)));
+        assert!(a.expect(file) == b.expect(file), "{file} differs after the resume");
+    }
+    assert_eq!(manifest(&straight)["final_state_hash"], manifest(&stopped)["final_state_hash"]);
+}
+
+/// `slide.ron` stopped mid-slide (frame 220 of 260: the knot tied since 16.3 s, thigmotaxis
+/// sliding it) and resumed: the checkpoint carries the velocity solve's warm start (the
+/// multipliers of the knot's contact and thigmotaxis rows), and the resumed run gives the
+/// straight run's bytes.
+#[test]
+fn a_run_stopped_mid_slide_resumes_bit_for_bit() {
+    let scenario = format!("{ROOT}/data/scenarios/slide.ron");
+    let run = |name: &str, extra: &[&str]| {
+        let dir = fresh_dir(name);
+        let out = dir.to_string_lossy().into_owned();
+        let mut args = vec!["run", &scenario, "--quiet", "--out", &out];
+        args.extend(extra);
+        let output = run_hagfish(args);
+        assert!(output.status.success(), "{}", code_and_stderr(&output).1);
+        dir
+    };
+    let straight = run("slide_straight", &[]);
+    let stopped = run("slide_stopped", &["--stop-after-frames", "220"]);
+    let checkpoint = hagfish_run::Checkpoint::read(&stopped.join(hagfish_run::CHECKPOINT_FILE))
+        .expect("the stopped run's checkpoint");
+    assert_eq!(checkpoint.controller.phases.phase, 1, "stopped in the slide phase");
+    let pushing = checkpoint.multipliers.0.iter().filter(|&&l| l > 0.0).count();
+    assert!(pushing >= 4, "rows pushing at the checkpoint: {pushing}");
+    resume(&stopped);
+    for file in OUTPUTS {
         let (a, b) = (std::fs::read(straight.join(file)), std::fs::read(stopped.join(file)));
         assert!(a.expect(file) == b.expect(file), "{file} differs after the resume");
     }
