@@ -13,6 +13,8 @@
 //!   the table of `docs/validation.md`; fails if a check is outside its tolerance.
 //! - `overhand [--turns N,…] [--speeds U,…] …`: Choi et al. 2021's overhand knots pulled tight
 //!   (`overhand.rs`).
+//! - `lock [--mu μ,…] [--bodies N] [--time-step H] [--edges E]`: the loose trefoil with
+//!   friction tightened and let go, Audoly et al.'s loosening lock (`lock.rs`).
 
 mod family;
 mod family_cases;
@@ -20,6 +22,7 @@ mod family_cylinder;
 mod family_modes;
 mod golden;
 mod knotted;
+mod lock;
 mod metrics;
 mod overhand;
 mod python;
@@ -35,6 +38,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 use hagfish_modes::KindSelection;
 use hagfish_sim::DynamicsBackend;
+use hagfish_validation::loose_knot::Refinement;
 
 /// Command line of `cargo xtask`.
 #[derive(Parser)]
@@ -107,6 +111,25 @@ enum Task {
         /// --set` (repeatable), e.g. `--set 'body="/path/rod.ron"'`.
         #[arg(long = "set", value_name = "PATH=VALUE")]
         sets: Vec<String>,
+    },
+    /// Tightens the loose trefoil with friction, lets it go and prints whether it locks, for
+    /// each μ (Markdown; docs/validation.md, "The loosening lock").
+    Lock {
+        /// The friction coefficients μ.
+        #[arg(long = "mu", value_delimiter = ',', default_values_t = [0.11, 0.116, 0.117, 0.125])]
+        coefficients: Vec<f64>,
+        /// Bodies of the rod (the rod file's 400 if not given).
+        #[arg(long)]
+        bodies: Option<usize>,
+        /// Time step (s; the scenario's 0.02 if not given).
+        #[arg(long)]
+        time_step: Option<f64>,
+        /// Edges of the friction pyramid.
+        #[arg(long, default_value_t = 8)]
+        edges: usize,
+        /// Runs at a time.
+        #[arg(long, default_value_t = 2)]
+        jobs: usize,
     },
     /// Runs a knot scenario on the family of bodies and time steps (ES103 and 15 variants)
     /// and prints its knot table (Markdown), as in docs/physics.md.
@@ -198,6 +221,15 @@ fn main() -> ExitCode {
                 sets: &sets,
             };
             overhand::run(&workspace_root(), &request).map(|()| true)
+        }
+        Task::Lock { coefficients, bodies, time_step, edges, jobs } => {
+            if let Some(mu) = coefficients.iter().find(|mu| !(mu.is_finite() && **mu > 0.0)) {
+                eprintln!("error: --mu {mu}: a friction coefficient must be positive");
+                return ExitCode::from(2);
+            }
+            let refinement = Refinement { bodies, time_step_s: time_step, ..Refinement::default() };
+            let request = lock::Request { coefficients: &coefficients, edges, refinement, jobs };
+            lock::run(&workspace_root(), &request).map(|()| true)
         }
         Task::Family { scenario, knot, sets, jobs, only, measure, phase, kind, rounding } => {
             // A relative path that is not there from here is taken from the workspace root.

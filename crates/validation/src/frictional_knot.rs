@@ -21,7 +21,9 @@ use hagfish_control::Phase;
 use hagfish_sim::rows::Friction;
 
 use crate::error::ValidationError;
-use crate::loose_knot::{self, Refinement};
+use hagfish_scenario::LoadedScenario;
+
+use crate::loose_knot::{self, LooseKnot, Refinement};
 
 /// Audoly et al.'s braid coefficient σ of the trefoil.
 pub const SIGMA: f64 = 0.492;
@@ -70,7 +72,19 @@ pub fn run(
     friction: Friction,
     refinement: Refinement,
 ) -> Result<FrictionalKnot, ValidationError> {
-    let coefficient = friction.coefficient;
+    let loaded = scenario(root, (branch, tension_dyn), friction, refinement)?;
+    let knot = loose_knot::run_loaded(&loaded)?;
+    Ok(FrictionalKnot::of(&knot, (branch, tension_dyn), friction.coefficient))
+}
+
+/// The loose trefoil with `friction`, set up to settle on `branch` at the final pull
+/// `tension_dyn` (the module's set-up).
+fn scenario(
+    root: &Path,
+    (branch, tension_dyn): (Branch, f64),
+    friction: Friction,
+    refinement: Refinement,
+) -> Result<LoadedScenario, ValidationError> {
     let first_pull = match branch {
         Branch::Tightening => tension_dyn,
         Branch::Loosening => TIGHT_PULL_DYN,
@@ -98,17 +112,69 @@ pub fn run(
             loaded.scenario.phases.push(Phase::Load(last));
         }
     }
-    let knot = loose_knot::run_loaded(&loaded)?;
-    let (h, b) = (knot.rod_radius_cm, knot.bending_stiffness_dyn_cm2);
-    let r = knot.loop_radius_cm();
-    let epsilon = (h / r).sqrt();
-    let term = tension_dyn * h * h / b - epsilon.powi(4) / 2.0;
-    Ok(FrictionalKnot {
-        branch,
-        tension_dyn,
-        coefficient,
-        loop_radius_cm: r,
-        epsilon,
-        friction_number: term / (coefficient * SIGMA * epsilon.powi(3)),
+    Ok(loaded)
+}
+
+impl FrictionalKnot {
+    /// The measures of a settled `knot` that reached `tension_dyn` on `branch` with μ =
+    /// `coefficient`.
+    fn of(knot: &LooseKnot, (branch, tension_dyn): (Branch, f64), coefficient: f64) -> Self {
+        let (h, b) = (knot.rod_radius_cm, knot.bending_stiffness_dyn_cm2);
+        let r = knot.loop_radius_cm();
+        let epsilon = (h / r).sqrt();
+        let term = tension_dyn * h * h / b - epsilon.powi(4) / 2.0;
+        FrictionalKnot {
+            branch,
+            tension_dyn,
+            coefficient,
+            loop_radius_cm: r,
+            epsilon,
+            friction_number: term / (coefficient * SIGMA * epsilon.powi(3)),
+        }
+    }
+}
+
+/// A knot tightened and then let go (F = 0): Audoly et al.'s loosening lock. On the loosening
+/// branch at F = 0, ε⁴/2 = μσε³, so a knot let go at ε₀ opens until ε = 2μσ, and not at all
+/// where μ ≥ ε₀/(2σ).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Release {
+    /// The knot when let go: tightened by [`TIGHT_PULL_DYN`] from the torus start (ramped over
+    /// 10 s, held to the scenario's 40 s), on the tightening branch.
+    pub let_go: FrictionalKnot,
+    /// The same knot [`FINAL_PULL_S`] after it was let go (its friction number is
+    /// −ε/(2μσ): −1 where it opened onto Audoly's loosening branch).
+    pub settled: FrictionalKnot,
+}
+
+impl Release {
+    /// How far the loop opened: R_settled / R_let_go − 1.
+    pub fn opening(&self) -> f64 {
+        self.settled.loop_radius_cm / self.let_go.loop_radius_cm - 1.0
+    }
+
+    /// Audoly's lock for the knot as let go: μ = ε₀/(2σ).
+    pub fn lock_coefficient(&self) -> f64 {
+        self.let_go.epsilon / (2.0 * SIGMA)
+    }
+}
+
+/// Tightens the loose trefoil (changed by `refinement`) with `friction`, lets it go and
+/// measures it when let go and settled after.
+pub fn release(
+    root: &Path,
+    friction: Friction,
+    refinement: Refinement,
+) -> Result<Release, ValidationError> {
+    let coefficient = friction.coefficient;
+    let mut loaded = scenario(root, (Branch::Loosening, 0.0), friction, refinement)?;
+    let settled = loose_knot::run_loaded(&loaded)?;
+    // The same run up to the moment it lets go (the same steps, bit for bit).
+    loaded.scenario.phases.pop();
+    loaded.scenario.duration_s -= FINAL_PULL_S;
+    let let_go = loose_knot::run_loaded(&loaded)?;
+    Ok(Release {
+        let_go: FrictionalKnot::of(&let_go, (Branch::Tightening, TIGHT_PULL_DYN), coefficient),
+        settled: FrictionalKnot::of(&settled, (Branch::Loosening, 0.0), coefficient),
     })
 }
