@@ -20,6 +20,10 @@ const SPACING_CM: f64 = 0.25;
 /// where the knot's starting curve takes up its slack, is left out.
 const DROP_FROM_DYN: f64 = 20.0;
 
+/// The window of the loop's largest turn (s): a snap takes a fraction of it, the loop's drift
+/// as the knot closes turns it by a degree or less.
+const LOOP_TURN_WINDOW_S: f64 = 0.1;
+
 /// The forces at which the speeds are compared (dyn), each at the end-to-end distance where
 /// the first speed's smoothed force first reaches it.
 const COMPARED_DYN: [f64; 4] = [50.0, 100.0, 200.0, 300.0];
@@ -81,7 +85,8 @@ fn join<T: ToString>(values: &[T]) -> String {
 fn run_table(runs: &[PulledKnot]) -> String {
     let mut table = String::from(
         "| n | u (cm/s) | knot at start → end | ended | end-to-end (cm) | force (dyn) | largest drop | \
-         deepest penetration (% h) | steps | wall (s) | ms/step |\n|---|---|---|---|---|---|---|---|---|---|---|\n",
+         largest turn of the loop in 0.1 s | deepest penetration (% h) | steps | wall (s) | ms/step |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     for run in runs {
         let last = run.samples.last();
@@ -93,9 +98,12 @@ fn run_table(runs: &[PulledKnot]) -> String {
         let drop = run.largest_drop(SPACING_CM, DROP_FROM_DYN).map_or("—".into(), |d| {
             format!("{:.0} % from {:.0} dyn at {:.1} cm", 100.0 * d.fraction, d.from_dyn, d.from_cm)
         });
+        let turn = run.largest_loop_turn(LOOP_TURN_WINDOW_S).map_or("—".into(), |turn| {
+            format!("{:.1}° at {:.1} cm", turn.angle_rad.to_degrees(), turn.at_cm)
+        });
         let _ = writeln!(
             table,
-            "| {} | {} | {} → {} | {ended} | {:.2} | {:.1} | {drop} | {:.3} | {} | {:.1} | {:.2} |",
+            "| {} | {} | {} → {} | {ended} | {:.2} | {:.1} | {drop} | {turn} | {:.3} | {} | {:.1} | {:.2} |",
             run.turns,
             run.end_speed_cm_per_s,
             run.knots.0,

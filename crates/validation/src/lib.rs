@@ -29,6 +29,7 @@ pub mod clamped_buckling;
 mod elastica;
 mod error;
 pub mod frictional_knot;
+pub mod knot_loop;
 pub mod loose_knot;
 pub mod overhand_pull;
 mod settle;

@@ -6,18 +6,20 @@
 //! Here (`data/validation/overhand_pull.ron`) the head is held and the tail gripped and moved at 2u:
 //! the same relative motion seen from their head end's frame (no drag, no gravity: the
 //! equations do not change under a constant velocity). Measured each step: the end-to-end
-//! distance, the grip's pull force (the multipliers of its rows) and the deepest self
-//! penetration. The pull stops at a force, before the inextensible chain runs out of slack.
+//! distance, the grip's pull force (the multipliers of its rows), the deepest self
+//! penetration and where the loop lies across the pull ([`knot_loop`]: whether it inverts). The pull stops at a force, before the inextensible chain runs out of slack.
 
 use std::path::Path;
 use std::time::Instant;
 
+use glam::DVec3;
 use hagfish_control::Phase;
 use hagfish_knots::{KnotOptions, analyse_knot};
 use hagfish_scenario::{LoadedScenario, Override};
 use hagfish_sim::rows::grip_wrench;
 
 use crate::error::ValidationError;
+use crate::knot_loop::{self, ContactPoint};
 
 /// The scenario file, relative to the workspace root.
 pub const SCENARIO: &str = "data/validation/overhand_pull.ron";
@@ -35,6 +37,8 @@ pub struct PullSample {
     pub end_to_end_cm: f64,
     /// The grip's force along the pull (dyn): the tension the ends feel.
     pub force_dyn: f64,
+    /// Where the knot's loop lies across the pull, from its braid ([`knot_loop`]; cm).
+    pub loop_offset_cm: Option<DVec3>,
 }
 
 /// How a pull ended.
@@ -145,10 +149,18 @@ pub fn run(
         let Some(grip) = data.actuation.grip else { continue };
         let (force, _) = grip_wrench(&data.rows, data.solver.multipliers(), time_step_s);
         let direction = grip.velocity.normalize_or_zero();
+        // The contacts and the body centres of the step's start, as the data holds them.
+        let centres: Vec<DVec3> =
+            (0..world.model().body_count()).map(|b| data.tree.body_centre(b)).collect();
+        let contacts: Vec<ContactPoint> = (data.self_contacts.iter())
+            .map(|c| (c.u_a, c.u_b, 0.5 * (c.point_a + c.point_b)))
+            .collect();
         let sample = PullSample {
             time_s: world.state().t - anchor.since_s,
             end_to_end_cm: grip.point.length(),
             force_dyn: force.dot(direction),
+            loop_offset_cm: knot_loop::loop_side(&centres, &contacts, direction)
+                .map(|side| side.offset_cm),
         };
         samples.push(sample);
         if trailing_mean_force(&samples).is_some_and(|force| force >= stop_force_dyn) {
@@ -174,6 +186,15 @@ pub fn run(
 /// force carries the stick and slip of the friction pyramid's rows (±10 % step to step at
 /// h = 0.02 s), the mean over 0.5 cm of pull does not.
 pub const SMOOTHING_HALF_WIDTH_CM: f64 = 0.25;
+
+/// The largest turn of the loop about the pull within a time window.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LoopTurn {
+    /// The angle between the loop's directions across the pull at the window's ends (rad).
+    pub angle_rad: f64,
+    /// The end-to-end distance at the window's end (cm).
+    pub at_cm: f64,
+}
 
 /// The largest fall of the smoothed force below the highest force before it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -216,6 +237,26 @@ impl PulledKnot {
             .collect()
     }
 
+    /// The largest angle the loop's direction across the pull turns through between two
+    /// samples at most `window_s` apart: an inversion turns it by about π in the time of a
+    /// snap; `None` without two samples that have a loop.
+    pub fn largest_loop_turn(&self, window_s: f64) -> Option<LoopTurn> {
+        let with_loop: Vec<(f64, f64, DVec3)> = (self.samples.iter())
+            .filter_map(|s| s.loop_offset_cm.map(|o| (s.time_s, s.end_to_end_cm, o)))
+            .collect();
+        let mut largest: Option<LoopTurn> = None;
+        for (k, &(t, at_cm, offset)) in with_loop.iter().enumerate() {
+            let earlier = with_loop[..k].iter().rev().take_while(|(s, _, _)| t - s <= window_s);
+            for &(_, _, before) in earlier {
+                let angle_rad = before.angle_between(offset);
+                if largest.is_none_or(|l| angle_rad > l.angle_rad) {
+                    largest = Some(LoopTurn { angle_rad, at_cm });
+                }
+            }
+        }
+        largest
+    }
+
     /// The largest fall of the smoothed force (every `spacing_cm`) below its highest value
     /// before, counted from where the force first reaches `from_dyn` (the start of the pull,
     /// where the knot takes up the slack of its starting curve, is left out).
@@ -234,5 +275,50 @@ impl PulledKnot {
             }
         }
         Some(largest)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::f64::consts::PI;
+
+    use super::*;
+
+    /// A loop drifting by 1° a sample that snaps over to the other side between two samples:
+    /// the largest turn within a window that holds both is the snap's; without it, the drift
+    /// over the window; without a loop in any sample, none.
+    #[test]
+    fn the_largest_loop_turn_is_the_snap() {
+        let sample = |k: usize| {
+            let angle = (k as f64).to_radians() + if k >= 30 { std::f64::consts::PI } else { 0.0 };
+            PullSample {
+                time_s: 0.02 * k as f64,
+                end_to_end_cm: 30.0 + 0.01 * k as f64,
+                force_dyn: 50.0,
+                loop_offset_cm: Some(DVec3::new(0.0, angle.cos(), angle.sin())),
+            }
+        };
+        let mut knot = PulledKnot {
+            turns: 3,
+            end_speed_cm_per_s: 0.3,
+            time_step_s: 0.02,
+            samples: (0..60).map(sample).collect(),
+            max_penetration_relative: 0.0,
+            knots: ("7_1".into(), "7_1".into()),
+            end: PullEnd::Force,
+            steps: 60,
+            wall_s: 1.0,
+        };
+        // Window 0.07 s: samples up to 3 apart (0.02 s each); across the snap the nearest
+        // pair (29°, 210°) turns the most, by π − 1°.
+        let turn = knot.largest_loop_turn(0.07).expect("loops");
+        assert!((turn.angle_rad - (PI - 1f64.to_radians())).abs() < 1e-9, "{turn:?}");
+        assert!((turn.at_cm - 30.3).abs() < 1e-9, "{turn:?}");
+        assert_eq!(knot.largest_loop_turn(0.01), None, "no two samples within 0.01 s");
+        knot.samples.truncate(30);
+        let calm = knot.largest_loop_turn(0.07).expect("loops");
+        assert!((calm.angle_rad - 3f64.to_radians()).abs() < 1e-9, "{calm:?}");
+        knot.samples.iter_mut().for_each(|s| s.loop_offset_cm = None);
+        assert_eq!(knot.largest_loop_turn(0.1), None);
     }
 }

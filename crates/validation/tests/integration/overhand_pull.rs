@@ -1,8 +1,10 @@
 //! Choi et al. 2021's knot-tying case (`hagfish_validation::overhand_pull`; docs/validation.md,
 //! "Overhand knots pulled tight"): the trefoil (n = 1) pulled tight with each end at 0.6 and
 //! 0.9 cm/s needs the same force at the same end-to-end distance (their result: the pull is
-//! slow enough to be quasi-static), stays a trefoil, and its strands do not sink into each
-//! other by more than their 0.5 % of the rod's radius.
+//! slow enough to be quasi-static), stays a trefoil, its strands do not sink into each other
+//! by more than their 0.5 % of the rod's radius, and its loop does not invert (as theirs: the
+//! loop's direction across the pull turns by 1.3° and 0.9° at most within 0.1 s on the pulls
+//! to 300 dyn of docs/validation.md; a snap to the other side would turn it by about 180°).
 
 use std::path::Path;
 
@@ -25,6 +27,9 @@ fn the_trefoil_needs_the_same_force_at_two_pull_speeds() {
         assert_eq!(knot.knots, ("3_1".to_string(), "3_1".to_string()));
         let penetration = knot.max_penetration_relative;
         assert!(penetration <= 0.005, "u = {}: {penetration} h", knot.end_speed_cm_per_s);
+        // An inversion snaps the loop over to the other side: about 180°.
+        let turn = knot.largest_loop_turn(0.1).expect("a loop in the samples");
+        assert!(turn.angle_rad < 10f64.to_radians(), "u = {}: {turn:?}", knot.end_speed_cm_per_s);
     }
     let curve = slow.smoothed_curve(0.25);
     // Where the force is 50 and 100 dyn (below, at 30 dyn, the two differ by 5.2 %:
