@@ -36,7 +36,8 @@
 //! nearly dependent equality is still a constraint); one dependent on earlier equalities is
 //! set aside as redundant (λ = 0, never freed) and checked at the refined q̇: violated there,
 //! the equalities contradict each other. Warm start: any λ inside the box is a valid start; the
-//! previous step's λ (clamped) puts the previous contacts straight into F.
+//! previous step's λ (clamped) puts the previous contacts straight into F, a row dependent on
+//! those before it handing its impulse over to them (decision 0033).
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -269,48 +270,15 @@ impl ActiveSet {
             (0..m).filter(|&i| kinds[i] != RowKind::Equality && self.bound[i] == Bound::Free),
         );
         self.join_equalities(dual, kinds, lambda);
-        // A warm row that depends on the rows already in F is left at its bound (λ = 0),
-        // unless it carried a larger impulse (λᵢ√Wᵢᵢ, the size of M̃⁻¹cᵢλᵢ in the M̃ norm) than
-        // every warm row that joined before it: then the warm rows join again, largest impulse
-        // first, so that the one left out is the one that carried least. By row order alone a
-        // row carrying 40× its partner's impulse was left out, and the re-solve of an
-        // unchanged problem took more iterations than the cold solve (a case of
-        // tests/integration/random_problems.rs, kept as a regression). Every other start is the
-        // row-order one, bit for bit (so are the shipped scenarios' runs); the order depends on λ
-        // alone, so a run resumed from saved multipliers joins alike.
-        let impulse = |lambda: &[f64], i: usize| lambda[i] * dual.entry(i, i).sqrt();
-        let mut largest_joined = 0.0_f64;
-        let mut reorder = false;
-        for k in 0..self.warm.len() {
-            let row = self.warm[k];
-            if self.try_join(dual, row, DEPENDENCE) == Join::Joined {
-                largest_joined = largest_joined.max(impulse(lambda, row));
-                continue;
-            }
-            if impulse(lambda, row) > largest_joined {
-                reorder = true;
-                break;
-            }
-            // Kept in `saved` so that a reordered start finds λ as it was.
-            self.saved.push((row, lambda[row]));
-            self.fix(lambda, row, Bound::Lower);
-        }
-        if !reorder {
-            self.saved.clear();
-            return;
-        }
-        for &(row, value) in &self.saved {
-            lambda[row] = value;
-            self.bound[row] = Bound::Free;
-        }
-        self.saved.clear();
-        self.join_equalities(dual, kinds, lambda);
-        let key = |i: usize| impulse(lambda, i);
-        self.warm.sort_unstable_by(|&a, &b| key(b).total_cmp(&key(a)).then(a.cmp(&b)));
+        // A warm row that depends on the rows already in F hands its impulse to them, so that
+        // the start keeps Cᵀλ, the previous answer's q̇ (`release.rs`, `hand_over`). Left at
+        // its bound with its impulse dropped instead, a degenerate vertex (more rows in
+        // contact than DOFs) was re-solved from its own answer in more iterations than from
+        // λ = 0 (cases of tests/integration/random_problems.rs, kept as regressions).
         for k in 0..self.warm.len() {
             let row = self.warm[k];
             if self.try_join(dual, row, DEPENDENCE) != Join::Joined {
-                self.fix(lambda, row, Bound::Lower);
+                self.hand_over(dual, lambda, row);
             }
         }
     }

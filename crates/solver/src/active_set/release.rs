@@ -196,6 +196,27 @@ impl ActiveSet {
         true
     }
 
+    /// A warm-started `row` that depends on F (c_row ≈ Σ_p z_p c_p, z in `self.z`) hands its
+    /// impulse to the rows it depends on: λ moves along d = Σ_p z_p e_p − e_row, which keeps
+    /// Cᵀλ up to the dependence, until λ_row reaches its lower bound, or a free row its bound
+    /// first: that row then leaves F and `row` takes its place ([`Self::swap`]; should `row`
+    /// still be dependent without it, `row` is left at its bound as it was).
+    pub(super) fn hand_over(&mut self, dual: &ContactSpace, lambda: &mut [f64], row: usize) {
+        let own = lambda[row] - self.lower[row];
+        if let Some(block) = self.ratio_test(lambda, -1.0).filter(|block| block.step < own) {
+            self.swap(dual, lambda, row, -1.0, block);
+            if self.implied[row] != usize::MAX {
+                self.fix(lambda, row, Bound::Lower);
+            }
+            return;
+        }
+        let k = self.free.indices().len();
+        for (&zp, &i) in self.z[..k].iter().zip(self.free.indices()) {
+            lambda[i] = (lambda[i] + own * zp).clamp(self.lower[i], self.upper[i]);
+        }
+        self.fix(lambda, row, Bound::Lower);
+    }
+
     /// Steps along d to the block, swaps the blocked free row out of F and `row` in; undoes
     /// the step if `row` is still dependent without it.
     fn swap(&mut self, dual: &ContactSpace, lambda: &mut [f64], row: usize, s: f64, block: Block) {
