@@ -45,6 +45,17 @@ fn straight() -> &'static Path {
     })
 }
 
+/// Runs `scenario` with the `extra` arguments into a fresh directory named `name`.
+fn run_into(name: &str, scenario: &str, extra: &[&str]) -> PathBuf {
+    let dir = fresh_dir(name);
+    let out = dir.to_string_lossy().into_owned();
+    let mut args = vec!["run", scenario, "--quiet", "--out", &out];
+    args.extend(extra);
+    let output = run_hagfish(args);
+    assert!(output.status.success(), "{}", code_and_stderr(&output).1);
+    dir
+}
+
 fn resume(dir: &Path) {
     let output = run_hagfish(["run", "--resume", &dir.to_string_lossy(), "--quiet"]);
     assert!(output.status.success(), "{}", code_and_stderr(&output).1);
@@ -221,18 +232,12 @@ fn a_run_with_friction_and_an_obstacle_resumes_bit_for_bit() {
         "--set",
         "obstacles=[Sphere(centre: (20.0, -3.0, 0.0), radius: 1.5)]",
     ];
-    let run = |name: &str, extra: &[&str]| {
-        let dir = fresh_dir(name);
-        let out = dir.to_string_lossy().into_owned();
-        let mut args = vec!["run", &scenario, "--quiet", "--out", &out];
-        args.extend(sets);
-        args.extend(extra);
-        let output = run_hagfish(args);
-        assert!(output.status.success(), "{}", code_and_stderr(&output).1);
-        dir
-    };
-    let straight = run("friction_straight", &[]);
-    let stopped = run("friction_stopped", &["--stop-after-frames", "120"]);
+    let straight = run_into("friction_straight", &scenario, &sets);
+    let stopped = run_into(
+        "friction_stopped",
+        &scenario,
+        &[&sets[..], &["--stop-after-frames", "120"]].concat(),
+    );
     assert_eq!(manifest(&stopped)["status"], "interrupted");
     resume(&stopped);
     for file in ["metrics.csv", "centreline.csv", "contacts.csv", "q.npy"] {
@@ -249,17 +254,8 @@ fn a_run_with_friction_and_an_obstacle_resumes_bit_for_bit() {
 #[test]
 fn a_run_stopped_mid_slide_resumes_bit_for_bit() {
     let scenario = format!("{ROOT}/data/scenarios/slide.ron");
-    let run = |name: &str, extra: &[&str]| {
-        let dir = fresh_dir(name);
-        let out = dir.to_string_lossy().into_owned();
-        let mut args = vec!["run", &scenario, "--quiet", "--out", &out];
-        args.extend(extra);
-        let output = run_hagfish(args);
-        assert!(output.status.success(), "{}", code_and_stderr(&output).1);
-        dir
-    };
-    let straight = run("slide_straight", &[]);
-    let stopped = run("slide_stopped", &["--stop-after-frames", "220"]);
+    let straight = run_into("slide_straight", &scenario, &[]);
+    let stopped = run_into("slide_stopped", &scenario, &["--stop-after-frames", "220"]);
     let checkpoint = hagfish_run::Checkpoint::read(&stopped.join(hagfish_run::CHECKPOINT_FILE))
         .expect("the stopped run's checkpoint");
     assert_eq!(checkpoint.controller.phases.phase, 1, "stopped in the slide phase");

@@ -47,18 +47,21 @@ impl<'a> RowCoefficients<'a> {
         self.len() == 0
     }
 
+    /// Coefficient cᵢⱼ, or `None` for j ≥ n.
+    pub fn get(&self, j: usize) -> Option<f64> {
+        match self.0 {
+            Stored::Own(c) => c.get(j).copied(),
+            Stored::Combination { bases: [g0, g1, g2], weights: w, extent } if j < extent => {
+                Some(w[0] * g0[j] + w[1] * g1[j] + w[2] * g2[j])
+            }
+            Stored::Combination { bases, .. } => (j < bases[0].len()).then_some(0.0),
+        }
+    }
+
     /// The coefficients cᵢ₀ … cᵢₙ₋₁ in order.
     pub fn iter(&self) -> impl Iterator<Item = f64> + 'a {
-        let n = self.len();
-        let (own, combination) = match self.0 {
-            Stored::Own(c) => (Some(c.iter().copied()), None),
-            Stored::Combination { bases: [g0, g1, g2], weights: w, extent } => {
-                let entries = g0[..extent].iter().zip(&g1[..extent]).zip(&g2[..extent]);
-                let used = entries.map(move |((a, b), d)| w[0] * a + w[1] * b + w[2] * d);
-                (None, Some(used.chain(std::iter::repeat_n(0.0, n - extent))))
-            }
-        };
-        own.into_iter().flatten().chain(combination.into_iter().flatten())
+        let row = *self;
+        (0..row.len()).filter_map(move |j| row.get(j))
     }
 
     /// The coefficients written out (allocates: for tests, references and error reports).
@@ -142,7 +145,7 @@ mod tests {
             .map(|j| weights[0] * bases[0][j] + weights[1] * bases[1][j] + weights[2] * bases[2][j])
             .collect();
         assert_eq!(row.to_vec(), written);
-        assert_eq!(row.len(), n);
+        assert_eq!((row.len(), row.get(n - 1), row.get(n)), (n, Some(0.0), None));
         // A −0 in the zero tail: a written-out row adds +0 to it and makes it +0.
         let mut y: Vec<f64> = (0..n).map(|j| value(100 + j) * 1e3).collect();
         y[9] = -0.0;
