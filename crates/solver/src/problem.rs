@@ -415,6 +415,34 @@ mod tests {
         Ok(())
     }
 
+    /// A combination row is checked through its bases and the bound Σₖ|wₖ| maxⱼ|gₖⱼ|, and
+    /// written out where the bound fails: entries that overflow are refused at their position,
+    /// finite ones under a bound beyond f64::MAX / 2 pass, a NaN in a base is refused.
+    #[test]
+    fn combination_rows_are_checked_where_they_are_stored() {
+        let mass = Mat::<f64>::identity(2, 2);
+        let source = RowSource::new(RowTag::new(3), 0);
+        let problem_with = |bases: [[f64; 2]; 2], weights: [f64; 3]| {
+            let mut rows = Rows::new(2);
+            let first = rows.push_bases();
+            let [g0, g1, _] = rows.bases_mut(first);
+            g0.copy_from_slice(&bases[0]);
+            g1.copy_from_slice(&bases[1]);
+            rows.push_combination(RowKind::Inequality, source, 0.0, (first, weights));
+            Problem::new(mass.as_ref(), &[0.0, 0.0], &rows).err()
+        };
+        let big = 1e308;
+        assert_eq!(problem_with([[big, 0.0], [0.0, big]], [0.6, 0.6, 0.0]), None);
+        assert!(matches!(
+            problem_with([[big, 0.0], [0.0, big]], [0.6, 2.0, 0.0]),
+            Some(SolverError::NonFinite { what: "row coefficients", row: 0, col: 1, .. })
+        ));
+        assert!(matches!(
+            problem_with([[1.0, f64::NAN], [0.0, 1.0]], [0.5, 0.5, 0.0]),
+            Some(SolverError::NonFinite { what: "row coefficients", row: 0, col: 1, .. })
+        ));
+    }
+
     #[test]
     fn accepts_rounding_level_asymmetry() -> Result<(), SolverError> {
         // Not mirrored exactly, so the tolerance check decides: 1e-15 relative passes.
