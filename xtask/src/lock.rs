@@ -1,8 +1,9 @@
 //! `cargo xtask lock`: Audoly et al.'s loosening lock on the loose trefoil with friction
 //! (`hagfish_validation::frictional_knot::release`): for each μ the knot is tightened by
 //! 100 dyn, let go (F = 0) and settled; prints, as Markdown, a row per μ with the knot as let
-//! go and as settled, how far its loop opened, σ' = ε/(2μ) of a knot that opened, and
-//! Audoly's lock ε₀/(2σ) with σ = 0.492 (docs/validation.md, "The loosening lock").
+//! go (with its friction number on the tightening branch at 100 dyn) and as settled, how far
+//! its loop opened, σ' = ε/(2μ) of a knot that opened, and Audoly's lock ε₀/(2σ) with
+//! σ = 0.492 (docs/validation.md, "The loosening lock").
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -43,8 +44,8 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
 /// The Markdown table of `releases`.
 fn table(releases: &[Release]) -> String {
     let mut out = String::from(
-        "| μ | let go: R (cm), ε₀ | settled: R (cm), ε | opened | σ' = ε/(2μ) if opened | \
-         Audoly's lock ε₀/(2σ), σ = 0.492 |\n|---|---|---|---|---|---|\n",
+        "| μ | let go: R (cm), ε₀ | its friction number at 100 dyn | settled: R (cm), ε | opened | \
+         σ' = ε/(2μ) if opened | Audoly's lock ε₀/(2σ), σ = 0.492 |\n|---|---|---|---|---|---|---|\n",
     );
     for release in releases {
         let (let_go, settled) = (&release.let_go, &release.settled);
@@ -55,10 +56,11 @@ fn table(releases: &[Release]) -> String {
         };
         let _ = writeln!(
             out,
-            "| {} | {:.4}, {:.4} | {:.4}, {:.4} | {:.1} % | {sigma} | {:.4} |",
+            "| {} | {:.4}, {:.4} | {:+.3} | {:.4}, {:.4} | {:.1} % | {sigma} | {:.4} |",
             let_go.coefficient,
             let_go.loop_radius_cm,
             let_go.epsilon,
+            let_go.friction_number,
             settled.loop_radius_cm,
             settled.epsilon,
             100.0 * release.opening(),
