@@ -132,6 +132,8 @@ pub fn run(
     let start = knot_name(&world);
     let clock = Instant::now();
     let (mut samples, mut deepest, mut end) = (Vec::new(), 0.0f64, PullEnd::Distance);
+    // The loop's inputs, refilled each step.
+    let (mut centres, mut contacts): (Vec<DVec3>, Vec<ContactPoint>) = (Vec::new(), Vec::new());
     // Until the last phase (the pull) is over; the phases before it rest with a still grip.
     while !controller.finished() {
         let penetration = match world.step(&mut controller) {
@@ -150,11 +152,12 @@ pub fn run(
         let (force, _) = grip_wrench(&data.rows, data.solver.multipliers(), time_step_s);
         let direction = grip.velocity.normalize_or_zero();
         // The contacts and the body centres of the step's start, as the data holds them.
-        let centres: Vec<DVec3> =
-            (0..world.model().body_count()).map(|b| data.tree.body_centre(b)).collect();
-        let contacts: Vec<ContactPoint> = (data.self_contacts.iter())
-            .map(|c| (c.u_a, c.u_b, 0.5 * (c.point_a + c.point_b)))
-            .collect();
+        centres.clear();
+        centres.extend((0..world.model().body_count()).map(|b| data.tree.body_centre(b)));
+        contacts.clear();
+        contacts.extend(
+            data.self_contacts.iter().map(|c| (c.u_a, c.u_b, 0.5 * (c.point_a + c.point_b))),
+        );
         let sample = PullSample {
             time_s: world.state().t - anchor.since_s,
             end_to_end_cm: grip.point.length(),
