@@ -31,6 +31,12 @@
 //! of joint k's DOFs for the tree factor). Then Y's column i costs eᵢ²/2 instead of n²/2
 //! (dense) or the bodies 0..=k instead of all (tree), and Wᵢⱼ = Σ_{k < min(eᵢ, eⱼ)} YₖᵢYₖⱼ
 //! skips the zero tails. Other factors use eᵢ = n.
+//!
+//! Ranges between the rows' breaks: where no row has a contact point (or a joint of its own)
+//! in a run of a chain's joints, every column of Y_R there lies in a space of six vectors
+//! ([`FactoredMass::wrench_span`]), and W_R is formed from its coordinates in that space
+//! instead of the range's rows (`compressed_spans.rs`): the trunk between a knot and the
+//! head, and the loop between a crossing's two strands, each become six rows of the product.
 
 use faer::linalg::matmul::matmul;
 use faer::{Accum, Mat, Par};
@@ -41,20 +47,22 @@ use crate::mass_operator::FactoredMass;
 use crate::problem::Problem;
 use crate::reduced_rows::ReducedRows;
 
+mod compressed_spans;
 mod dual_matrix;
+mod gram;
 mod row_products;
 
-pub(crate) use dual_matrix::ReducedScratch;
+use compressed_spans::CompressedSpans;
+use gram::{form_w, mirror_upper};
 
-/// Columns per block of the product W = YᵀY.
-const W_BLOCK: usize = 96;
+pub(crate) use dual_matrix::ReducedScratch;
 
 /// Columns of Y solved between two polls of the stop flag (a multiple of the tree factor's
 /// four-column batches, so that the columns are solved as in one call).
 const Y_CHUNK: usize = 64;
 
 /// Entries of Y a block of W may read (its rows used × its columns) before its rows are
-/// formed in chunks of [`W_BLOCK`] with a poll of the stop flag between them: 2²⁴ (128 MiB),
+/// formed in chunks of [`gram::W_BLOCK`] with a poll of the stop flag between them: 2²⁴ (128 MiB),
 /// far beyond the knotted states of a few hundred bodies, reached on tens of thousands, where
 /// one block would otherwise run unpolled for a second.
 const W_POLLED_ENTRIES: usize = 1 << 24;
@@ -82,6 +90,9 @@ pub(crate) struct ContactSpace {
     z: Vec<f64>,
     r: Vec<f64>,
     b: Vec<f64>,
+    /// Y_R with the DOF ranges between the rows' breaks compressed, W_R's input where any is
+    /// (`compressed_spans.rs`).
+    spans: CompressedSpans,
     /// The DOFs and rows Y_R and W_R have room for.
     reserved: (usize, usize),
 }
@@ -102,6 +113,7 @@ impl ContactSpace {
             z: Vec::new(),
             r: Vec::new(),
             b: Vec::new(),
+            spans: CompressedSpans::new(),
             reserved: (0, 0),
         }
     }
@@ -112,6 +124,7 @@ impl ContactSpace {
     /// [`SolverError::Allocation`] if a buffer cannot be allocated.
     pub(crate) fn try_reserve(&mut self, dofs: usize, rows: usize) -> Result<(), SolverError> {
         self.try_reserve_matrices(dofs, rows)?;
+        self.spans.try_reserve(dofs, rows)?;
         self.reduced.try_reserve(rows)?;
         let indices =
             [&mut self.support, &mut self.column_support, &mut self.order, &mut self.position];
@@ -165,6 +178,7 @@ impl ContactSpace {
         self.reduced.reduce(rows);
         let p = self.reduced.len();
         self.try_reserve_matrices(n, m.max(p))?;
+        self.spans.try_reserve(n, m.max(p))?;
         let reduced = &self.reduced;
         self.column_support.clear();
         self.column_support.extend((0..p).map(|j| {
@@ -193,7 +207,14 @@ impl ContactSpace {
             factor.solve_lower_supported(chunk, &self.column_support[first..first + count]);
         }
         problem.check_stop()?;
-        self.form_w(p, W_POLLED_ENTRIES, problem)?;
+        let (y, support) = (self.y.as_ref(), &self.column_support[..]);
+        let compressed = self.spans.compress(factor, (rows, &self.reduced), y, support);
+        let input = if compressed { self.spans.compressed() } else { (y, support) };
+        form_w(&mut self.w, input, W_POLLED_ENTRIES, problem)?;
+        if compressed && !self.spans.within_bound(self.w.as_ref()) {
+            self.spans.discard();
+            form_w(&mut self.w, (y, support), W_POLLED_ENTRIES, problem)?;
+        }
         mirror_upper(&mut self.w);
         self.compliance.clear();
         self.compliance.extend(rows.kinds().iter().map(|kind| kind.compliance()));
@@ -210,37 +231,6 @@ impl ContactSpace {
             }),
         );
         self.update_force(factor, problem);
-        Ok(())
-    }
-
-    /// W_R's upper triangle from Y_R (its columns by decreasing support), by column blocks
-    /// [a, b): W[..b, a..b] = Y[..e_a, ..b]ᵀY[..e_a, a..b] (e_a, the block's largest support,
-    /// bounds every product in it), polling the stop flag before each block, and between
-    /// chunks of the block's rows when it reads more than `polled_entries` entries of Y.
-    fn form_w(
-        &mut self,
-        m: usize,
-        polled_entries: usize,
-        problem: &Problem<'_>,
-    ) -> Result<(), SolverError> {
-        self.w.resize_with(m, m, |_, _| 0.0);
-        for a in (0..m).step_by(W_BLOCK) {
-            problem.check_stop()?;
-            let b = (a + W_BLOCK).min(m);
-            let rows_used = self.column_support[a];
-            let right = self.y.as_ref().submatrix(0, a, rows_used, b - a);
-            // W's rows [c, d) of the block: all at once, or in polled chunks when large.
-            let chunk = if rows_used * b > polled_entries { W_BLOCK } else { b };
-            for c in (0..b).step_by(chunk) {
-                let d = (c + chunk).min(b);
-                if c > 0 {
-                    problem.check_stop()?;
-                }
-                let left = self.y.as_ref().submatrix(0, c, rows_used, d - c);
-                let target = self.w.as_mut().submatrix_mut(c, a, d - c, b - a);
-                matmul(target, Accum::Replace, left.transpose(), right, 1.0, Par::Seq);
-            }
-        }
         Ok(())
     }
 
@@ -265,6 +255,11 @@ impl ContactSpace {
             Some(j) => self.reduced_r[j],
             None => bi + reduced.terms(i).iter().map(|&(j, w)| w * self.reduced_r[j]).sum::<f64>(),
         }));
+    }
+
+    /// Rows of Y_R that the last build's W_R left out (`compressed_spans.rs`).
+    pub(crate) fn gram_rows_saved(&self) -> usize {
+        self.spans.rows_saved()
     }
 
     /// The rows' compliances εᵢ (the diagonal E in W; 0 but for compliant rows).
@@ -338,24 +333,6 @@ impl ContactSpace {
     ) {
         self.lift(lambda, scratch, qdot);
         factor.solve_upper(column_mut(qdot));
-    }
-}
-
-/// Side of the square tiles in which [`mirror_upper`] copies (cache-sized).
-const MIRROR_TILE: usize = 32;
-
-/// Copies the upper triangle of the square `w` onto its lower one, tile by tile so that the
-/// transposed reads stay in cache.
-fn mirror_upper(w: &mut Mat<f64>) {
-    let p = w.ncols();
-    for tile_j in (0..p).step_by(MIRROR_TILE) {
-        for tile_i in (0..=tile_j).step_by(MIRROR_TILE) {
-            for j in tile_j..(tile_j + MIRROR_TILE).min(p) {
-                for i in tile_i..(tile_i + MIRROR_TILE).min(j) {
-                    w[(j, i)] = w[(i, j)];
-                }
-            }
-        }
     }
 }
 
@@ -487,10 +464,12 @@ mod tests {
         reverse.solve_lower_supported(whole.as_mut(), &space.column_support);
         assert!(whole == space.y, "Y solved in chunks of {Y_CHUNK} columns");
         let at_once = space.w.clone();
-        space.form_w(m, 0, &problem).expect("not stopped");
+        let mut polled = Mat::zeros(0, 0);
+        form_w(&mut polled, (space.y.as_ref(), &space.column_support), 0, &problem)
+            .expect("not stopped");
         let upper =
             |w: &Mat<f64>| Mat::<f64>::from_fn(m, m, |i, j| if i <= j { w[(i, j)] } else { 0.0 });
-        let gap = relative_gap(upper(&space.w).as_ref(), upper(&at_once).as_ref());
+        let gap = relative_gap(upper(&polled).as_ref(), upper(&at_once).as_ref());
         assert!(gap < 1e-14, "W in polled chunks differs by {gap:e}");
     }
 

@@ -83,6 +83,7 @@ mod residuals;
 mod row_coefficients;
 mod rows;
 mod workspace;
+mod wrench_breaks;
 
 pub use error::SolverError;
 pub use mass_operator::{FactoredMass, Mass, MassOperator};
@@ -93,3 +94,4 @@ pub use report::{Residuals, SlackUsage, SolvePath, SolveReport, SolveStatus};
 pub use row_coefficients::RowCoefficients;
 pub use rows::{PerTag, RowBasis, RowKind, RowSource, RowTag, Rows};
 pub use workspace::{Factored, SolverWorkspace};
+pub use wrench_breaks::{MAX_BREAKS, WrenchBreaks};

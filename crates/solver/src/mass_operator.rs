@@ -7,6 +7,8 @@
 //! product M̃x (residuals and refinement). L need not be triangular: any L with M̃ = L Lᵀ
 //! gives the same W, r and q̇.
 
+use std::ops::Range;
+
 use faer::{Mat, MatMut, MatRef};
 
 /// A factored effective mass M̃ = L Lᵀ, applied through its factor.
@@ -35,6 +37,17 @@ pub trait FactoredMass: core::fmt::Debug {
     fn solve_lower_supported(&self, x: MatMut<'_, f64>, support: &[usize]) {
         let _ = support;
         self.solve_lower(x);
+    }
+
+    /// The span of L⁻¹ on the DOFs `range` for rows that are one wrench's generalized force
+    /// there (`contact_space/compressed_spans.rs`): writes into `out` (`range.len()` × 6) six
+    /// columns whose span holds `(L⁻¹c)[range]` for every c with c_a = s_aᵀF on `range` for one
+    /// wrench F (whatever c is past the range), and returns true; false (the default) when
+    /// the factor has no such span for the range. The tree factor has one on every run of
+    /// whole joints of a chain: the leaf-to-root pass carries one six-vector through it.
+    fn wrench_span(&self, range: Range<usize>, out: MatMut<'_, f64>) -> bool {
+        let _ = (range, out);
+        false
     }
 }
 

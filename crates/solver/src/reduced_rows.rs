@@ -8,6 +8,7 @@
 use crate::error::SolverError;
 use crate::linalg::try_capacity;
 use crate::rows::{RowBasis, Rows};
+use crate::wrench_breaks::WrenchBreaks;
 
 /// What a reduced column is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -111,6 +112,14 @@ impl ReducedRows {
         match self.columns[j] {
             ReducedColumn::Row(i) => rows.own_row(i),
             ReducedColumn::Base(k) => rows.base(k),
+        }
+    }
+
+    /// The breaks promised for reduced column j (`wrench_breaks.rs`), `None` for none.
+    pub(crate) fn breaks<'r>(&self, rows: &'r Rows, j: usize) -> Option<&'r WrenchBreaks> {
+        match self.columns[j] {
+            ReducedColumn::Row(i) => rows.breaks(i),
+            ReducedColumn::Base(k) => rows.base_breaks(k),
         }
     }
 

@@ -100,4 +100,9 @@ pub struct SolveReport {
     pub residuals: Residuals,
     /// Slack used by the soft rows.
     pub slack: SlackUsage,
+    /// Rows of Y_R = L⁻¹C_Rᵀ that the contact space's Gram product W_R = Y_RᵀY_R left out:
+    /// the DOF ranges between the rows' breaks, each replaced by at most six coordinates in
+    /// its wrench span (`contact_space/compressed_spans.rs`); 0 on other paths or with no
+    /// range to compress.
+    pub gram_rows_saved: usize,
 }

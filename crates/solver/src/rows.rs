@@ -52,6 +52,7 @@ use faer::Mat;
 use crate::error::SolverError;
 use crate::linalg::{try_capacity, try_matrix_capacity};
 use crate::row_coefficients::RowCoefficients;
+use crate::wrench_breaks::WrenchBreaks;
 
 /// How a row constrains q̇ (see the module table). Soft rows carry their penalty weight.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -201,6 +202,10 @@ pub struct Rows {
     /// The first base of the last combination and the end of its bases' nonzero entries, so
     /// that a contact's edge rows find it once (cleared when a base is written).
     bases_extent: Option<(usize, usize)>,
+    /// The breaks of each row's own coefficients (`wrench_breaks.rs`; `None`: no promise).
+    breaks: Vec<Option<WrenchBreaks>>,
+    /// The breaks of each base vector (`None`: no promise).
+    base_breaks: Vec<Option<WrenchBreaks>>,
 }
 
 impl Rows {
@@ -216,6 +221,8 @@ impl Rows {
             bases: Mat::zeros(dofs, 0),
             base_count: 0,
             bases_extent: None,
+            breaks: Vec::new(),
+            base_breaks: Vec::new(),
         }
     }
 
@@ -233,6 +240,7 @@ impl Rows {
         try_capacity(&mut rows.sources, capacity, "the rows' sources")?;
         try_capacity(&mut rows.basis, capacity, "the rows' bases")?;
         try_capacity(&mut rows.extents, capacity, "the rows' extents")?;
+        try_capacity(&mut rows.breaks, capacity, "the rows' breaks")?;
         Ok(rows)
     }
 
@@ -258,6 +266,8 @@ impl Rows {
         self.sources.clear();
         self.basis.clear();
         self.extents.clear();
+        self.breaks.clear();
+        self.base_breaks.clear();
         self.base_count = 0;
         self.bases_extent = None;
     }
@@ -319,6 +329,7 @@ impl Rows {
         self.sources.push(source);
         self.basis.push(basis);
         self.extents.push(extent);
+        self.breaks.push(None);
         index
     }
 
@@ -336,7 +347,37 @@ impl Rows {
         for k in first..first + 3 {
             self.bases.col_as_slice_mut(k).fill(0.0);
         }
+        self.base_breaks.extend([None; 3]);
         first
+    }
+
+    /// Promises that row `index`'s own coefficients have their breaks at `breaks`
+    /// (`wrench_breaks.rs`): the contact space may then compress the DOF ranges between them.
+    /// Does nothing for a combination row (its bases carry the breaks) or past the end.
+    pub fn set_breaks(&mut self, index: usize, breaks: WrenchBreaks) {
+        if let (Some(slot), Some(RowBasis::Own)) =
+            (self.breaks.get_mut(index), self.basis.get(index))
+        {
+            *slot = Some(breaks);
+        }
+    }
+
+    /// Promises that the three bases pushed at `first` have their breaks at `breaks`.
+    pub fn set_base_breaks(&mut self, first: usize, breaks: WrenchBreaks) {
+        for slot in self.base_breaks.iter_mut().skip(first).take(3) {
+            *slot = Some(breaks);
+        }
+    }
+
+    /// The breaks promised for row `index`'s own coefficients ([`Rows::set_breaks`]); `None`
+    /// for none, for a combination row, or past the end.
+    pub fn breaks(&self, index: usize) -> Option<&WrenchBreaks> {
+        self.breaks.get(index)?.as_ref()
+    }
+
+    /// The breaks promised for base vector `index` (crate-internal indices only).
+    pub(crate) fn base_breaks(&self, index: usize) -> Option<&WrenchBreaks> {
+        self.base_breaks[index].as_ref()
     }
 
     /// The three base vectors pushed at `first` by [`Rows::push_bases`], to fill at once.

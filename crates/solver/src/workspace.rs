@@ -230,6 +230,10 @@ impl SolverWorkspace {
             active_per_tag: evaluation.active_per_tag,
             residuals: evaluation.residuals,
             slack: evaluation.slack,
+            gram_rows_saved: match backend {
+                Some(QpBackend::Clarabel) => 0,
+                _ => self.dual.gram_rows_saved(),
+            },
         };
         problem.check_stop()?;
         self.collect_impulses(problem);

@@ -33,6 +33,7 @@
 use std::cell::RefCell;
 use std::ops::Range;
 
+use faer::MatMut;
 use hagfish_solver::SolverError;
 use hagfish_tree::{Data, Model, RigidInertia, Spatial};
 
@@ -81,6 +82,10 @@ pub struct TreeFactor {
     lane_bias: RefCell<Vec<f64>>,
     /// Interleaved columns of the batched pass, n × [`LANES`] (see `operator.rs`).
     lane_columns: RefCell<Vec<f64>>,
+    /// The number of children of each body (the chains of [`TreeFactor::wrench_span`]).
+    child_counts: Vec<usize>,
+    /// The six interleaved columns of [`TreeFactor::wrench_span`] (n entries).
+    span_lanes: RefCell<Vec<[f64; 6]>>,
 }
 
 impl TreeFactor {
@@ -96,6 +101,10 @@ impl TreeFactor {
             }
             dofs.push(range);
         }
+        let mut child_counts = vec![0; nb];
+        for parent in model.joints().iter().filter_map(|j| j.parent) {
+            child_counts[parent] += 1;
+        }
         Ok(Self {
             parents: model.joints().iter().map(|j| j.parent).collect(),
             dofs,
@@ -110,6 +119,8 @@ impl TreeFactor {
             scratch: RefCell::new(vec![Spatial::ZERO; nb]),
             lane_bias: RefCell::new(vec![0.0; 6 * nb * LANES]),
             lane_columns: RefCell::new(vec![0.0; n * LANES]),
+            child_counts,
+            span_lanes: RefCell::new(vec![[0.0; 6]; n]),
         })
     }
 
@@ -225,33 +236,7 @@ impl TreeFactor {
         let (bias, _) = bias.as_chunks_mut::<6>();
         bias.fill([[0.0; K]; 6]);
         for body in (0..bodies).rev() {
-            let range = self.dofs[body].clone();
-            let p = bias[body];
-            let mut contribution = p;
-            let joint = &mut x[range.clone()];
-            for (i, a) in range.enumerate() {
-                let (axis, gain, row) =
-                    (to_array(&self.axes[a]), to_array(&self.gains[a]), &self.pivots[a]);
-                let (solved, rest) = joint.split_at_mut(i);
-                let entry = &mut rest[0];
-                // y_a = (f_a − s_aᵀp − Σ_{c<a} R_ac y_c) / R_aa, the sum from −0 as `Sum` does.
-                let mut done = [-0.0; K];
-                for (r, y) in row.iter().zip(solved.iter()) {
-                    for k in 0..K {
-                        done[k] += r * y[k];
-                    }
-                }
-                for k in 0..K {
-                    let twist = (axis[0] * p[0][k] + axis[1] * p[1][k] + axis[2] * p[2][k])
-                        + (axis[3] * p[3][k] + axis[4] * p[4][k] + axis[5] * p[5][k]);
-                    entry[k] = (entry[k] - twist - done[k]) / row[i];
-                }
-                for (c, g) in contribution.iter_mut().zip(&gain) {
-                    for k in 0..K {
-                        c[k] += g * entry[k];
-                    }
-                }
-            }
+            let contribution = self.eliminate(body, &mut x[self.dofs[body].clone()], bias[body]);
             if let Some(parent) = self.parents[body] {
                 for (b, c) in bias[parent].iter_mut().zip(&contribution) {
                     for k in 0..K {
@@ -260,6 +245,86 @@ impl TreeFactor {
                 }
             }
         }
+    }
+
+    /// One body of the leaf-to-root pass on K lanes: its joint's entries `joint` (K lanes
+    /// each) ← `y_c = R_c⁻¹(f_c − S_cᵀp)` for the bias `p` its children passed, and returns
+    /// `p + Ū_c y_c`, what it passes to its parent (module docs).
+    fn eliminate<const K: usize>(
+        &self,
+        body: usize,
+        joint: &mut [[f64; K]],
+        p: [[f64; K]; 6],
+    ) -> [[f64; K]; 6] {
+        let mut contribution = p;
+        for (i, a) in self.dofs[body].clone().enumerate() {
+            let (axis, gain, row) =
+                (to_array(&self.axes[a]), to_array(&self.gains[a]), &self.pivots[a]);
+            let (solved, rest) = joint.split_at_mut(i);
+            let entry = &mut rest[0];
+            // y_a = (f_a − s_aᵀp − Σ_{c<a} R_ac y_c) / R_aa, the sum from −0 as `Sum` does.
+            let mut done = [-0.0; K];
+            for (r, y) in row.iter().zip(solved.iter()) {
+                for k in 0..K {
+                    done[k] += r * y[k];
+                }
+            }
+            for k in 0..K {
+                let twist = (axis[0] * p[0][k] + axis[1] * p[1][k] + axis[2] * p[2][k])
+                    + (axis[3] * p[3][k] + axis[4] * p[4][k] + axis[5] * p[5][k]);
+                entry[k] = (entry[k] - twist - done[k]) / row[i];
+            }
+            for (c, g) in contribution.iter_mut().zip(&gain) {
+                for k in 0..K {
+                    c[k] += g * entry[k];
+                }
+            }
+        }
+        contribution
+    }
+
+    /// The wrench span of L⁻¹ on the DOFs `range` (`hagfish_solver::FactoredMass::wrench_span`):
+    /// when `range` holds the whole joints of bodies b₀..=b₁ that form a chain (each the
+    /// parent of the next, none but b₁ with children elsewhere), writes into `out`
+    /// (`range.len()` × 6) the pass over those bodies of f = 0 from the six unit biases
+    /// p = e_k entering b₁, and returns true. On such a range a column with c_a = s_aᵀF has
+    /// `y_c = −R_c⁻¹S_cᵀ(p − F)` and passes `(p − F) + Ū_c y_c` on: a linear function of the
+    /// one six-vector p − F entering b₁, so it lies in the span of these six.
+    pub(crate) fn wrench_span(&self, range: Range<usize>, mut out: MatMut<'_, f64>) -> bool {
+        let (Some(&first), Some(&last)) = (
+            self.dof_bodies.get(range.start),
+            range.end.checked_sub(1).and_then(|e| self.dof_bodies.get(e)),
+        ) else {
+            return false;
+        };
+        let whole_joints =
+            self.dofs[first].start == range.start && self.dofs[last].end == range.end;
+        let chain = (first + 1..=last).all(|body| self.parents[body] == Some(body - 1))
+            && (first..last).all(|body| self.child_counts[body] == 1);
+        if !whole_joints || !chain || out.nrows() != range.len() || out.ncols() != 6 {
+            return false;
+        }
+        let mut storage = self.span_lanes.borrow_mut();
+        let lanes = &mut storage[..range.len()];
+        lanes.fill([0.0; 6]);
+        let mut p = [[0.0; 6]; 6];
+        for (k, component) in p.iter_mut().enumerate() {
+            component[k] = 1.0;
+        }
+        for body in (first..=last).rev() {
+            let dofs = self.dofs[body].clone();
+            p = self.eliminate(
+                body,
+                &mut lanes[dofs.start - range.start..dofs.end - range.start],
+                p,
+            );
+        }
+        for (a, lane) in lanes.iter().enumerate() {
+            for (k, value) in lane.iter().enumerate() {
+                out[(a, k)] = *value;
+            }
+        }
+        true
     }
 
     /// The interleaved columns of the batched pass (n × [`LANES`] entries).

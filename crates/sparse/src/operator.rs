@@ -6,6 +6,8 @@
 //! lane buffer: one leaf-to-root pass reads the factor once for the whole batch, and a batch
 //! of rows that vanish past body k visits the bodies 0..=k only.
 
+use std::ops::Range;
+
 use faer::MatMut;
 use faer::reborrow::{Reborrow, ReborrowMut};
 use hagfish_solver::{FactoredMass, MassOperator};
@@ -36,6 +38,13 @@ impl FactoredMass for TreeFactor {
     /// support only.
     fn solve_lower_supported(&self, x: MatMut<'_, f64>, support: &[usize]) {
         solve_lower_batched(self, x, |j| support[j]);
+    }
+
+    /// The pass of six unit biases, f = 0, through a run of whole joints of a chain (each body
+    /// the parent of the next, none but the last with children elsewhere); false for any
+    /// other range.
+    fn wrench_span(&self, range: Range<usize>, out: MatMut<'_, f64>) -> bool {
+        TreeFactor::wrench_span(self, range, out)
     }
 }
 

@@ -143,6 +143,53 @@ fn sparse_steps_like_dense_in_the_knotted_state() {
     assert!(rows[RowGroup::Contact as usize] > 20, "knotted: self contacts, got {rows:?}");
 }
 
+/// The rows of the knotted state keep the promise of their breaks (`hagfish_solver::WrenchBreaks`):
+/// between two breaks (and below the first) a row's coefficients are one wrench's generalized
+/// force, cₐ = sₐᵀF, within 10⁻¹² of the row's largest coefficient (its residual from the span
+/// of the range's axes [ω_a, v_a], by a thin QR); every contact, limit and head row promises
+/// breaks (the 41 rows are too few for the solve to compress: `hagfish-sparse`'s
+/// `compressed_spans` tests that).
+#[test]
+fn the_knotted_state_s_rows_are_one_wrench_between_their_breaks() {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
+    let (mut world, _) =
+        hagfish_bench_support::knotted_world(root.as_ref()).expect("knotted state");
+    let start = world.state().clone();
+    world.step(&mut WaterDrag::default()).expect("step succeeds");
+    let (data, model) = (world.data(), world.model());
+    // The axes of the state the rows were built at (the step's end has moved them).
+    let mut kinematics = hagfish_tree::Data::new(model);
+    hagfish_tree::forward_kinematics(model, &start.q, &start.qdot, &mut kinematics);
+    let rows = &data.rows;
+    let mut ranges_checked = 0;
+    for i in 0..rows.len() {
+        let breaks = rows
+            .breaks(i)
+            .unwrap_or_else(|| panic!("row {i} ({:?}) promises no breaks", rows.sources()[i]));
+        let c = rows.row(i).expect("a row").to_vec();
+        let largest = c.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+        let support = c.iter().rposition(|&x| x != 0.0).map_or(0, |e| e + 1);
+        let mut ends: Vec<usize> =
+            breaks.positions().iter().copied().filter(|&b| b < support).collect();
+        ends.extend([0, support]);
+        ends.sort_unstable();
+        ends.dedup();
+        for range in ends.windows(2).map(|w| w[0]..w[1]).filter(|r| r.len() > 6) {
+            let axes = faer::Mat::<f64>::from_fn(range.len(), 6, |k, j| {
+                let s = &kinematics.axes[range.start + k];
+                [s.angular.x, s.angular.y, s.angular.z, s.linear.x, s.linear.y, s.linear.z][j]
+            });
+            let q = axes.qr().compute_thin_Q();
+            let segment = faer::Mat::<f64>::from_fn(range.len(), 1, |k, _| c[range.start + k]);
+            let residual = &segment - &q * (q.transpose() * &segment);
+            let worst = residual.col(0).iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+            assert!(worst <= 1e-12 * largest, "row {i}, DOFs {range:?}: {worst:e} off one wrench");
+            ranges_checked += 1;
+        }
+    }
+    assert!(ranges_checked > 20, "{ranges_checked} ranges checked ({} DOFs)", model.dof_count());
+}
+
 #[test]
 fn the_sparse_backend_ties_the_trefoil_of_form_ron() {
     let loaded = form_scenario();

@@ -13,6 +13,7 @@ use hagfish_tree::jacobian::add_point_row;
 use hagfish_tree::{Data, Model};
 
 use super::RowGroup;
+use super::breaks::{point_breaks, set_last_breaks};
 
 /// The world axes of the grip's rows: ids 0–2 the linear rows, 3–5 the angular ones.
 const AXES: [DVec3; 3] = [DVec3::X, DVec3::Y, DVec3::Z];
@@ -31,6 +32,7 @@ pub fn add_grip_rows(
         let rhs = axis.dot(grip.velocity + rate * drift);
         let row = rows.push_zeroed(RowKind::Equality, RowGroup::Grip.source(k), rhs);
         add_point_row(model, data, grip.body, grip.point, axis, 1.0, row);
+        set_last_breaks(rows, point_breaks(model, [grip.body]));
     }
     for (k, axis) in AXES.into_iter().enumerate() {
         let rhs = axis.dot(rate * grip.rotation_error);
@@ -40,6 +42,7 @@ pub fn add_grip_rows(
                 row[a] += axis.dot(data.axes[a].angular);
             }
         }
+        set_last_breaks(rows, point_breaks(model, [grip.body]));
     }
 }
 

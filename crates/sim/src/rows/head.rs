@@ -5,6 +5,7 @@
 use hagfish_solver::{RowKind, Rows};
 
 use super::RowGroup;
+use super::breaks::{joint_breaks, set_last_breaks};
 use hagfish_tree::{Model, State};
 
 /// Appends one equality row per root-joint DOF, targets `q* = q_rest`.
@@ -24,6 +25,7 @@ pub fn add_head_rows(
                 -correction * error / time_step,
             );
             row[k] = 1.0;
+            set_last_breaks(rows, joint_breaks(model, k));
         }
     }
 }

@@ -9,6 +9,7 @@ use hagfish_solver::Rows;
 use hagfish_tree::{Model, State};
 
 use super::RowGroup;
+use super::breaks::{joint_breaks, set_last_breaks};
 use super::stabilisation::push_unilateral_row;
 
 /// Appends the active lower and upper limit rows.
@@ -24,6 +25,7 @@ pub fn add_limit_rows(
         for (gap, sign) in [(state.q[k] - dof.lower, 1.0), (dof.upper - state.q[k], -1.0)] {
             if has_row(gap, state.qdot[k], time_step, dof_margin(dof, margin)) {
                 push_unilateral_row(rows, RowGroup::Limit, k, gap, time_step, push_out)[k] = sign;
+                set_last_breaks(rows, joint_breaks(model, k));
             }
         }
     }
@@ -57,6 +59,7 @@ pub fn add_overshooting_limit_rows(
     let mut added = 0;
     for (k, gap, sign) in overshooting_limits(model, state, qdot_next, time_step, margin) {
         push_unilateral_row(rows, RowGroup::Limit, k, gap, time_step, push_out)[k] = sign;
+        set_last_breaks(rows, joint_breaks(model, k));
         added += 1;
     }
     added

@@ -2,6 +2,7 @@
 //! solver's convention (`cᵀq̇ = b` or `cᵀq̇ ≥ b`, multipliers pushing along +c) straight into
 //! the solver's [`hagfish_solver::Rows`] container, so building rows does not allocate.
 
+mod breaks;
 mod friction;
 mod grip;
 mod group;

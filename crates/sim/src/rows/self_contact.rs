@@ -12,6 +12,7 @@ use hagfish_tree::jacobian::{add_point_rows, add_point_rows_along};
 use hagfish_tree::{Data, Model};
 
 use super::RowGroup;
+use super::breaks::{point_breaks, set_last_breaks};
 use super::friction::{
     Friction, MAX_FRICTION_EDGES, contact_directions, contact_row, push_pyramid_bases,
 };
@@ -49,9 +50,13 @@ pub fn add_self_contact_rows(
         let edges =
             contact_directions(contact.normal, contact.tangent_a, friction, &mut directions);
         let contact_points = &points[..count];
+        let breaks = point_breaks(model, contact_points.iter().map(|p| p.0));
         let bases = push_pyramid_bases(rows, friction, edges, |axes, bases| {
             add_point_rows_along(model, data, contact_points, axes, bases);
         });
+        if let (Some(first), Some(breaks)) = (bases, breaks) {
+            rows.set_base_breaks(first, breaks);
+        }
         let first = rows.len();
         for (k, &direction) in directions[..edges].iter().enumerate() {
             let (source, stabilisation) = (RowGroup::Contact.source(i), (time_step, push_out));
@@ -64,6 +69,7 @@ pub fn add_self_contact_rows(
                 None => {
                     let row = rows.push_zeroed(kind, source, rhs);
                     add_point_rows(model, data, contact_points, direction, row);
+                    set_last_breaks(rows, breaks);
                 }
             }
         }
@@ -72,6 +78,7 @@ pub fn add_self_contact_rows(
             let kind = RowKind::Compliant { compliance: contact_skin.compliance(time_step) };
             let spring = rows.push_zeroed(kind, RowGroup::Skin.source(i), -contact.gap / time_step);
             add_point_rows(model, data, &points[..count], contact.normal, spring);
+            set_last_breaks(rows, breaks);
         }
     }
 }

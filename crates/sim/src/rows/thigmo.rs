@@ -15,13 +15,14 @@
 
 use glam::DVec3;
 #[cfg(doc)]
-use hagfish_control::{Confinement, ForceSpace};
-use hagfish_control::{Strand, ThigmoRequest};
+use hagfish_control::ForceSpace;
+use hagfish_control::{Confinement, Strand, ThigmoRequest};
 use hagfish_geometry::{SelfContact, SplineWeights};
 use hagfish_solver::{RowKind, Rows};
 use hagfish_tree::{Data, Model};
 
 use super::RowGroup;
+use super::breaks::{point_breaks, set_last_breaks};
 use super::self_contact::add_spline_point_row;
 
 /// Appends one soft row per request, id its index in `requests` (requests naming a missing
@@ -51,6 +52,10 @@ pub fn add_thigmo_rows(
         add_spline_point_row(model, data, this, tangent, 1.0, row);
         add_spline_point_row(model, data, other, tangent, -1.0, row);
         request.confinement.confine(twist_dofs, scratch, row);
+        if request.confinement == Confinement::Full {
+            let bodies = this.iter().chain(other.iter()).map(|(body, _)| body);
+            set_last_breaks(rows, point_breaks(model, bodies));
+        }
     }
 }
 

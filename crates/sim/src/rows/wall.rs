@@ -14,6 +14,7 @@ use hagfish_tree::jacobian::{add_point_row, add_point_rows};
 use hagfish_tree::{Data, Model};
 
 use super::RowGroup;
+use super::breaks::{point_breaks, set_last_breaks};
 use super::friction::{
     Friction, MAX_FRICTION_EDGES, contact_directions, contact_row, push_pyramid_bases,
     wall_contact_offset,
@@ -50,11 +51,15 @@ pub fn add_wall_rows(
             Some(body) => add_point_row(model, data, body, points[0].1, axis, 1.0, row),
             None => add_point_rows(model, data, points, axis, row),
         };
+        let breaks = point_breaks(model, points.iter().map(|p| p.0));
         let bases = push_pyramid_bases(rows, friction, edges, |axes, bases| {
             for (axis, base) in axes.into_iter().zip(bases) {
                 add_rows(axis, base);
             }
         });
+        if let (Some(first), Some(breaks)) = (bases, breaks) {
+            rows.set_base_breaks(first, breaks);
+        }
         let first = rows.len();
         for (k, &direction) in directions[..edges].iter().enumerate() {
             let (source, stabilisation) = (RowGroup::Wall.source(i), (time_step, push_out));
@@ -64,7 +69,10 @@ pub fn add_wall_rows(
                 Some(bases) => {
                     rows.push_combination(kind, source, rhs, (bases, direction.to_array()))
                 }
-                None => add_rows(direction, rows.push_zeroed(kind, source, rhs)),
+                None => {
+                    add_rows(direction, rows.push_zeroed(kind, source, rhs));
+                    set_last_breaks(rows, breaks);
+                }
             }
         }
     }

@@ -18,13 +18,13 @@ use proptest::prelude::*;
 
 /// Per body: (parent choice, joint code, length, mass, tilt). The parent is
 /// `choice % i` for body i > 0 (a random tree), or `i − 1` when `chain`.
-type TreeSpec = Vec<(usize, u8, f64, f64, f64)>;
+pub(crate) type TreeSpec = Vec<(usize, u8, f64, f64, f64)>;
 
-fn tree_spec(max: usize) -> impl Strategy<Value = TreeSpec> {
+pub(crate) fn tree_spec(max: usize) -> impl Strategy<Value = TreeSpec> {
     prop::collection::vec((0usize..1000, 0u8..5, 0.2f64..1.5, 0.1f64..3.0, -0.6f64..0.6), 1..=max)
 }
 
-fn build(spec: &TreeSpec, chain: bool, damping: f64, stiffness: f64) -> Model {
+pub(crate) fn build(spec: &TreeSpec, chain: bool, damping: f64, stiffness: f64) -> Model {
     let mut builder = ModelBuilder::new().gravity(DVec3::new(0.0, 0.0, -980.0));
     for (i, &(choice, code, length, mass, tilt)) in spec.iter().enumerate() {
         let parent = match i {
@@ -60,13 +60,13 @@ fn build(spec: &TreeSpec, chain: bool, damping: f64, stiffness: f64) -> Model {
     builder.build().expect("valid random tree")
 }
 
-fn values(seed: u64, n: usize, scale: f64) -> Vec<f64> {
+pub(crate) fn values(seed: u64, n: usize, scale: f64) -> Vec<f64> {
     (0..n).map(|a| scale * ((a as f64 + 1.0) * 0.731 + seed as f64 * 0.377).sin()).collect()
 }
 
 /// Kinematics at a random state with dampers on some bodies and servos on some joints; the dense `M̃` and its factor
 /// in `data`, the tree factor assembled and factored.
-fn setup(model: &Model, seed: u64, h: f64) -> Result<(Data, TreeFactor), SparseError> {
+pub(crate) fn setup(model: &Model, seed: u64, h: f64) -> Result<(Data, TreeFactor), SparseError> {
     let n = model.dof_count();
     let mut data = Data::new(model);
     forward_kinematics(model, &values(seed, n, 1.2), &values(seed + 7, n, 3.0), &mut data);
@@ -87,7 +87,7 @@ fn setup(model: &Model, seed: u64, h: f64) -> Result<(Data, TreeFactor), SparseE
     Ok((data, factor))
 }
 
-fn relative_error(a: &[f64], b: &[f64]) -> f64 {
+pub(crate) fn relative_error(a: &[f64], b: &[f64]) -> f64 {
     let diff: f64 = a.iter().zip(b).map(|(x, y)| (x - y).powi(2)).sum::<f64>().sqrt();
     let norm: f64 = b.iter().map(|y| y * y).sum::<f64>().sqrt();
     diff / norm.max(1e-300)

@@ -1,3 +1,4 @@
 //! Integration tests of `hagfish-sparse`: one test binary.
 
+mod compressed_spans;
 mod equivalence;
