@@ -80,8 +80,8 @@ struct Span {
 pub(crate) struct CompressedSpans {
     /// The ranges' ends: the reduced columns' breaks, sorted (scratch).
     positions: Vec<usize>,
-    /// The ranges worth compressing (scratch).
-    candidates: Vec<Range<usize>>,
+    /// The ranges worth compressing and how many columns reach each (scratch).
+    candidates: Vec<(Range<usize>, usize)>,
     /// The compressed ranges, by increasing DOFs.
     spans: Vec<Span>,
     /// Q of the range being compressed (n × 6).
@@ -145,8 +145,8 @@ impl CompressedSpans {
 
     /// Compresses the ranges of `y` (Y_R: its columns by decreasing `support`, those of
     /// `reduced` over `rows`) that the columns' breaks, `factor` and the cost allow (module
-    /// docs); returns whether any was, and then [`CompressedSpans::for_each_segment`] gives
-    /// the product's rows. Needs room ([`CompressedSpans::try_reserve`]).
+    /// docs); returns whether any was, and then [`CompressedSpans::compressed`] is the
+    /// product's input. Needs room ([`CompressedSpans::try_reserve`]).
     pub(crate) fn compress(
         &mut self,
         factor: &dyn FactoredMass,
@@ -169,7 +169,7 @@ impl CompressedSpans {
             let alive = support.partition_point(|&e| e > range.start);
             if range.len() >= MIN_SPAN_DOFS && alive >= MIN_SPAN_COLUMNS {
                 saved += (range.len() - 6) * alive * (alive + 1) / 2;
-                self.candidates.push(range);
+                self.candidates.push((range, alive));
             }
         }
         if self.candidates.is_empty() || saved < work / MIN_SAVED_FRACTION_INVERSE {
@@ -184,12 +184,11 @@ impl CompressedSpans {
         // Y_R's rows below each compressed range, then its coordinates, then the rest.
         let (mut written, mut placed) = (0, 0);
         for c in 0..self.candidates.len() {
-            let range = self.candidates[c].clone();
+            let (range, alive) = self.candidates[c].clone();
             let count = range.start - placed;
             let rows_below = y.submatrix(placed, 0, count, p);
             self.y.as_mut().submatrix_mut(written, 0, count, p).copy_from(rows_below);
             (written, placed) = (written + count, range.start);
-            let alive = support.partition_point(|&e| e > range.start);
             if let Some(rank) = self.compress_range(factor, y, range.clone(), (alive, written)) {
                 (written, placed) = (written + rank, range.end);
                 self.spans.push(Span { dofs: range, rank });
@@ -347,7 +346,8 @@ fn orthonormalize(mut basis: MatMut<'_, f64>) -> usize {
 
 /// ‖column j of `m`‖₂.
 fn column_norm(m: MatRef<'_, f64>, j: usize) -> f64 {
-    (0..m.nrows()).map(|a| m[(a, j)] * m[(a, j)]).sum::<f64>().sqrt()
+    let column = col_slice(m.col(j));
+    dot(column, column).sqrt()
 }
 
 #[cfg(test)]
