@@ -13,8 +13,16 @@ use crate::cluster::Candidate;
 
 /// Whether `center` lies within `radius` of both ends of the interval [`low`, `high`]: the
 /// test of one parameter, in the floating-point operations of [`Coverage::mark`].
-fn reaches(center: f64, radius: f64, low: f64, high: f64) -> bool {
+pub(crate) fn reaches(center: f64, radius: f64, low: f64, high: f64) -> bool {
     center - radius <= low && high <= center + radius
+}
+
+/// Whether `record` lies within `radius` of the whole box [k_a, k_a + 1] × [k_b, k_b + 1] of
+/// segment pair `(k_a, k_b)` in both parameters: the test that [`Coverage::mark`] applies to
+/// every pair it reaches.
+pub(crate) fn covers(record: &Candidate, radius: f64, (k_a, k_b): (usize, usize)) -> bool {
+    let (a, b) = (k_a as f64, k_b as f64);
+    reaches(record.u_a, radius, a, a + 1.0) && reaches(record.u_b, radius, b, b + 1.0)
 }
 
 /// The covered pairs of one sorted pair list: per pair, whether a kept record covers it.
@@ -114,12 +122,9 @@ mod tests {
             for r in &records {
                 coverage.mark(&pairs, r, radius);
             }
-            for (i, &(k_a, k_b)) in pairs.iter().enumerate() {
-                let (a, b) = (k_a as f64, k_b as f64);
-                let expected = records.iter().any(|r| {
-                    reaches(r.u_a, radius, a, a + 1.0) && reaches(r.u_b, radius, b, b + 1.0)
-                });
-                proptest::prop_assert_eq!(coverage.is_covered(i), expected, "pair {:?}", (k_a, k_b));
+            for (i, &pair) in pairs.iter().enumerate() {
+                let expected = records.iter().any(|r| covers(r, radius, pair));
+                proptest::prop_assert_eq!(coverage.is_covered(i), expected, "pair {:?}", pair);
             }
         }
     }

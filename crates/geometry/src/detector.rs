@@ -1,53 +1,14 @@
 //! Self-contact detection: broad phase, narrow phase on the spline, merging.
 
-use glam::DVec3;
-
 use crate::broad_phase::{BroadPhase, BroadPhaseOptions};
 use crate::centreline::Centreline;
-use crate::chord::{chord_distance, closest_chord_parameters};
-use crate::cluster::{Candidate, DeepestPerCluster};
+use crate::cluster::DeepestPerCluster;
 use crate::contact::SelfContact;
-use crate::coverage::Coverage;
 use crate::error::GeometryError;
-use crate::narrow_phase::{ClosestPoints, NewtonStatus, closest_points_within_after, search};
-use crate::pair_queue::PairQueue;
+use crate::pruning::{PruningScratch, search_by_gap_bound};
 use crate::sampled_segment::SampledSegments;
+use crate::searches::{ContactTest, SearchCounts, Searches, pair_bound};
 use crate::segment_pairs::collect_segment_pairs;
-
-/// The distance below which segments k_a and k_b may be in contact: the largest tube radii
-/// along them (a radius along a segment is at most the larger of its two body radii) plus
-/// `margin`.
-fn reach(radii: &[f64], (k_a, k_b): (usize, usize), margin: f64) -> f64 {
-    radii[k_a].max(radii[k_a + 1]) + radii[k_b].max(radii[k_b + 1]) + margin
-}
-
-/// A lower bound on the distance of two segments from their chords `a` and `b`, whose closest
-/// points are at `chord_parameters`, and their [`crate::Segment::chord_deviation_bound`]s
-/// `deviations`: each segment lies within its σ of its chord, so the spline distance is at
-/// least d_chord − σ_a − σ_b.
-fn distance_lower_bound(
-    a: (DVec3, DVec3),
-    b: (DVec3, DVec3),
-    chord_parameters: [f64; 2],
-    deviations: [f64; 2],
-) -> f64 {
-    chord_distance(a, b, chord_parameters) - deviations[0] - deviations[1]
-}
-
-/// Rounding allowance (cm) on a segment pair's gap bound before the records shallower than it
-/// count as final: the bound is a difference of distances of a few centimetres, exact to
-/// ≈ 1e-15 cm, and the σ it subtracts are upper bounds with room to spare.
-const GAP_BOUND_ROUNDING: f64 = 1e-9;
-
-/// Counts of one narrow phase, for its [`DetectionReport`].
-#[derive(Debug, Default)]
-struct SearchCounts {
-    searched: usize,
-    covered: usize,
-    searched_from_grid: usize,
-    newton_failures: usize,
-    raw_contacts: usize,
-}
 
 /// The cluster radius (in segments) from which segment pairs are searched in order of their
 /// gap bounds and skipped when a kept contact covers them (`cluster.rs`). ES103 at 100 bodies
@@ -145,11 +106,9 @@ pub struct ContactDetector {
     /// The searched segments with their seed-grid samples, made when first searched.
     segments: SampledSegments,
     segment_pairs: Vec<(usize, usize)>,
-    /// The segment pairs that may touch, by gap bound (where pairs are searched in that order).
-    queue: PairQueue,
     clusters: DeepestPerCluster,
-    /// The pairs that the kept records cover, marked as each is kept.
-    coverage: Coverage,
+    /// The buffers of the search by gap bound (`pruning.rs`).
+    pruning: PruningScratch,
     /// Whether pairs are searched by gap bound and skipped when covered: the cluster radius
     /// is at least [`MIN_PRUNING_RADIUS`].
     prune: bool,
@@ -178,9 +137,8 @@ impl ContactDetector {
             deviations: Vec::new(),
             segments: SampledSegments::default(),
             segment_pairs: Vec::new(),
-            queue: PairQueue::default(),
             clusters: DeepestPerCluster::default(),
-            coverage: Coverage::default(),
+            pruning: PruningScratch::default(),
             prune: options.cluster_radius >= MIN_PRUNING_RADIUS,
         })
     }
@@ -194,9 +152,8 @@ impl ContactDetector {
         self.deviations.reserve(bodies + 1);
         self.segments.reserve(bodies + 1);
         self.segment_pairs.reserve(pairs);
-        self.queue.reserve(pairs);
         self.clusters.reserve(pairs);
-        self.coverage.reserve(pairs);
+        self.pruning.reserve(bodies + 1, pairs);
     }
 
     /// Changes the cluster radius (as [`DetectorOptions::cluster_radius`]) without rebuilding
@@ -273,91 +230,31 @@ impl ContactDetector {
         } else {
             centreline.chord_deviation_bounds(&mut self.deviations);
         }
+        let radius = self.options.cluster_radius;
+        self.clusters.clear(radius);
         let (margin, index_gap) = (self.options.margin, self.options.index_gap as f64);
-        // A search result as a contact candidate: within the margin and outside the
-        // chain-index exclusion.
-        let candidate = |(k_a, k_b): (usize, usize), closest: ClosestPoints| {
-            let u_a = k_a as f64 + closest.s_a;
-            let u_b = k_b as f64 + closest.s_b;
-            let radii = centreline.radius(u_a) + centreline.radius(u_b);
-            let gap = closest.distance_squared.sqrt() - radii;
-            (gap < margin && u_b - u_a > index_gap).then_some(Candidate {
-                u_a,
-                u_b,
-                gap,
-                status: closest.status,
-            })
+        let mut searches = Searches {
+            test: ContactTest { centreline, margin, index_gap },
+            segments: &mut self.segments,
+            clusters: &mut self.clusters,
+            counts: SearchCounts::default(),
         };
-        // Searches one pair from its chords' closest points (then from every start if that
-        // finds no contact and the seed grid cannot rule one out) and keeps its record.
-        let mut counts = SearchCounts::default();
-        let segments = &mut self.segments;
-        let mut search_pair =
-            |clusters: &mut DeepestPerCluster, pair: (usize, usize), reach, chord| {
-                counts.searched += 1;
-                let (a, b) = segments.pair(centreline, pair);
-                let first = search(&a.segment, &b.segment, chord);
-                let found = match candidate(pair, first) {
-                    Some(found) if first.status == NewtonStatus::Converged => Some(found),
-                    _ => closest_points_within_after(a, b, first, reach).and_then(|closest| {
-                        counts.searched_from_grid += 1;
-                        counts.newton_failures +=
-                            usize::from(closest.status != NewtonStatus::Converged);
-                        candidate(pair, closest)
-                    }),
-                };
-                if let Some(found) = found {
-                    counts.raw_contacts += 1;
-                    clusters.push(found);
-                }
-            };
         // The pairs that may touch by the chord bound: searched at once in pair order, or,
-        // where the cluster radius leaves room to skip some, queued and searched by increasing
-        // gap bound, so that every record shallower than the next pair's bound is known and a
-        // pair whose records a kept one would merge is skipped (`cluster.rs`).
-        let prune = self.prune;
-        self.clusters.clear(self.options.cluster_radius);
-        self.queue.clear();
-        let centres = centreline.centres();
-        let chord_of = |k: usize| (centres[k], centres[k + 1]);
-        for (index, &pair) in self.segment_pairs.iter().enumerate() {
-            let reach = reach(centreline.radii(), pair, margin);
-            let (a, b) = (chord_of(pair.0), chord_of(pair.1));
-            let chord = closest_chord_parameters(a, b);
-            let deviations = [self.deviations[pair.0], self.deviations[pair.1]];
-            let distance_bound = distance_lower_bound(a, b, chord, deviations);
-            if distance_bound >= reach {
-                continue;
-            }
-            if prune {
-                let gap_bound = distance_bound - (reach - margin);
-                self.queue.push(gap_bound, index);
-            } else {
-                search_pair(&mut self.clusters, pair, reach, chord);
+        // where the cluster radius leaves room to skip some, by increasing gap bound, in
+        // blocks until a block must be opened (`pruning.rs`).
+        let (pairs, deviations) = (&self.segment_pairs[..], &self.deviations[..]);
+        if self.prune {
+            let scratch = &mut self.pruning;
+            searches.counts.covered =
+                search_by_gap_bound(&mut searches, scratch, (pairs, deviations), radius);
+        } else {
+            for &pair in pairs {
+                if let Some(bound) = pair_bound(centreline, deviations, pair, margin) {
+                    searches.search(pair, &bound);
+                }
             }
         }
-        self.queue.sort();
-        if !self.queue.is_empty() {
-            self.coverage.reset(self.segment_pairs.len());
-        }
-        let (mut marked, mut covered) = (0, 0);
-        for (gap_bound, index) in self.queue.iter() {
-            self.clusters.settle_below(gap_bound - GAP_BOUND_ROUNDING);
-            for record in &self.clusters.kept()[marked..] {
-                self.coverage.mark(&self.segment_pairs, record, self.options.cluster_radius);
-            }
-            marked = self.clusters.kept().len();
-            if self.coverage.is_covered(index) {
-                covered += 1;
-            } else {
-                // Reach and chord parameters again (the same numbers): few pairs get here.
-                let pair = self.segment_pairs[index];
-                let reach = reach(centreline.radii(), pair, margin);
-                let chord = closest_chord_parameters(chord_of(pair.0), chord_of(pair.1));
-                search_pair(&mut self.clusters, pair, reach, chord);
-            }
-        }
-        counts.covered = covered;
+        let counts = searches.counts;
         let (kept, merged) = self.clusters.finish();
         let before = out.len();
         out.extend(kept.iter().map(|c| SelfContact::new(centreline, c.u_a, c.u_b, c.status)));
@@ -378,6 +275,7 @@ impl ContactDetector {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::NewtonStatus;
 
     /// Two straight strands of a coarse chain (ℓ = 2 cm, r = 0.9 cm) crossing at right angles
     /// 0.5 cm apart (tube to tube), the contact points at the middle of a segment on both:
@@ -450,19 +348,18 @@ mod tests {
     }
 
     /// Skipping the pairs a kept contact covers leaves the contacts exactly as searching every
-    /// pair does, on fine chains (bodies 0.03–0.07 cm long in a tube of radius 0.26–0.31 cm,
-    /// cluster radius 8 segments) that cross themselves.
+    /// pair does, on fine chains (bodies 0.02–0.07 cm long in a tube of radius 0.26–0.31 cm)
+    /// that cross themselves: pairs queued one by one (cluster radius 8 segments) and in
+    /// blocks (16).
     #[test]
     fn skipping_covered_pairs_keeps_the_contacts_bit_for_bit() {
-        for (spacing, radius) in [(0.05, 0.3), (0.03, 0.26), (0.07, 0.31)] {
+        let cases = [(0.05, 0.3, 8.0), (0.03, 0.26, 8.0), (0.07, 0.31, 8.0), (0.02, 0.3, 16.0)];
+        for (spacing, radius, cluster_radius) in cases {
             let centres = alpha_curve(spacing);
             let n = centres.len();
             let line = Centreline::new(&centres, &vec![radius; n]).expect("valid");
-            let options = DetectorOptions {
-                index_gap: 40,
-                cluster_radius: 8.0,
-                ..DetectorOptions::default()
-            };
+            let options =
+                DetectorOptions { index_gap: 40, cluster_radius, ..DetectorOptions::default() };
             let mut pruned = ContactDetector::new(options).expect("valid");
             let mut every = ContactDetector::new(options).expect("valid");
             every.prune = false;
@@ -473,7 +370,7 @@ mod tests {
             assert!(report.covered > 0 && reference.covered == 0, "{report:?}");
             assert!(report.searched < reference.searched, "{report:?} {reference:?}");
             assert!(!with.is_empty(), "the crossing is a contact");
-            assert_eq!(with, without, "spacing {spacing}");
+            assert_eq!(with, without, "spacing {spacing}, cluster radius {cluster_radius}");
         }
     }
 
