@@ -55,9 +55,10 @@ pub struct DetectionReport {
     /// Segment pairs close enough to touch by the chord bound and searched from their chords'
     /// closest points.
     pub searched: usize,
-    /// Segment pairs close enough to touch by the chord bound but not searched: a kept contact
-    /// no deeper than their gap bound lies within the cluster radius of all their
-    /// parameters, so any record of theirs would be merged into it.
+    /// Segment pairs not searched because a kept contact no deeper than their gap bound lies
+    /// within the cluster radius of all their parameters, so any record of theirs would be
+    /// merged into it: pairs close enough to touch by the chord bound, and every pair of a
+    /// block skipped whole (`pair_blocks.rs`, long chains).
     pub covered: usize,
     /// Of those, the pairs whose first search found no contact and that the seed-grid bound
     /// of [`crate::closest_points_within`] could not rule out: searched again from every

@@ -24,10 +24,10 @@ const GAP_BOUND_ROUNDING: f64 = 1e-9;
 /// The cluster radius (segments) from which pairs are queued in blocks: a block is skipped only
 /// when a kept contact covers its whole box, which a short radius seldom does. `hagfish run
 /// data/scenarios/tie.ron` with ES103 at N bodies, the mean `check` stage (which detects) in
-/// µs, pairs queued one by one against blocks (2026-11-30): 300 bodies (radius 4.7) 151–153
-/// against 178–181, 500 (7.9) 244–250 against 256–266, 700 (11.0) 326–331 against 319–322,
-/// 1000 (15.8) 603–619 against 529–534.
-const MIN_BLOCK_RADIUS: f64 = 12.0;
+/// µs, pairs queued one by one against blocks (2026-11-30, two runs each): 300 bodies (radius
+/// 4.7) 157–162 against 195–197, 500 (7.9) 252 against 264–271, 700 (11.0) 345–346 against
+/// 315–317, 1000 (15.8) 633–639 against 533–536.
+const MIN_BLOCK_RADIUS: f64 = 10.0;
 
 /// The reusable buffers of the pruned search.
 #[derive(Debug, Clone, Default)]
