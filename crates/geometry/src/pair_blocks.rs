@@ -221,15 +221,21 @@ mod tests {
         Centreline::new(&centres, &vec![0.05; n]).expect("a centreline")
     }
 
+    /// The blocks of `pairs` on `line`.
+    fn blocks_of(line: &Centreline, pairs: &[(usize, usize)]) -> PairBlocks {
+        let mut deviations = Vec::new();
+        line.chord_deviation_bounds(&mut deviations);
+        let mut blocks = PairBlocks::default();
+        blocks.prepare(line, &deviations, pairs);
+        blocks
+    }
+
     #[test]
     fn every_pair_lands_in_the_block_of_its_groups_once() {
         let line = helix(60);
-        let mut deviations = Vec::new();
-        line.chord_deviation_bounds(&mut deviations);
         let pairs: Vec<(usize, usize)> =
             (0..59).flat_map(|a| (a + 3..59).step_by(2).map(move |b| (a, b))).collect();
-        let mut blocks = PairBlocks::default();
-        blocks.prepare(&line, &deviations, &pairs);
+        let blocks = blocks_of(&line, &pairs);
         let mut seen = vec![0; pairs.len()];
         for i in 0..blocks.len() {
             let (a, b) = blocks.blocks[i].groups;
@@ -245,12 +251,9 @@ mod tests {
     #[test]
     fn a_block_bounds_every_point_pair_of_its_splines() {
         let line = helix(80);
-        let mut deviations = Vec::new();
-        line.chord_deviation_bounds(&mut deviations);
         let pairs: Vec<(usize, usize)> =
             (0..79).flat_map(|a| (a + 1..79).map(move |b| (a, b))).collect();
-        let mut blocks = PairBlocks::default();
-        blocks.prepare(&line, &deviations, &pairs);
+        let blocks = blocks_of(&line, &pairs);
         for i in 0..blocks.len() {
             let Some(bound) = blocks.gap_bound(i, f64::INFINITY) else {
                 panic!("an infinite margin reaches every block")
