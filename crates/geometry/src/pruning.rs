@@ -1,6 +1,7 @@
-//! The pruned narrow phase of long chains: segment pairs searched by increasing lower bound
-//! on their records' gaps, skipped when a kept contact covers them, and taken in blocks until
-//! a block must be opened (`cluster.rs`, `coverage.rs`, `pair_blocks.rs`).
+//! The pruned narrow phase of fine chains: segment pairs searched by increasing lower bound
+//! on their records' gaps and skipped when a kept contact covers them; from a cluster radius
+//! of [`MIN_BLOCK_RADIUS`] segments taken in blocks until a block must be opened
+//! (`cluster.rs`, `coverage.rs`, `pair_blocks.rs`).
 //!
 //! Blocks and the pairs of opened blocks come up in one order of their bounds (a block before
 //! a pair of the same bound). Before each, every record shallower than its bound (less a
@@ -33,7 +34,7 @@ const MIN_BLOCK_RADIUS: f64 = 10.0;
 #[derive(Debug, Clone, Default)]
 pub(crate) struct PruningScratch {
     pub(crate) blocks: PairBlocks,
-    /// The blocks that may touch, by gap bound.
+    /// The blocks (at a short cluster radius the pairs) that may touch, by gap bound.
     pub(crate) queue: PairQueue,
     /// The pairs of the opened blocks that may touch, by gap bound.
     pub(crate) heap: PairHeap,
