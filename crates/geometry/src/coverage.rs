@@ -2,10 +2,11 @@
 //! lies within the cluster radius of a kept record, in both parameters, can only give records
 //! that this kept one drops.
 //!
-//! On a long chain each crossing is seen by thousands of segment pairs and kept by a few
-//! records, so the covered pairs are marked once per kept record, over the rows of the sorted
-//! pair list that its radius reaches, instead of every pair asking every kept record
-//! (1000 bodies: 33 kept records against ≈ 11 000 queued pairs).
+//! Where pairs are queued one by one (`pruning.rs`: fine chains below the radius of blocks)
+//! each crossing is seen by hundreds to thousands of queued pairs and kept by a few records,
+//! so the covered pairs are marked once per kept record, over the rows of the sorted pair list
+//! that its radius reaches, instead of every pair asking every kept record. Where they come in
+//! blocks, the few pairs of opened blocks ask the kept records themselves ([`covers`]).
 
 use std::ops::Range;
 
