@@ -112,10 +112,11 @@ pub(crate) fn search_by_gap_bound(
     };
     let mut next_queued = queue.iter().peekable();
     loop {
+        // The smaller bound next; a block before a pair of the same bound.
         let from_queue = match (next_queued.peek(), heap.peek()) {
             (None, None) => break,
-            (Some(&(queued, _)), Some((pair, _))) => queued <= pair,
-            (queued, _) => queued.is_some(),
+            (Some(&(next, _)), Some((pair, _))) => next <= pair,
+            (next, _) => next.is_some(),
         };
         let (bound, index) = match (from_queue, queued) {
             (true, Queued::Blocks) => {
