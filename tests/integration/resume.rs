@@ -249,8 +249,8 @@ fn a_run_with_friction_and_an_obstacle_resumes_bit_for_bit() {
 
 /// `slide.ron` stopped mid-slide (frame 220 of 260: the knot tied since 16.3 s, thigmotaxis
 /// sliding it) and resumed: the checkpoint carries the velocity solve's warm start (the
-/// multipliers of the knot's contact and thigmotaxis rows), and the resumed run gives the
-/// straight run's bytes.
+/// multipliers of the knot's contact and thigmotaxis rows, keyed by the contacts' spline
+/// parameters and the rows' ids), and the resumed run gives the straight run's bytes.
 #[test]
 fn a_run_stopped_mid_slide_resumes_bit_for_bit() {
     let scenario = format!("{ROOT}/data/scenarios/slide.ron");
@@ -259,8 +259,12 @@ fn a_run_stopped_mid_slide_resumes_bit_for_bit() {
     let checkpoint = hagfish_run::Checkpoint::read(&stopped.join(hagfish_run::CHECKPOINT_FILE))
         .expect("the stopped run's checkpoint");
     assert_eq!(checkpoint.controller.phases.phase, 1, "stopped in the slide phase");
-    let pushing = checkpoint.multipliers.0.iter().filter(|&&l| l > 0.0).count();
+    let carried = checkpoint.warm_start.multipliers().expect("three values a row");
+    let pushing = carried.iter().filter(|m| m.lambda > 0.0).count();
     assert!(pushing >= 4, "rows pushing at the checkpoint: {pushing}");
+    let contact = hagfish_sim::rows::RowGroup::Contact.tag().index() as u8;
+    let contacts = carried.iter().filter(|m| m.key.group == contact && m.lambda > 0.0);
+    assert!(contacts.count() >= 1, "no contact row pushing at the checkpoint");
     resume(&stopped);
     for file in OUTPUTS {
         let (a, b) = (std::fs::read(straight.join(file)), std::fs::read(stopped.join(file)));

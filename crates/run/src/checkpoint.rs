@@ -20,13 +20,14 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use crate::error::RunError;
 use crate::recorder::RecordedFile;
 use hagfish_scenario::ScenarioError;
-use hagfish_sim::{IntervalMaxima, fnv1a64};
+use hagfish_sim::{IntervalMaxima, KeyedMultiplier, RowKey, fnv1a64};
 
 /// Name of the checkpoint file in a run directory.
 pub const CHECKPOINT_FILE: &str = "checkpoint.ron";
 
-/// Version of the checkpoint format (2: body hash, substep counts and the checksum line).
-pub const CHECKPOINT_FORMAT: u32 = 2;
+/// Version of the checkpoint format (2: body hash, substep counts and the checksum line; 3: the
+/// warm start by what each row constrains instead of by row position).
+pub const CHECKPOINT_FORMAT: u32 = 3;
 
 /// The first line of a checkpoint file: a RON comment with the FNV-1a hash of the rest.
 const CHECKSUM_PREFIX: &str = "// fnv1a64 ";
@@ -62,6 +63,46 @@ impl<'de> Deserialize<'de> for ExactF64s {
     }
 }
 
+/// A checkpoint's format alone (its other fields are ignored), read before the rest.
+#[derive(Deserialize)]
+struct FormatOnly {
+    format: u32,
+}
+
+/// The velocity solve's warm start as a checkpoint keeps it (`hagfish_sim::WarmStart`): for each
+/// row of the last solve, its group and ordinal, and exactly its place and multiplier.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CarriedMultipliers {
+    /// (group, ordinal) of each row ([`RowKey`]).
+    pub rows: Vec<(u8, u32)>,
+    /// place₀, place₁ and λ of each row, three values a row.
+    pub values: ExactF64s,
+}
+
+impl CarriedMultipliers {
+    /// The checkpoint's form of `multipliers`.
+    pub fn new(multipliers: &[KeyedMultiplier]) -> Self {
+        let rows = multipliers.iter().map(|m| (m.key.group, m.key.ordinal)).collect();
+        let values =
+            multipliers.iter().flat_map(|m| [m.key.place[0], m.key.place[1], m.lambda]).collect();
+        CarriedMultipliers { rows, values: ExactF64s(values) }
+    }
+
+    /// The multipliers back, or `None` when the values are not three a row.
+    pub fn multipliers(&self) -> Option<Vec<KeyedMultiplier>> {
+        if self.values.0.len() != 3 * self.rows.len() {
+            return None;
+        }
+        let values = self.values.0.chunks_exact(3);
+        let keyed = self.rows.iter().zip(values).map(|(&(group, ordinal), v)| KeyedMultiplier {
+            key: RowKey { group, ordinal, place: [v[0], v[1]] },
+            lambda: v[2],
+        });
+        Some(keyed.collect())
+    }
+}
+
 /// The saved run: enough to continue it exactly, and the lengths of its output files at the
 /// frame it was taken.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -91,8 +132,9 @@ pub struct Checkpoint {
     pub q: ExactF64s,
     /// Joint rates q̇ (rad/s).
     pub qdot: ExactF64s,
-    /// Multipliers of the last velocity solve (the next solve's warm start).
-    pub multipliers: ExactF64s,
+    /// Multipliers of the last velocity solve by what their rows constrain (the next solve's
+    /// warm start).
+    pub warm_start: CarriedMultipliers,
     /// The controller's state.
     pub controller: ControllerState,
     /// Worst penetrations and limit excess of the run so far.
@@ -137,17 +179,21 @@ impl Checkpoint {
                     .to_owned(),
             ));
         }
+        // The format first, so that another format's fields are refused as that, not as a parse
+        // error on them.
+        let format = DataFile::<FormatOnly>::parse(&bytes, path).map_err(ScenarioError::from)?;
+        if format.value.format != CHECKPOINT_FORMAT {
+            return Err(refuse(format!(
+                "format {} (this build reads format {CHECKPOINT_FORMAT}: since decision 0036 the \
+                 warm start is kept by what each row constrains, which a checkpoint of format \
+                 2 does not hold); run the scenario again from its start",
+                format.value.format
+            )));
+        }
         let checkpoint =
             DataFile::<Checkpoint>::parse(&bytes, path).map_err(ScenarioError::from)?.value;
-        if checkpoint.format != CHECKPOINT_FORMAT || checkpoint.t.0.len() != 1 {
-            return Err(RunError::Checkpoint {
-                path: path.to_path_buf(),
-                reason: format!(
-                    "format {} with {} time values (expected format {CHECKPOINT_FORMAT}, one)",
-                    checkpoint.format,
-                    checkpoint.t.0.len()
-                ),
-            });
+        if checkpoint.t.0.len() != 1 {
+            return Err(refuse(format!("{} time values (expected one)", checkpoint.t.0.len())));
         }
         Ok(checkpoint)
     }
@@ -184,7 +230,7 @@ mod tests {
             t: ExactF64s(vec![0.7000000000000005]),
             q: ExactF64s(awkward.clone()),
             qdot: ExactF64s(awkward.iter().map(|v| -v).collect()),
-            multipliers: ExactF64s(Vec::new()),
+            warm_start: CarriedMultipliers::default(),
             controller: ControllerState::default(),
             maxima: IntervalMaxima { self_penetration: 0.1 + 0.2, ..IntervalMaxima::default() },
             substepped_steps: 3,

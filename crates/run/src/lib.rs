@@ -44,7 +44,9 @@ mod recorder;
 mod run;
 mod scientific;
 
-pub use checkpoint::{CHECKPOINT_FILE, CHECKPOINT_FORMAT, Checkpoint, ExactF64s};
+pub use checkpoint::{
+    CHECKPOINT_FILE, CHECKPOINT_FORMAT, CarriedMultipliers, Checkpoint, ExactF64s,
+};
 pub use csv_text::csv_record;
 pub use error::RunError;
 pub use force_field::{ForceFieldLog, ForceFieldStats};

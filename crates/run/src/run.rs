@@ -16,7 +16,9 @@ use hagfish_sim::{
 };
 use hagfish_tree::State;
 
-use crate::checkpoint::{CHECKPOINT_FILE, CHECKPOINT_FORMAT, Checkpoint, ExactF64s};
+use crate::checkpoint::{
+    CHECKPOINT_FILE, CHECKPOINT_FORMAT, CarriedMultipliers, Checkpoint, ExactF64s,
+};
 use crate::error::RunError;
 use crate::force_field::ForceFieldLog;
 use crate::knot_core::KnotCore;
@@ -216,7 +218,12 @@ impl PreparedRun {
             ..RunSummary::default()
         };
         if let Some(checkpoint) = options.resume {
-            world.resume(checkpoint.state(), checkpoint.steps, &checkpoint.multipliers.0)?;
+            let multipliers =
+                checkpoint.warm_start.multipliers().ok_or_else(|| RunError::Checkpoint {
+                    path: CHECKPOINT_FILE.into(),
+                    reason: "the warm start's values are not three a row".into(),
+                })?;
+            world.resume(checkpoint.state(), checkpoint.steps, &multipliers)?;
             controller.restore(&checkpoint.controller).map_err(|e| RunError::Checkpoint {
                 path: CHECKPOINT_FILE.into(),
                 reason: e.to_string(),
@@ -469,7 +476,7 @@ impl Recording {
             t: ExactF64s(vec![state.t]),
             q: ExactF64s(state.q.clone()),
             qdot: ExactF64s(state.qdot.clone()),
-            multipliers: ExactF64s(world.data().solver.multipliers().to_vec()),
+            warm_start: CarriedMultipliers::new(world.data().warm_start.carried()),
             controller: controller.state(),
             maxima,
             substepped_steps: summary.substepped_steps,

@@ -55,6 +55,7 @@ pub mod rows;
 pub mod skin;
 mod step_data;
 mod stop;
+mod warm_start;
 mod world;
 
 pub use acceptance::{EndOfStep, Rejection, StepAcceptance};
@@ -75,4 +76,5 @@ pub use retry::{Attempt, ContactResolution, RetryableController, StepOutcome, St
 pub use skin::{ContactSkin, SkinLayer};
 pub use step_data::StepData;
 pub use stop::StopRequest;
+pub use warm_start::{CONTACT_REACH, KeyedMultiplier, RowKey, WarmStart};
 pub use world::World;

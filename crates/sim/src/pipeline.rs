@@ -109,7 +109,8 @@ pub fn dynamics(model: &Model, options: &StepOptions, state: &State, data: &mut 
 }
 
 /// Stage 5: the rows of this step: head (unless the root is free), joint limits, wall, self
-/// contact, thigmotaxis, grip.
+/// contact, thigmotaxis, grip; and the start of their multipliers, the last step's by what
+/// each row constrains (`warm_start.rs`).
 pub fn build_rows(model: &Model, options: &StepOptions, state: &State, data: &mut StepData) {
     let h = options.time_step;
     data.rows.clear();
@@ -148,6 +149,8 @@ pub fn build_rows(model: &Model, options: &StepOptions, state: &State, data: &mu
         let correction = (h, options.head_correction);
         add_grip_rows(model, &data.tree, grip, correction, &mut data.rows);
     }
+    let contacts = (&data.self_contacts[..], &data.wall_contacts[..]);
+    data.warm_start.hand_to(&data.rows, contacts, &mut data.solver);
 }
 
 /// Stage 6, one solve: `min ½q̇ᵀM̃q̇ − q̇ᵀf̃` subject to the rows; the path (Cholesky, KKT, QP)
@@ -298,7 +301,8 @@ fn max_or_nan(values: impl Iterator<Item = f64>) -> f64 {
 /// Stage 6 with its re-solves: solve; then, while something changed (a velocity-product
 /// refresh is due, a contact gap is predicted to end below its target — checked after the
 /// first solve only —, or a joint would overshoot a limit without a row), solve again, at most
-/// `MAX_RESOLVES` (4) more times. Re-solves where only f̃ or the bounds changed keep the
+/// `MAX_RESOLVES` (4) more times; the last solve's multipliers are kept, by what each row
+/// constrains, for the next step's start (`warm_start.rs`). Re-solves where only f̃ or the bounds changed keep the
 /// factor of M̃ and the contact-space matrices (one [`hagfish_solver::Factored`] handle);
 /// limit rows added for overshooting joints start a new one. If raised contact bounds leave
 /// the last solve without a solution, the step is solved once more with the first-order
@@ -316,6 +320,8 @@ pub fn solve_and_resolve(
     std::mem::swap(&mut data.tree.effective_mass, &mut data.effective_mass);
     let solved = solve_with_resolves(model, options, state, data, stop);
     std::mem::swap(&mut data.tree.effective_mass, &mut data.effective_mass);
+    let contacts = (&data.self_contacts[..], &data.wall_contacts[..]);
+    data.warm_start.keep(&data.rows, contacts, data.solver.multipliers());
     solved
 }
 

@@ -21,6 +21,7 @@ use crate::options::StepOptions;
 use crate::report::StepReport;
 use crate::rows::{RowGroup, twist_dofs};
 use crate::skin::{SkinLayer, SkinRecords};
+use crate::warm_start::WarmStart;
 
 /// Rows (and solver buffers) reserved per DOF on the dense backend: 2n rows cover the head,
 /// every limit and more than twice the self contacts of the tightest knots measured (≈ 45), so
@@ -103,6 +104,8 @@ pub struct StepData {
     pub(crate) skin_records: SkinRecords,
     /// The contacts of the state the last step ended in, for the next step to take over.
     pub(crate) carried: CarriedContacts,
+    /// The last solve's multipliers by what their rows constrain: the next step's start.
+    pub warm_start: WarmStart,
 }
 
 /// The wall of `options`, testing only the bodies from the first one whose sphere clears the
@@ -199,6 +202,7 @@ impl StepData {
             skin,
             skin_records,
             carried,
+            warm_start: WarmStart::default(),
         })
     }
 

@@ -10,6 +10,7 @@ use crate::report::StepReport;
 use crate::retry::{Attempt, ContactResolution};
 use crate::step_data::StepData;
 use crate::stop::StopRequest;
+use crate::warm_start::KeyedMultiplier;
 
 /// A simulated body with everything needed to step it. The model and options never change
 /// after construction; [`World::step`] advances the state and refills the data.
@@ -95,16 +96,17 @@ impl World {
     }
 
     /// Continues from a checkpoint: the state, the step counter and the velocity solve's warm
-    /// start (the multipliers of the last solve before the checkpoint).
+    /// start (the multipliers of the last solve before the checkpoint, by what their rows
+    /// constrain: [`crate::WarmStart::carried`]).
     pub fn resume(
         &mut self,
         state: State,
         steps: u64,
-        multipliers: &[f64],
+        multipliers: &[KeyedMultiplier],
     ) -> Result<(), SimError> {
         self.set_state(state)?;
         self.steps = steps;
-        self.data.solver.set_multipliers(multipliers);
+        self.data.warm_start.set_carried(multipliers);
         Ok(())
     }
 

@@ -20,7 +20,13 @@
 //!    row in the M̃⁻¹ metric); else stop: λ is optimal.
 //! 4. Release of row i: it joins F if cᵢ is independent of c_F (the pivot of the factor
 //!    update exceeds `DEPENDENCE`·Wᵢᵢ); dependent rows are swapped in along a null direction
-//!    of W, or prove the hard rows infeasible (`release.rs`).
+//!    of W, or prove the hard rows infeasible (`release.rs`). When the worst row simply
+//!    joined, the other wrong-signed rows follow it into F in order of violation while each
+//!    is independent of F: a join leaves λ, and so their gradients, as they were, and each
+//!    added row's gᵢ < 0 keeps the step to the new subproblem's minimum a descent direction.
+//!    One gradient then serves many releases (on Choi et al.'s 9₁, whose first solve of a
+//!    step changes ≈ 100 of ≈ 150 free pyramid edges, it cut the solve by ≈ 30 %); the
+//!    first dependent row waits for a fresh gradient.
 //! 5. Verification (driven by the workspace after refinement): bound rows are checked
 //!    against the refined primal residual, which is more accurate than the dual gradient
 //!    when large multipliers cancel, and a violated one resumes the iteration
@@ -43,6 +49,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 mod release;
 mod verification;
+
+use release::Release;
 
 use crate::contact_space::{ContactSpace, ReducedScratch};
 use crate::error::SolverError;
@@ -139,6 +147,10 @@ pub(crate) struct ActiveSet {
     at_upper: Vec<usize>,
     /// Scratch of the dual gradient.
     reduced: ReducedScratch,
+    /// The bound rows whose gradient is wrong-signed, most violated first, with their scores.
+    violated: Vec<(usize, f64)>,
+    /// The rows released in the last iteration.
+    released: Vec<usize>,
 }
 
 impl ActiveSet {
@@ -161,9 +173,10 @@ impl ActiveSet {
         self.free.try_reserve(rows)?;
         self.free.reset(rows);
         try_capacity(&mut self.saved, rows + 1, "the active set's saved multipliers")?;
-        for buffer in [&mut self.implied, &mut self.warm, &mut self.at_upper] {
+        for buffer in [&mut self.implied, &mut self.warm, &mut self.at_upper, &mut self.released] {
             try_capacity(buffer, rows, "an active-set index")?;
         }
+        try_capacity(&mut self.violated, rows, "the active set's violated rows")?;
         self.reduced.try_reserve(rows)
     }
 
@@ -197,7 +210,7 @@ impl ActiveSet {
         limits: ActiveSetLimits<'_>,
     ) -> ActiveSetOutcome {
         let end = |iterations, termination| ActiveSetOutcome { iterations, termination };
-        let mut released = None;
+        self.released.clear();
         for iteration in 1..=limits.max_iterations {
             if limits.stop.is_some_and(|flag| flag.load(Ordering::Relaxed)) {
                 return end(iteration - 1, Termination::Stopped);
@@ -205,19 +218,22 @@ impl ActiveSet {
             self.solve_subproblem(dual);
             if let Some((row, alpha)) = self.step_to_subproblem_minimum(lambda) {
                 // A row released and blocked again without moving made no progress.
-                if released == Some(row) && alpha == 0.0 {
+                if alpha == 0.0 && self.released.contains(&row) {
                     self.implied[row] = self.version;
                 }
-                released = None;
+                self.released.clear();
                 continue;
             }
-            let Some(row) = self.most_violated_bound(dual, lambda, limits.release_tolerance) else {
+            self.released.clear();
+            if !self.find_violated_bounds(dual, lambda, limits.release_tolerance) {
                 return end(iteration, Termination::Optimal);
-            };
-            if !self.release(dual, lambda, row) {
-                return end(iteration, Termination::Infeasible);
             }
-            released = Some(row);
+            let worst = self.violated[0].0;
+            match self.release(dual, lambda, worst) {
+                Release::Infeasible => return end(iteration, Termination::Infeasible),
+                Release::Resolved => self.released.push(worst),
+                Release::Joined => self.join_violated(dual),
+            }
         }
         end(limits.max_iterations, Termination::MaxIterations)
     }
@@ -367,17 +383,18 @@ impl ActiveSet {
         Some((row, alpha))
     }
 
-    /// The bounded variable whose dual gradient is most wrong-signed beyond the threshold.
-    fn most_violated_bound(
+    /// Fills `violated` with the bounded variables whose dual gradient is wrong-signed beyond
+    /// the threshold, most violated first (by |gᵢ|/√Wᵢᵢ, then by row), and says whether there
+    /// is any.
+    fn find_violated_bounds(
         &mut self,
         dual: &ContactSpace,
         lambda: &[f64],
         tolerance: f64,
-    ) -> Option<usize> {
-        let m = lambda.len();
+    ) -> bool {
         dual.gradient(lambda, &mut self.reduced, &mut self.gradient, &mut self.magnitude);
-        let mut best: Option<(usize, f64)> = None;
-        for i in 0..m {
+        self.violated.clear();
+        for i in 0..lambda.len() {
             if self.implied[i] == self.version {
                 continue;
             }
@@ -387,13 +404,26 @@ impl ActiveSet {
                 Bound::Upper => self.gradient[i],
             };
             if violation > tolerance * (1.0 + self.magnitude[i]) {
-                let score = violation / dual.entry(i, i).sqrt();
-                if best.is_none_or(|(_, top)| score > top) {
-                    best = Some((i, score));
-                }
+                self.violated.push((i, violation / dual.entry(i, i).sqrt()));
             }
         }
-        best.map(|(i, _)| i)
+        self.violated.sort_unstable_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
+        !self.violated.is_empty()
+    }
+
+    /// After the most violated row joined F without moving λ (step 4), the other violated
+    /// rows in order join F too while each is independent of it: a join leaves λ as it is, so
+    /// their gradients still hold; the first dependent one is left for a later iteration,
+    /// whose gradient is fresh (its release may move λ). Remembers the rows released.
+    fn join_violated(&mut self, dual: &ContactSpace) {
+        self.released.push(self.violated[0].0);
+        for k in 1..self.violated.len() {
+            let row = self.violated[k].0;
+            if self.try_join(dual, row, DEPENDENCE) != Join::Joined {
+                break;
+            }
+            self.released.push(row);
+        }
     }
 
     /// Puts `row` exactly on its `side` bound.

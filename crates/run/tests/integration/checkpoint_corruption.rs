@@ -5,7 +5,8 @@
 
 use hagfish_control::ControllerState;
 use hagfish_run::{
-    CHECKPOINT_FILE, CHECKPOINT_FORMAT, Checkpoint, ExactF64s, RecordedFile, RunError,
+    CHECKPOINT_FILE, CHECKPOINT_FORMAT, CarriedMultipliers, Checkpoint, ExactF64s, RecordedFile,
+    RunError,
 };
 use hagfish_scenario::ScenarioError;
 use hagfish_sim::IntervalMaxima;
@@ -24,7 +25,10 @@ fn checkpoint() -> Checkpoint {
         t: ExactF64s(vec![4.2]),
         q: ExactF64s(values.clone()),
         qdot: ExactF64s(values.iter().map(|v| -2.0 * v).collect()),
-        multipliers: ExactF64s(values[..20].to_vec()),
+        warm_start: CarriedMultipliers {
+            rows: (0..20).map(|k| (3, k % 8)).collect(),
+            values: ExactF64s(values[..60].to_vec()),
+        },
         controller: ControllerState::default(),
         maxima: IntervalMaxima { self_penetration: 0.01, ..IntervalMaxima::default() },
         substepped_steps: 1,
@@ -109,5 +113,31 @@ proptest! {
             Err(RunError::Scenario(ScenarioError::DataFile(e))) => prop_assert!(e.to_string().contains(CHECKPOINT_FILE)),
             other => prop_assert!(false, "accepted or odd: {other:?}"),
         }
+    }
+}
+
+/// A checkpoint of format 2 (positional multipliers, before decision 0036) is refused by its
+/// format, with what to do, rather than by a parse error on its old field.
+#[test]
+fn a_checkpoint_of_format_2_is_refused_by_its_format() {
+    let text = String::from_utf8(written().to_vec()).expect("ASCII");
+    let (_, body) = text.split_once('\n').expect("a checksum line");
+    let start = body.find("    warm_start:").expect("the warm start");
+    let end = start + body[start..].find("\n    controller:").expect("the controller after it");
+    let old = format!(
+        "{}    multipliers: \"3fd5555555555555\",{}",
+        &body[..start].replace("format: 3,", "format: 2,"),
+        &body[end..]
+    );
+    let file = format!("// fnv1a64 {:016x}\n{old}", hagfish_sim::fnv1a64(old.as_bytes()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("checkpoint_format_2");
+    std::fs::create_dir_all(&dir).expect("a temporary directory");
+    let path = dir.join(CHECKPOINT_FILE);
+    std::fs::write(&path, file).expect("write");
+    match Checkpoint::read(&path) {
+        Err(RunError::Checkpoint { reason, .. }) => {
+            assert!(reason.starts_with("format 2 (this build reads format 3"), "{reason}")
+        }
+        other => panic!("not refused by its format: {other:?}"),
     }
 }

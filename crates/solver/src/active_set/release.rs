@@ -78,18 +78,34 @@ struct Block {
     step: f64,
 }
 
+/// What releasing a row did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Release {
+    /// The row was independent of F and joined it; λ is unchanged.
+    Joined,
+    /// The row depended on F and was dealt with (skipped as implied, joined at φ's minimum
+    /// along d, moved to its other bound or swapped in); λ may have moved.
+    Resolved,
+    /// φ is unbounded below: the hard rows are infeasible.
+    Infeasible,
+}
+
 impl ActiveSet {
-    /// Releases `row` from its bound (see the module docs). Returns false when φ is unbounded
-    /// below (hard rows infeasible).
-    pub(super) fn release(&mut self, dual: &ContactSpace, lambda: &mut [f64], row: usize) -> bool {
+    /// Releases `row` from its bound (see the module docs).
+    pub(super) fn release(
+        &mut self,
+        dual: &ContactSpace,
+        lambda: &mut [f64],
+        row: usize,
+    ) -> Release {
         let s = if self.bound[row] == Bound::Lower { 1.0 } else { -1.0 };
         let Join::Dependent { pivot } = self.try_join(dual, row, DEPENDENCE) else {
-            return true;
+            return Release::Joined;
         };
         let rate = self.dependent_rate(dual, lambda, row, s);
         if rate.value >= -CONSISTENCY * rate.scale {
             self.implied[row] = self.version;
-            return true;
+            return Release::Resolved;
         }
         let minimum = if pivot > ROUNDING * dual.entry(row, row) {
             -rate.value / pivot
@@ -101,19 +117,21 @@ impl ActiveSet {
         let Some(block) = self.ratio_test(lambda, s) else {
             // No free row blocks.
             if minimum.min(own).is_finite() {
-                return self.settle(lambda, row, pivot, minimum, own);
+                self.settle(lambda, row, pivot, minimum, own);
+                return Release::Resolved;
             }
             if s * rate.rho > rate.ray * RADIUS * (1.0 + rate.size) {
-                return false;
+                return Release::Infeasible;
             }
             self.implied[row] = self.version;
-            return true;
+            return Release::Resolved;
         };
         if minimum.min(own) <= block.step {
-            return self.settle(lambda, row, pivot, minimum, own);
+            self.settle(lambda, row, pivot, minimum, own);
+        } else {
+            self.swap(dual, lambda, row, s, block);
         }
-        self.swap(dual, lambda, row, s, block);
-        true
+        Release::Resolved
     }
 
     /// The rate ν = (Σ dⱼL⁻¹cⱼ)ᵀ(z + Yλ) + dᵀEλ − s·ρ of φ along d (z in `self.z`), with its parts.
@@ -174,17 +192,10 @@ impl ActiveSet {
 
     /// No free row blocks before φ's minimum along d or λ_row's own other bound: a nearly
     /// dependent row joins F (the next subproblem moves there), or λ_row moves to the bound.
-    fn settle(
-        &mut self,
-        lambda: &mut [f64],
-        row: usize,
-        pivot: f64,
-        minimum: f64,
-        own: f64,
-    ) -> bool {
+    fn settle(&mut self, lambda: &mut [f64], row: usize, pivot: f64, minimum: f64, own: f64) {
         if minimum <= own {
             self.join(row, pivot);
-            return true;
+            return;
         }
         let k = self.free.indices().len();
         let s = if self.bound[row] == Bound::Lower { 1.0 } else { -1.0 };
@@ -193,7 +204,6 @@ impl ActiveSet {
         }
         let side = if s > 0.0 { Bound::Upper } else { Bound::Lower };
         self.fix(lambda, row, side);
-        true
     }
 
     /// A warm-started `row` that depends on F (c_row ≈ Σ_p z_p c_p, z in `self.z`) hands its

@@ -10,6 +10,7 @@
 //! - an equality set aside as redundant (dependent on the other equalities) must hold:
 //!   violated beyond the acceptance, the equalities contradict each other.
 
+use super::release::Release;
 use super::{ActiveSet, ActiveSetLimits, ActiveSetOutcome, Bound, Termination};
 use crate::contact_space::ContactSpace;
 
@@ -23,7 +24,7 @@ impl ActiveSet {
         limits: ActiveSetLimits<'_>,
         row: usize,
     ) -> ActiveSetOutcome {
-        if !self.release(dual, lambda, row) {
+        if self.release(dual, lambda, row) == Release::Infeasible {
             return ActiveSetOutcome { iterations: 0, termination: Termination::Infeasible };
         }
         self.iterate(dual, lambda, limits)

@@ -172,3 +172,27 @@ fn indefinite_mass_is_an_error() -> Result<(), SolverError> {
     assert!(matches!(result, Err(SolverError::NotPositiveDefinite { .. })));
     Ok(())
 }
+
+/// Six DOFs of unit mass each pushed by 1 against its own wall (row q̇ᵢ ≥ 0.5, f̃ = −1): from
+/// λ = 0 every row is violated at once and independent of the others, so one gradient
+/// releases all six (the worst, then the rest while independent) and the second iteration
+/// finds λᵢ = 1.5 optimal; released one at a time it took seven iterations.
+#[test]
+fn independent_violated_rows_join_on_one_gradient() -> Result<(), SolverError> {
+    let n = 6;
+    let mass = Mat::<f64>::identity(n, n);
+    let force = vec![-1.0; n];
+    let mut rows = Rows::new(n);
+    for i in 0..n {
+        let mut row = vec![0.0; n];
+        row[i] = 1.0;
+        rows.push(RowKind::Inequality, RowSource::new(WALL, i), 0.5, &row)?;
+    }
+    let (report, qdot, lambda, _) = solve(&mass, &force, &rows, QpBackend::ContactSpace)?;
+    assert_eq!(report.status, SolveStatus::Solved);
+    assert_eq!(report.iterations, 2, "{report:?}");
+    for i in 0..n {
+        assert!((qdot[i] - 0.5).abs() < 1e-14 && (lambda[i] - 1.5).abs() < 1e-14, "row {i}");
+    }
+    Ok(())
+}
