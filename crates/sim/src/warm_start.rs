@@ -1,6 +1,6 @@
 //! The velocity solve's warm start, carried from one step to the next by what each row
 //! constrains rather than by its position (issue #40, "a warm-started active set from the
-//! previous step's"; docs/physics.md, "The active set's warm start").
+//! previous step's"; docs/physics.md, "6 Velocity solve and re-solves", warm start).
 //!
 //! The active-set method starts from any λ inside its box; the previous step's λ puts the
 //! previous contacts straight into its free set (`hagfish_solver`'s `active_set.rs`). Handed
@@ -21,7 +21,6 @@
 
 use hagfish_geometry::{SelfContact, WallContact};
 use hagfish_solver::{Rows, SolverWorkspace};
-use serde::{Deserialize, Serialize};
 
 use crate::rows::RowGroup;
 
@@ -32,7 +31,7 @@ use crate::rows::RowGroup;
 pub const CONTACT_REACH: f64 = 0.5;
 
 /// What one row constrains, comparable from one step to the next.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RowKey {
     /// The row's group ([`RowGroup`], by its tag index).
     pub group: u8,
@@ -44,7 +43,7 @@ pub struct RowKey {
 }
 
 /// A row's key with the multiplier its last solve gave it.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct KeyedMultiplier {
     /// What the row constrained.
     pub key: RowKey,
@@ -55,7 +54,7 @@ pub struct KeyedMultiplier {
 /// The last step's multipliers by key, and the scratch of the next start (grow-only).
 #[derive(Debug, Default)]
 pub struct WarmStart {
-    /// Sorted by (group, ordinal, place).
+    /// Sorted by [`order`]: group, ordinal, place, then λ.
     carried: Vec<KeyedMultiplier>,
     keys: Vec<RowKey>,
     start: Vec<f64>,
