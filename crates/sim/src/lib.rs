@@ -76,5 +76,5 @@ pub use retry::{Attempt, ContactResolution, RetryableController, StepOutcome, St
 pub use skin::{ContactSkin, SkinLayer};
 pub use step_data::StepData;
 pub use stop::StopRequest;
-pub use warm_start::{CONTACT_REACH, KeyedMultiplier, RowKey, WarmStart};
+pub use warm_start::{KeyedMultiplier, RowKey, WarmStart};
 pub use world::World;

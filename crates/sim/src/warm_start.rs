@@ -28,7 +28,7 @@ use crate::rows::RowGroup;
 /// in one step and still take over its multipliers: a knot slides a fraction of a segment
 /// per step (ES103 at 2 cm/s and h = 0.01 s: 0.05 segment; Choi et al.'s rod pulled at
 /// 1.8 cm/s with h = 0.02 s: 0.2 segment).
-pub const CONTACT_REACH: f64 = 0.5;
+const CONTACT_REACH: f64 = 0.5;
 
 /// What one row constrains, comparable from one step to the next.
 #[derive(Debug, Clone, Copy, PartialEq)]

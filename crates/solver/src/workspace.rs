@@ -250,8 +250,9 @@ impl SolverWorkspace {
         &self.multipliers
     }
 
-    /// Replaces the multipliers of the last solve, which the next warm-started solve starts
-    /// from: to continue a run saved with [`multipliers`](Self::multipliers) exactly.
+    /// Replaces the multipliers the next warm-started solve starts from (one per row of its
+    /// problem): the caller's start, e.g. the last step's multipliers matched to this step's
+    /// rows (`hagfish_sim`'s warm start), which a resumed run restores exactly.
     pub fn set_multipliers(&mut self, lambda: &[f64]) {
         self.multipliers.clear();
         self.multipliers.extend_from_slice(lambda);
