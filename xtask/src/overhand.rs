@@ -9,7 +9,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use hagfish_scenario::Override;
-use hagfish_validation::overhand_pull::{self, PullEnd, PulledKnot};
+use hagfish_validation::overhand_pull::{self, PullEnd, PulledKnot, spread_along};
 
 use crate::family::{in_parallel, shell_word};
 
@@ -65,6 +65,7 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
     }
     println!("{}", run_table(&runs));
     println!("{}", speed_table(&runs));
+    println!("{}", curve_spread_table(&runs));
     println!(
         "`cargo xtask overhand --turns {} --speeds {} --time-step {} --stop-force {}{}`; \
          data/validation/overhand_pull.ron (μ = 0.1 unless set)",
@@ -150,6 +151,36 @@ fn speed_table(runs: &[PulledKnot]) -> String {
                 (hi - lo) / mean
             );
         }
+    }
+    table
+}
+
+/// Per knot, the spread of the speeds' smoothed forces along the whole pull
+/// ([`spread_along`], every [`SPACING_CM`] from where the first speed's force reaches the
+/// first of [`COMPARED_DYN`]): how many distances, the median, the 90th percentile and the
+/// largest.
+fn curve_spread_table(runs: &[PulledKnot]) -> String {
+    let mut table = String::from(
+        "| n | distances compared | median spread | 90th percentile | largest |\n|---|---|---|---|---|\n",
+    );
+    let mut turns: Vec<usize> = runs.iter().map(|r| r.turns).collect();
+    turns.dedup();
+    for n in turns {
+        let same: Vec<&PulledKnot> = runs.iter().filter(|r| r.turns == n).collect();
+        let mut spreads = spread_along(&same, SPACING_CM, COMPARED_DYN[0]);
+        if spreads.is_empty() {
+            continue;
+        }
+        spreads.sort_by(f64::total_cmp);
+        let at = |q: f64| spreads[((q * spreads.len() as f64) as usize).min(spreads.len() - 1)];
+        let _ = writeln!(
+            table,
+            "| {n} | {} | {:.3} | {:.3} | {:.3} |",
+            spreads.len(),
+            at(0.5),
+            at(0.9),
+            at(1.0),
+        );
     }
     table
 }

@@ -281,6 +281,40 @@ impl PulledKnot {
     }
 }
 
+/// The spread of the smoothed force between `runs` (one knot pulled at several speeds) along
+/// the pull: at every `spacing_cm` of end-to-end distance that every run pulled through, from
+/// where the first run's smoothed force first reaches `from_dyn`, (max − min)/mean of the runs'
+/// smoothed forces ([`PulledKnot::smoothed_force`]). It judges the speeds over the whole pull,
+/// not only at a few forces, where a slip falls on one side of the point in one run and on
+/// the other in the next. Empty for fewer than two runs or no common range.
+pub fn spread_along(runs: &[&PulledKnot], spacing_cm: f64, from_dyn: f64) -> Vec<f64> {
+    let ranges: Option<Vec<(f64, f64)>> = runs.iter().map(|r| r.smoothed_range()).collect();
+    let (Some(ranges), Some(first)) = (ranges, runs.first()) else { return Vec::new() };
+    if runs.len() < 2 {
+        return Vec::new();
+    }
+    let start = first.smoothed_curve(spacing_cm).into_iter().find(|&(_, f)| f >= from_dyn);
+    let Some((start, _)) = start else { return Vec::new() };
+    let start = ranges.iter().fold(start, |s, &(lo, _)| s.max(lo));
+    let end = ranges.iter().fold(f64::INFINITY, |e, &(_, hi)| e.min(hi));
+    if end < start {
+        return Vec::new();
+    }
+    let count = ((end - start) / spacing_cm).floor() as usize;
+    (0..=count)
+        .filter_map(|k| {
+            let at = start + k as f64 * spacing_cm;
+            let forces: Option<Vec<f64>> = runs.iter().map(|r| r.smoothed_force(at)).collect();
+            let forces = forces?;
+            let mean = forces.iter().sum::<f64>() / forces.len() as f64;
+            let (lo, hi) = forces
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &f| (lo.min(f), hi.max(f)));
+            Some((hi - lo) / mean)
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use std::f64::consts::PI;
@@ -323,5 +357,43 @@ mod tests {
         assert!((calm.angle_rad - 3f64.to_radians()).abs() < 1e-9, "{calm:?}");
         knot.samples.iter_mut().for_each(|s| s.loop_offset_cm = None);
         assert_eq!(knot.largest_loop_turn(0.1), None);
+    }
+
+    /// Two pulls whose forces differ by 10 % everywhere (F = 10e and 11e dyn at end-to-end
+    /// distance e cm) spread by 1/10.5 at every compared distance, from where the first reaches
+    /// the force given to the end of the shorter pull; one pull alone has no spread.
+    #[test]
+    fn the_spread_along_the_pull_compares_every_common_distance() {
+        let pull = |speed: f64, factor: f64, last_cm: f64| PulledKnot {
+            turns: 2,
+            end_speed_cm_per_s: speed,
+            time_step_s: 0.02,
+            samples: (0..=((last_cm - 30.0) * 100.0).round() as usize)
+                .map(|k| {
+                    let e = 30.0 + 0.01 * k as f64;
+                    PullSample {
+                        time_s: 0.02 * k as f64,
+                        end_to_end_cm: e,
+                        force_dyn: factor * e,
+                        loop_offset_cm: None,
+                    }
+                })
+                .collect(),
+            max_penetration_relative: 0.0,
+            knots: ("5_1".into(), "5_1".into()),
+            end: PullEnd::Force,
+            steps: 0,
+            wall_s: 0.0,
+        };
+        let (slow, fast) = (pull(0.3, 10.0, 40.0), pull(0.9, 11.0, 38.0));
+        let spreads = spread_along(&[&slow, &fast], 0.25, 337.0);
+        // The slow pull first reaches 337 dyn at 33.75 cm (337.5 there); the fast one ends at
+        // 38 cm, smoothed to 37.75: 17 distances 0.25 cm apart.
+        assert_eq!(spreads.len(), 17, "{spreads:?}");
+        for spread in &spreads {
+            assert!((spread - 1.0 / 10.5).abs() < 1e-9, "{spread}");
+        }
+        assert!(spread_along(&[&slow], 0.25, 337.0).is_empty());
+        assert!(spread_along(&[&slow, &fast], 0.25, 1000.0).is_empty(), "never reaches it");
     }
 }
