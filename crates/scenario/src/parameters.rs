@@ -78,6 +78,7 @@ pub const PARAMETERS: &[Parameter] = &[
     p("obstacles.Moving.spin.rate_rad_per_s", "rad/s", "required", "the angular speed"),
     p("obstacles.Moving.spin.until_s", "s", "None", "when the turn stops: the obstacle holds the pose it has then (a plane tilted to an angle and held); None: it never stops"),
     p("obstacle_groove", "-", "Some(0.05)", "how finely obstacles see the tube: the deepest groove an obstacle's edge may reach unseen between two of the points they touch, fraction of the local radius, in (0, 1] (segments long against their radius are sampled between their centres); None: the bodies' spheres alone"),
+    p("contact_margin_cm", "cm", "0.1", "the self contacts' speculative margin: strands closer than it are contact rows; must cover their approach in one step, wider only adds slack rows, > 0"),
     p("backend", "-", "SparseMaximal", "velocity-step linear algebra: SparseMaximal (linear in the bodies), or DenseReduced"),
     p("acceptance", "-", "(...)", "when a step's result is kept; a rejected step is retried with substeps"),
     p("acceptance.max_self_penetration_relative", "-", "0.1", "deepest self penetration at a step's end, fraction of the local radius"),
@@ -247,6 +248,7 @@ mod tests {
                 },
             ],
             obstacle_groove: Some(0.1),
+            contact_margin_cm: 0.05,
             phases: vec![
                 Phase::Form(FormingScript {
                     gains: TailGains::default(),
@@ -397,6 +399,8 @@ mod tests {
         assert_eq!(observe_every, Some(scenario.observe_every_s));
         assert_eq!(default("drag"), "None");
         assert_eq!(default("backend"), format!("{:?}", scenario.backend));
+        let margin = default("contact_margin_cm").parse::<f64>().ok();
+        assert_eq!(margin, Some(scenario.contact_margin_cm));
         assert!(scenario.drag.is_none());
         let Some(Phase::Thigmotaxis(phase)) = scenario.phases.first() else {
             panic!("one thigmotaxis phase")

@@ -103,10 +103,21 @@ pub struct Scenario {
     /// `None`: the bodies' spheres alone, a chain of beads.
     #[serde(default = "default_obstacle_groove")]
     pub obstacle_groove: Option<f64>,
+    /// The self contacts' speculative margin (cm, > 0; default 0.1): a pair of strands closer
+    /// than it is a contact row, so that a step that would close the gap stops at touching
+    /// (docs/physics.md, "Contact detection"). It must cover how far two strands approach in
+    /// one step; a wider one only adds rows that stay slack. Thin rods in tight knots have many
+    /// neighbours within 0.1 cm, each a row and in the pyramid three solved columns.
+    #[serde(default = "default_contact_margin")]
+    pub contact_margin_cm: f64,
 }
 
 fn default_obstacle_groove() -> Option<f64> {
     Some(hagfish_geometry::DEFAULT_GROOVE_FRACTION)
+}
+
+fn default_contact_margin() -> f64 {
+    StepOptions::default().contact.margin
 }
 
 /// The smallest time step a scenario may ask for (s): below it a run cannot make progress in
@@ -279,6 +290,7 @@ impl LoadedScenario {
             obstacle_groove: self.scenario.obstacle_groove,
             ..StepOptions::default()
         };
+        options.contact.margin = self.scenario.contact_margin_cm;
         // The exact friction cone is solved by the reference backend only.
         if self.scenario.friction.is_some_and(|f| f.cone == ConeForm::Exact) {
             options.solver.backend = QpBackend::Clarabel;

@@ -318,6 +318,7 @@ pub(crate) fn check_scenario(
     checker.check("duration_s", s.duration_s, Range::Positive)?;
     checker.check("record_every_s", s.record_every_s, Range::Positive)?;
     checker.check("observe_every_s", s.observe_every_s, Range::Positive)?;
+    checker.check("contact_margin_cm", s.contact_margin_cm, Range::Positive)?;
     if let Some(drag) = s.drag {
         checker.check("linear_dyn_s_per_cm3", drag.linear_dyn_s_per_cm3, Range::NonNegative)?;
         checker.check("quadratic_g_per_cm3", drag.quadratic_g_per_cm3, Range::NonNegative)?;
