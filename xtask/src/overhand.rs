@@ -120,16 +120,20 @@ fn run_table(runs: &[PulledKnot]) -> String {
     table
 }
 
+/// The runs grouped by knot (turns n), in the order the knots first appear.
+fn by_knot(runs: &[PulledKnot]) -> Vec<(usize, Vec<&PulledKnot>)> {
+    let mut turns: Vec<usize> = runs.iter().map(|r| r.turns).collect();
+    turns.dedup();
+    turns.into_iter().map(|n| (n, runs.iter().filter(|r| r.turns == n).collect())).collect()
+}
+
 /// Per knot, the smoothed force of every speed at the distances where the first speed's
 /// reaches [`COMPARED_DYN`], and the largest spread over the mean.
 fn speed_table(runs: &[PulledKnot]) -> String {
     let mut table = String::from(
         "| n | end-to-end (cm) | force at each speed (dyn) | spread (max − min)/mean |\n|---|---|---|---|\n",
     );
-    let mut turns: Vec<usize> = runs.iter().map(|r| r.turns).collect();
-    turns.dedup();
-    for n in turns {
-        let same: Vec<&PulledKnot> = runs.iter().filter(|r| r.turns == n).collect();
+    for (n, same) in by_knot(runs) {
         let Some(first) = same.first() else { continue };
         let curve = first.smoothed_curve(SPACING_CM);
         for target in COMPARED_DYN {
@@ -163,10 +167,7 @@ fn curve_spread_table(runs: &[PulledKnot]) -> String {
     let mut table = String::from(
         "| n | distances compared | median spread | 90th percentile | largest |\n|---|---|---|---|---|\n",
     );
-    let mut turns: Vec<usize> = runs.iter().map(|r| r.turns).collect();
-    turns.dedup();
-    for n in turns {
-        let same: Vec<&PulledKnot> = runs.iter().filter(|r| r.turns == n).collect();
+    for (n, same) in by_knot(runs) {
         let mut spreads = spread_along(&same, SPACING_CM, COMPARED_DYN[0]);
         if spreads.is_empty() {
             continue;
