@@ -1,9 +1,10 @@
 //! `cargo xtask overhand`: Choi, Tong, Jawed & Joo 2021's knot-tying case
 //! (`hagfish_validation::overhand_pull`): the overhand knots with n turns pulled tight at each
 //! end speed, one run per (n, u), `jobs` at a time. Prints, as Markdown, a row per run (how it
-//! ended, the largest force drop, the deepest penetration, the wall time) and per knot the
-//! smoothed force at the same end-to-end distances for every speed; writes each run's samples
-//! to `<out>/n<N>_u<U>.csv` when `out` is given.
+//! ended, the largest force drop, the deepest penetration, the wall time), per knot the
+//! smoothed force at the same end-to-end distances for every speed, and per knot the speeds'
+//! spread along the whole pull; writes each run's samples to `<out>/n<N>_u<U>.csv` when `out`
+//! is given.
 
 use std::fmt::Write as _;
 use std::path::Path;
