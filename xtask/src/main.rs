@@ -101,6 +101,11 @@ enum Task {
         /// The pull force that ends a run (dyn).
         #[arg(long, default_value_t = 300.0)]
         stop_force: f64,
+        /// The force (dyn) from which the run table looks for the force's largest fall: the
+        /// default leaves out the start's slack; 200 also leaves out the start's jerk, so that
+        /// a loop inversion on a pull past 300 dyn shows (docs/validation.md).
+        #[arg(long, default_value_t = 20.0)]
+        drop_from: f64,
         /// Runs at a time.
         #[arg(long, default_value_t = 2)]
         jobs: usize,
@@ -206,7 +211,7 @@ fn main() -> ExitCode {
             knotted::run(&workspace_root(), &request).map(|()| true)
         }
         Task::Validate => validate::run(&workspace_root()),
-        Task::Overhand { turns, speeds, time_step, stop_force, jobs, out, sets } => {
+        Task::Overhand { turns, speeds, time_step, stop_force, drop_from, jobs, out, sets } => {
             if let Some(n) = turns.iter().find(|n| !(1..=4).contains(*n)) {
                 eprintln!("error: --turns {n}: the knots have 1 to 4 turns (data/knots/imc-der)");
                 return ExitCode::from(2);
@@ -216,6 +221,7 @@ fn main() -> ExitCode {
                 speeds: &speeds,
                 time_step,
                 stop_force,
+                drop_from,
                 jobs,
                 out: out.as_deref(),
                 sets: &sets,

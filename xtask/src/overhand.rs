@@ -17,10 +17,6 @@ use crate::family::{in_parallel, shell_word};
 /// The smoothed curve's spacing (cm of end-to-end distance).
 const SPACING_CM: f64 = 0.25;
 
-/// A force drop is looked for once the force has reached this (dyn): the start of the pull,
-/// where the knot's starting curve takes up its slack, is left out.
-const DROP_FROM_DYN: f64 = 20.0;
-
 /// The window of the loop's largest turn (s): a snap takes a fraction of it, the loop's drift
 /// as the knot closes turns it by a degree or less.
 const LOOP_TURN_WINDOW_S: f64 = 0.1;
@@ -39,6 +35,9 @@ pub struct Request<'a> {
     pub time_step: f64,
     /// The force that ends a pull (dyn).
     pub stop_force: f64,
+    /// The force (dyn) from which the largest fall of the force is looked for: the start of
+    /// the pull, where the knot's starting curve takes up its slack, is left out.
+    pub drop_from: f64,
     /// Runs at a time.
     pub jobs: usize,
     /// Where to write the samples, if anywhere.
@@ -64,16 +63,17 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
     if let Some(out) = request.out {
         write_samples(out, &runs)?;
     }
-    println!("{}", run_table(&runs));
+    println!("{}", run_table(&runs, request.drop_from));
     println!("{}", speed_table(&runs));
     println!("{}", curve_spread_table(&runs));
     println!(
-        "`cargo xtask overhand --turns {} --speeds {} --time-step {} --stop-force {}{}`; \
-         data/validation/overhand_pull.ron (μ = 0.1 unless set)",
+        "`cargo xtask overhand --turns {} --speeds {} --time-step {} --stop-force {} \
+         --drop-from {}{}`; data/validation/overhand_pull.ron (μ = 0.1 unless set)",
         join(request.turns),
         join(request.speeds),
         request.time_step,
         request.stop_force,
+        request.drop_from,
         request.sets.iter().map(|s| format!(" --set {}", shell_word(s))).collect::<String>(),
     );
     Ok(())
@@ -83,8 +83,8 @@ fn join<T: ToString>(values: &[T]) -> String {
     values.iter().map(T::to_string).collect::<Vec<_>>().join(",")
 }
 
-/// A row per run.
-fn run_table(runs: &[PulledKnot]) -> String {
+/// A row per run, its largest fall of the force counted from `drop_from` dyn.
+fn run_table(runs: &[PulledKnot], drop_from: f64) -> String {
     let mut table = String::from(
         "| n | u (cm/s) | knot at start → end | ended | end-to-end (cm) | force (dyn) | largest drop | \
          largest turn of the loop in 0.1 s | deepest penetration (% h) | steps | wall (s) | ms/step |\n\
@@ -97,7 +97,7 @@ fn run_table(runs: &[PulledKnot]) -> String {
             PullEnd::Distance => "at the distance".to_string(),
             PullEnd::Failed(why) => format!("failed: {why}"),
         };
-        let drop = run.largest_drop(SPACING_CM, DROP_FROM_DYN).map_or("—".into(), |d| {
+        let drop = run.largest_drop(SPACING_CM, drop_from).map_or("—".into(), |d| {
             format!("{:.0} % from {:.0} dyn at {:.1} cm", 100.0 * d.fraction, d.from_dyn, d.from_cm)
         });
         let turn = run.largest_loop_turn(LOOP_TURN_WINDOW_S).map_or("—".into(), |turn| {
