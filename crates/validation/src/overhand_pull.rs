@@ -8,6 +8,8 @@
 //! equations do not change under a constant velocity). Measured each step: the end-to-end
 //! distance, the grip's pull force (the multipliers of its rows), the deepest self
 //! penetration and where the loop lies across the pull ([`knot_loop`]: whether it inverts). The pull stops at a force, before the inextensible chain runs out of slack.
+//! Each step is taken as `hagfish run` takes it (`World::advance`): a rejected step is retried
+//! as substeps, so that a loop's snap gets through.
 
 use std::path::Path;
 use std::time::Instant;
@@ -17,6 +19,7 @@ use hagfish_control::Phase;
 use hagfish_knots::{KnotOptions, analyse_knot};
 use hagfish_scenario::{LoadedScenario, Override};
 use hagfish_sim::rows::grip_wrench;
+use hagfish_sim::{StepOutcome, StepTally, StopRequest};
 
 use crate::error::ValidationError;
 use crate::knot_loop::{self, ContactPoint};
@@ -136,20 +139,28 @@ pub fn run(
     let (mut centres, mut contacts): (Vec<DVec3>, Vec<ContactPoint>) = (Vec::new(), Vec::new());
     // Until the last phase (the pull) is over; the phases before it rest with a still grip.
     while !controller.finished() {
-        let penetration = match world.step(&mut controller) {
-            Ok(report) => report.max_self_penetration,
-            Err(error) => {
+        // Each step as `hagfish run` takes it: a rejected step is retried (as substeps, whose
+        // last one's multipliers give the force below).
+        let mut tally = StepTally::default();
+        let divisions = match world.advance(&mut controller, &mut tally, StopRequest::default()) {
+            StepOutcome::Accepted | StepOutcome::ResolvedContacts => 1.0,
+            StepOutcome::Substeps { divisions } => f64::from(divisions),
+            StepOutcome::Failed(error) => {
                 end = PullEnd::Failed(error.to_string());
                 break;
             }
+            // No stop flag is given, so a step is never stopped.
+            StepOutcome::Stopped => break,
         };
+        let penetration = tally.maxima.self_penetration;
         let Some(anchor) = controller.progress().pull.filter(|a| a.phase == last_phase) else {
             continue;
         };
         deepest = deepest.max(penetration);
         let data = world.data();
         let Some(grip) = data.actuation.grip else { continue };
-        let (force, _) = grip_wrench(&data.rows, data.solver.multipliers(), time_step_s);
+        let (force, _) =
+            grip_wrench(&data.rows, data.solver.multipliers(), time_step_s / divisions);
         let direction = grip.velocity.normalize_or_zero();
         // The contacts and the body centres of the step's start, as the data holds them.
         centres.clear();
