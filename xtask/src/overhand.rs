@@ -10,7 +10,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use hagfish_scenario::Override;
-use hagfish_validation::overhand_pull::{self, PullEnd, PulledKnot, spread_along};
+use hagfish_validation::overhand_pull::{self, PullEnd, PulledKnot, relative_spread, spread_along};
 
 use crate::family::{in_parallel, shell_word};
 
@@ -141,9 +141,6 @@ fn speed_table(runs: &[PulledKnot]) -> String {
             let Some(&(at, _)) = curve.iter().find(|&&(_, f)| f >= target) else { continue };
             let forces: Option<Vec<f64>> = same.iter().map(|r| r.smoothed_force(at)).collect();
             let Some(forces) = forces else { continue };
-            let mean = forces.iter().sum::<f64>() / forces.len() as f64;
-            let (lo, hi) =
-                forces.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &f| (lo.min(f), hi.max(f)));
             let listed: Vec<String> = same
                 .iter()
                 .zip(&forces)
@@ -153,7 +150,7 @@ fn speed_table(runs: &[PulledKnot]) -> String {
                 table,
                 "| {n} | {at:.2} | {} | {:.3} |",
                 listed.join(", "),
-                (hi - lo) / mean
+                relative_spread(&forces)
             );
         }
     }

@@ -19,7 +19,7 @@ use hagfish_control::Phase;
 use hagfish_knots::{KnotOptions, analyse_knot};
 use hagfish_scenario::{LoadedScenario, Override};
 use hagfish_sim::rows::grip_wrench;
-use hagfish_sim::{StepOutcome, StepTally, StopRequest};
+use hagfish_sim::{IntervalMaxima, StepOutcome, StepTally, StopRequest};
 
 use crate::error::ValidationError;
 use crate::knot_loop::{self, ContactPoint};
@@ -138,10 +138,12 @@ pub fn run(
     // The loop's inputs, refilled each step.
     let (mut centres, mut contacts): (Vec<DVec3>, Vec<ContactPoint>) = (Vec::new(), Vec::new());
     // Until the last phase (the pull) is over; the phases before it rest with a still grip.
+    // The step's worst values; its impulse sums are not read (made once: they are n-vectors).
+    let mut tally = StepTally::default();
     while !controller.finished() {
         // Each step as `hagfish run` takes it: a rejected step is retried (as substeps, whose
         // last one's multipliers give the force below).
-        let mut tally = StepTally::default();
+        tally.maxima = IntervalMaxima::default();
         let divisions = match world.advance(&mut controller, &mut tally, StopRequest::default()) {
             StepOutcome::Accepted | StepOutcome::ResolvedContacts => 1.0,
             StepOutcome::Substeps { divisions } => f64::from(divisions),
@@ -316,14 +318,18 @@ pub fn spread_along(runs: &[&PulledKnot], spacing_cm: f64, from_dyn: f64) -> Vec
         .filter_map(|k| {
             let at = start + k as f64 * spacing_cm;
             let forces: Option<Vec<f64>> = runs.iter().map(|r| r.smoothed_force(at)).collect();
-            let forces = forces?;
-            let mean = forces.iter().sum::<f64>() / forces.len() as f64;
-            let (lo, hi) = forces
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &f| (lo.min(f), hi.max(f)));
-            Some((hi - lo) / mean)
+            forces.map(|forces| relative_spread(&forces))
         })
         .collect()
+}
+
+/// (max − min)/mean of `forces` (one per speed, at one end-to-end distance; NaN for none).
+pub fn relative_spread(forces: &[f64]) -> f64 {
+    let mean = forces.iter().sum::<f64>() / forces.len() as f64;
+    let (lo, hi) = forces
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &f| (lo.min(f), hi.max(f)));
+    (hi - lo) / mean
 }
 
 #[cfg(test)]
