@@ -106,6 +106,11 @@ enum Task {
         /// a loop inversion on a pull past 300 dyn shows (docs/validation.md).
         #[arg(long, default_value_t = 20.0)]
         drop_from: f64,
+        /// The forces (dyn) from which the third table counts the speeds' spread along the
+        /// pull, a row each: the default is the whole pull from 50 dyn; 50,300 adds the tight
+        /// knot alone on a pull past 300 dyn.
+        #[arg(long, value_delimiter = ',', default_values_t = [50.0])]
+        spread_from: Vec<f64>,
         /// Runs at a time.
         #[arg(long, default_value_t = 2)]
         jobs: usize,
@@ -211,9 +216,23 @@ fn main() -> ExitCode {
             knotted::run(&workspace_root(), &request).map(|()| true)
         }
         Task::Validate => validate::run(&workspace_root()),
-        Task::Overhand { turns, speeds, time_step, stop_force, drop_from, jobs, out, sets } => {
+        Task::Overhand {
+            turns,
+            speeds,
+            time_step,
+            stop_force,
+            drop_from,
+            spread_from,
+            jobs,
+            out,
+            sets,
+        } => {
             if let Some(n) = turns.iter().find(|n| !(1..=4).contains(*n)) {
                 eprintln!("error: --turns {n}: the knots have 1 to 4 turns (data/knots/imc-der)");
+                return ExitCode::from(2);
+            }
+            if let Some(f) = spread_from.iter().find(|f| !(f.is_finite() && **f >= 0.0)) {
+                eprintln!("error: --spread-from {f}: a force in dyn, finite and ≥ 0");
                 return ExitCode::from(2);
             }
             let request = overhand::Request {
@@ -222,6 +241,7 @@ fn main() -> ExitCode {
                 time_step,
                 stop_force,
                 drop_from,
+                spread_from: &spread_from,
                 jobs,
                 out: out.as_deref(),
                 sets: &sets,

@@ -38,6 +38,9 @@ pub struct Request<'a> {
     /// The force (dyn) from which the largest fall of the force is looked for: the start of
     /// the pull, where the knot's starting curve takes up its slack, is left out.
     pub drop_from: f64,
+    /// The forces (dyn) from which the speeds' spread along the pull is counted, one row each
+    /// (the first speed's force reaching it), e.g. 300 for the tight knot alone.
+    pub spread_from: &'a [f64],
     /// Runs at a time.
     pub jobs: usize,
     /// Where to write the samples, if anywhere.
@@ -65,15 +68,16 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
     }
     println!("{}", run_table(&runs, request.drop_from));
     println!("{}", speed_table(&runs));
-    println!("{}", curve_spread_table(&runs));
+    println!("{}", curve_spread_table(&runs, request.spread_from));
     println!(
         "`cargo xtask overhand --turns {} --speeds {} --time-step {} --stop-force {} \
-         --drop-from {}{}`; data/validation/overhand_pull.ron (μ = 0.1 unless set)",
+         --drop-from {} --spread-from {}{}`; data/validation/overhand_pull.ron (μ = 0.1 unless set)",
         join(request.turns),
         join(request.speeds),
         request.time_step,
         request.stop_force,
         request.drop_from,
+        join(request.spread_from),
         request.sets.iter().map(|s| format!(" --set {}", shell_word(s))).collect::<String>(),
     );
     Ok(())
@@ -87,7 +91,7 @@ fn join<T: ToString>(values: &[T]) -> String {
 fn run_table(runs: &[PulledKnot], drop_from: f64) -> String {
     let mut table = String::from(
         "| n | u (cm/s) | knot at start → end | ended | end-to-end (cm) | force (dyn) | largest drop | \
-         largest turn of the loop in 0.1 s | deepest penetration (% h) | steps | wall (s) | ms/step |\n\
+         largest turn of the loop in 0.1 s | deepest penetration (% h) | steps (retried) | wall (s) | ms/step |\n\
          |---|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     for run in runs {
@@ -105,7 +109,7 @@ fn run_table(runs: &[PulledKnot], drop_from: f64) -> String {
         });
         let _ = writeln!(
             table,
-            "| {} | {} | {} → {} | {ended} | {:.2} | {:.1} | {drop} | {turn} | {:.3} | {} | {:.1} | {:.2} |",
+            "| {} | {} | {} → {} | {ended} | {:.2} | {:.1} | {drop} | {turn} | {:.3} | {} ({}) | {:.1} | {:.2} |",
             run.turns,
             run.end_speed_cm_per_s,
             run.knots.0,
@@ -114,6 +118,7 @@ fn run_table(runs: &[PulledKnot], drop_from: f64) -> String {
             last.map_or(f64::NAN, |s| s.force_dyn),
             100.0 * run.max_penetration_relative,
             run.steps,
+            run.retried_steps,
             run.wall_s,
             1e3 * run.wall_s / run.steps as f64,
         );
@@ -157,16 +162,17 @@ fn speed_table(runs: &[PulledKnot]) -> String {
     table
 }
 
-/// Per knot, the spread of the speeds' smoothed forces along the whole pull
-/// ([`spread_along`], every [`SPACING_CM`] from where the first speed's force reaches the
-/// first of [`COMPARED_DYN`]): how many distances, the median, the 90th percentile and the
-/// largest.
-fn curve_spread_table(runs: &[PulledKnot]) -> String {
+/// Per knot and per force of `spread_from`, the spread of the speeds' smoothed forces along the
+/// pull from where the first speed's force reaches it to the end ([`spread_along`], every
+/// [`SPACING_CM`]): how many distances, the median, the 90th percentile and the largest.
+fn curve_spread_table(runs: &[PulledKnot], spread_from: &[f64]) -> String {
     let mut table = String::from(
-        "| n | distances compared | median spread | 90th percentile | largest |\n|---|---|---|---|---|\n",
+        "| n | from (dyn) | distances compared | median spread | 90th percentile | largest |\n\
+         |---|---|---|---|---|---|\n",
     );
-    for (n, same) in by_knot(runs) {
-        let mut spreads = spread_along(&same, SPACING_CM, COMPARED_DYN[0]);
+    let knots = by_knot(runs);
+    for ((n, same), &from) in knots.iter().flat_map(|k| spread_from.iter().map(move |f| (k, f))) {
+        let mut spreads = spread_along(same, SPACING_CM, from);
         if spreads.is_empty() {
             continue;
         }
@@ -174,7 +180,7 @@ fn curve_spread_table(runs: &[PulledKnot]) -> String {
         let at = |q: f64| spreads[((q * spreads.len() as f64) as usize).min(spreads.len() - 1)];
         let _ = writeln!(
             table,
-            "| {n} | {} | {:.3} | {:.3} | {:.3} |",
+            "| {n} | {from} | {} | {:.3} | {:.3} | {:.3} |",
             spreads.len(),
             at(0.5),
             at(0.9),
@@ -185,22 +191,30 @@ fn curve_spread_table(runs: &[PulledKnot]) -> String {
 }
 
 /// Each run's samples as `n<N>_u<U>.csv`: time since the pull started, end-to-end distance,
-/// force.
+/// force, and the loop's offset across the pull from its braid (empty where no loop is found).
 fn write_samples(out: &Path, runs: &[PulledKnot]) -> Result<(), String> {
+    const HEADER: [&str; 6] =
+        ["time_s", "end_to_end_cm", "force_dyn", "loop_x_cm", "loop_y_cm", "loop_z_cm"];
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     for run in runs {
         let path = out.join(format!("n{}_u{}.csv", run.turns, run.end_speed_cm_per_s));
         let mut writer =
             csv::Writer::from_path(&path).map_err(|e| format!("{}: {e}", path.display()))?;
-        let write = |w: &mut csv::Writer<std::fs::File>, record: [String; 3]| {
-            w.write_record(record).map_err(|e| format!("{}: {e}", path.display()))
+        let mut write = |record: [String; 6]| {
+            writer.write_record(record).map_err(|e| format!("{}: {e}", path.display()))
         };
-        write(&mut writer, ["time_s".into(), "end_to_end_cm".into(), "force_dyn".into()])?;
+        write(HEADER.map(String::from))?;
         for s in &run.samples {
-            write(
-                &mut writer,
-                [s.time_s.to_string(), s.end_to_end_cm.to_string(), s.force_dyn.to_string()],
-            )?;
+            let offset = s.loop_offset_cm.map(|o| o.to_array().map(|x| x.to_string()));
+            let [x, y, z] = offset.unwrap_or_default();
+            write([
+                s.time_s.to_string(),
+                s.end_to_end_cm.to_string(),
+                s.force_dyn.to_string(),
+                x,
+                y,
+                z,
+            ])?;
         }
         writer.flush().map_err(|e| format!("{}: {e}", path.display()))?;
     }

@@ -76,6 +76,9 @@ pub struct PulledKnot {
     pub end: PullEnd,
     /// Steps run (the rest and the pull).
     pub steps: u64,
+    /// Steps of them rejected whole and retried as substeps (the scenario's step acceptance:
+    /// `data/validation/overhand_pull.ron` keeps the penetration within 0.5 % of the radius).
+    pub retried_steps: u64,
     /// Wall time of the steps (s).
     pub wall_s: f64,
 }
@@ -135,6 +138,7 @@ pub fn run(
     let start = knot_name(&world);
     let clock = Instant::now();
     let (mut samples, mut deepest, mut end) = (Vec::new(), 0.0f64, PullEnd::Distance);
+    let mut retried_steps = 0;
     // The loop's inputs, refilled each step.
     let (mut centres, mut contacts): (Vec<DVec3>, Vec<ContactPoint>) = (Vec::new(), Vec::new());
     // Until the last phase (the pull) is over; the phases before it rest with a still grip.
@@ -146,7 +150,10 @@ pub fn run(
         tally.maxima = IntervalMaxima::default();
         let divisions = match world.advance(&mut controller, &mut tally, StopRequest::default()) {
             StepOutcome::Accepted | StepOutcome::ResolvedContacts => 1.0,
-            StepOutcome::Substeps { divisions } => f64::from(divisions),
+            StepOutcome::Substeps { divisions } => {
+                retried_steps += 1;
+                f64::from(divisions)
+            }
             StepOutcome::Failed(error) => {
                 end = PullEnd::Failed(error.to_string());
                 break;
@@ -194,6 +201,7 @@ pub fn run(
         knots: (start, knot_name(&world)),
         end,
         steps: world.steps(),
+        retried_steps,
         wall_s,
     })
 }
@@ -361,6 +369,7 @@ mod tests {
             knots: ("7_1".into(), "7_1".into()),
             end: PullEnd::Force,
             steps: 60,
+            retried_steps: 0,
             wall_s: 1.0,
         };
         // Window 0.07 s: samples up to 3 apart (0.02 s each); across the snap the nearest
@@ -400,6 +409,7 @@ mod tests {
             knots: ("5_1".into(), "5_1".into()),
             end: PullEnd::Force,
             steps: 0,
+            retried_steps: 0,
             wall_s: 0.0,
         };
         let (slow, fast) = (pull(0.3, 10.0, 40.0), pull(0.9, 11.0, 38.0));
