@@ -16,6 +16,7 @@
 //! - `lock [--mu μ,…] [--bodies N] [--time-step H] [--edges E]`: the loose trefoil with
 //!   friction tightened and let go, Audoly et al.'s loosening lock (`lock.rs`).
 
+mod audoly;
 mod family;
 mod family_cases;
 mod family_cylinder;
@@ -141,6 +142,28 @@ enum Task {
         #[arg(long, default_value_t = 2)]
         jobs: usize,
     },
+    /// Settles the loose trefoil with friction on both branches at the pulls Audoly et al.'s
+    /// law gives for each μ and ε (the rod's radius h = ε²R₀) and prints the friction numbers
+    /// it settled at (Markdown; docs/validation.md, "Loose trefoil with friction").
+    Audoly {
+        /// The friction coefficients μ.
+        #[arg(long = "mu", value_delimiter = ',', default_values_t = [0.1, 0.2])]
+        coefficients: Vec<f64>,
+        /// The target ε = √(h/R₀). From 0.3 on the set-up fails (the loop's ⊥ points lie
+        /// within the braid margin of 10 rod radii, or a strong pull from the torus start
+        /// passes strands through each other; docs/validation.md).
+        #[arg(long = "epsilon", value_delimiter = ',', default_values_t = [0.1, 0.2])]
+        epsilons: Vec<f64>,
+        /// The loop radius R₀ (cm) each rod's radius is chosen for.
+        #[arg(long, default_value_t = 2.0)]
+        loop_radius: f64,
+        /// Edges of the friction pyramid.
+        #[arg(long, default_value_t = 8)]
+        edges: usize,
+        /// Runs at a time.
+        #[arg(long, default_value_t = 2)]
+        jobs: usize,
+    },
     /// Runs a knot scenario on the family of bodies and time steps (ES103 and 15 variants)
     /// and prints its knot table (Markdown), as in docs/physics.md.
     Family {
@@ -256,6 +279,25 @@ fn main() -> ExitCode {
             let refinement = Refinement { bodies, time_step_s: time_step, ..Refinement::default() };
             let request = lock::Request { coefficients: &coefficients, edges, refinement, jobs };
             lock::run(&workspace_root(), &request).map(|()| true)
+        }
+        Task::Audoly { coefficients, epsilons, loop_radius, edges, jobs } => {
+            let positive = |x: &f64| x.is_finite() && *x > 0.0;
+            if let Some(x) = coefficients.iter().chain(&epsilons).find(|x| !positive(x)) {
+                eprintln!("error: --mu and --epsilon must be positive, not {x}");
+                return ExitCode::from(2);
+            }
+            if !positive(&loop_radius) {
+                eprintln!("error: --loop-radius {loop_radius}: a length in cm, positive");
+                return ExitCode::from(2);
+            }
+            let request = audoly::Request {
+                coefficients: &coefficients,
+                epsilons: &epsilons,
+                loop_radius_cm: loop_radius,
+                edges,
+                jobs,
+            };
+            audoly::run(&workspace_root(), &request).map(|()| true)
         }
         Task::Family { scenario, knot, sets, jobs, only, measure, phase, kind, rounding } => {
             // A relative path that is not there from here is taken from the workspace root.

@@ -7,8 +7,8 @@
 //! - Tightening: pulled at T, ramped over 1 s from the torus start. While the pull ramps
 //!   the loop opens past the branch; it then closes until friction holds it (approached
 //!   from the loose side: on the tightening branch).
-//! - Loosening: first pulled at [`TIGHT_PULL_DYN`] (ramped over 10 s and held), then at T
-//!   at once: the loop opens until friction holds it.
+//! - Loosening: first pulled tighter (by [`TIGHT_PULL_DYN`] in the shipped study; ramped over
+//!   10 s and held), then at T at once: the loop opens until friction holds it.
 //!
 //! Each is settled (the final pull held [`FINAL_PULL_S`]) and its loop radius R measured as
 //! the frictionless check measures it (`loose_knot.rs`); the friction term F h²/B − ε⁴/2 is
@@ -39,12 +39,16 @@ pub const FINAL_PULL_S: f64 = 120.0;
 pub const TIGHT_PULL_DYN: f64 = 100.0;
 
 /// How the knot reached its pull.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Branch {
     /// Closed onto the pull from a looser loop.
     Tightening,
-    /// Opened onto the pull from a tighter loop.
-    Loosening,
+    /// Opened onto the pull from a tighter loop: the one a pull of `from_dyn` holds (ramped
+    /// over 10 s, held to the scenario's 40 s).
+    Loosening {
+        /// The pull that tightened it first (dyn; [`TIGHT_PULL_DYN`] in the shipped study).
+        from_dyn: f64,
+    },
 }
 
 /// One settled frictional knot.
@@ -87,7 +91,7 @@ fn scenario(
 ) -> Result<LoadedScenario, ValidationError> {
     let first_pull = match branch {
         Branch::Tightening => tension_dyn,
-        Branch::Loosening => TIGHT_PULL_DYN,
+        Branch::Loosening { from_dyn } => from_dyn,
     };
     let mut loaded = loose_knot::scenario(root, first_pull, refinement)?;
     loaded.scenario.friction = Some(friction);
@@ -105,7 +109,7 @@ fn scenario(
             loaded.scenario.duration_s += FINAL_PULL_S - first.until.seconds;
             *first = last;
         }
-        Branch::Loosening => {
+        Branch::Loosening { .. } => {
             first.ramp_s = 10.0;
             (last.force_dyn, last.ramp_s) = (tension_dyn, 0.0);
             loaded.scenario.duration_s += FINAL_PULL_S;
@@ -113,6 +117,23 @@ fn scenario(
         }
     }
     Ok(loaded)
+}
+
+/// The pull (dyn) that holds a loop at `epsilon` by Audoly et al.'s law on a rod of radius
+/// `rod_radius_cm` and bending stiffness B, on the tightening (`Tightening`) or loosening
+/// branch: F = (B/h²)(ε⁴/2 ± μσε³). Not positive where the loosening branch locks (μ ≥ ε/(2σ)).
+pub fn audoly_pull(
+    (rod_radius_cm, bending_stiffness_dyn_cm2): (f64, f64),
+    epsilon: f64,
+    coefficient: f64,
+    branch: Branch,
+) -> f64 {
+    let sign = match branch {
+        Branch::Tightening => 1.0,
+        Branch::Loosening { .. } => -1.0,
+    };
+    let number = epsilon.powi(4) / 2.0 + sign * coefficient * SIGMA * epsilon.powi(3);
+    bending_stiffness_dyn_cm2 / (rod_radius_cm * rod_radius_cm) * number
 }
 
 impl FrictionalKnot {
@@ -167,7 +188,8 @@ pub fn release(
     refinement: Refinement,
 ) -> Result<Release, ValidationError> {
     let coefficient = friction.coefficient;
-    let mut loaded = scenario(root, (Branch::Loosening, 0.0), friction, refinement)?;
+    let from_tight = Branch::Loosening { from_dyn: TIGHT_PULL_DYN };
+    let mut loaded = scenario(root, (from_tight, 0.0), friction, refinement)?;
     let settled = loose_knot::run_loaded(&loaded)?;
     // The same run up to the moment it lets go (the same steps, bit for bit).
     loaded.scenario.phases.pop();
@@ -175,6 +197,25 @@ pub fn release(
     let let_go = loose_knot::run_loaded(&loaded)?;
     Ok(Release {
         let_go: FrictionalKnot::of(&let_go, (Branch::Tightening, TIGHT_PULL_DYN), coefficient),
-        settled: FrictionalKnot::of(&settled, (Branch::Loosening, 0.0), coefficient),
+        settled: FrictionalKnot::of(&settled, (from_tight, 0.0), coefficient),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn audolys_pull_adds_friction_when_tightening_and_takes_it_off_when_loosening() {
+        // ε = 0.2, μ = 0.1, h = 0.04 cm, B = 100: ε⁴/2 = 8·10⁻⁴, μσε³ = 3.936·10⁻⁴, B/h² = 62500.
+        let rod = (0.04, 100.0);
+        let tight = audoly_pull(rod, 0.2, 0.1, Branch::Tightening);
+        assert!((tight - 62_500.0 * (8e-4 + 3.936e-4)).abs() < 1e-9, "{tight}");
+        let loose = audoly_pull(rod, 0.2, 0.1, Branch::Loosening { from_dyn: 0.0 });
+        assert!((loose - 62_500.0 * (8e-4 - 3.936e-4)).abs() < 1e-9, "{loose}");
+        // The lock: at μ = ε/(2σ) the loosening branch holds the loop with no pull.
+        let at_lock =
+            audoly_pull(rod, 0.2, 0.2 / (2.0 * SIGMA), Branch::Loosening { from_dyn: 0.0 });
+        assert!(at_lock.abs() < 1e-12, "{at_lock}");
+    }
 }

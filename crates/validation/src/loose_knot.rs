@@ -110,6 +110,18 @@ pub fn scenario(
     Ok(loaded)
 }
 
+/// The bending stiffness B of the loose trefoil's rod (dyn·cm²), as its file gives it.
+pub fn bending_stiffness(root: &Path) -> Result<f64, ValidationError> {
+    let loaded = LoadedScenario::load(root.join(SCENARIO))?;
+    match &loaded.body {
+        Body::Rod(rod) => Ok(rod.bending_stiffness_dyn_cm2),
+        _ => Err(ValidationError::Scenario {
+            path: loaded.path.clone(),
+            reason: "its body is not a rod".into(),
+        }),
+    }
+}
+
 /// Settles the scenario at `tension_dyn`, changed by `refinement`, and measures it; an
 /// error if the knot it settled into is not the one it started as (the step lets a thin
 /// strand pass through another when it moves more than its diameter in one step).

@@ -1,0 +1,154 @@
+//! `cargo xtask audoly`: Audoly et al.'s law for the loose trefoil with friction over a range
+//! of ε (`hagfish_validation::frictional_knot::run`; docs/validation.md, "Loose trefoil with
+//! friction"). F h²/B = ε⁴/2 ± μσε³ with ε = √(h/R): for each μ and target ε the rod's
+//! radius is set to h = ε²R₀ (the loop radius R₀ kept, so that every loop has as many bodies),
+//! and the knot settled on each branch at the pull the law gives there with σ = 0.492. Prints,
+//! as Markdown, a row per run with the ε and the friction number (F h²/B − ε⁴/2)/(μσε³) it
+//! settled at: Audoly's ±1.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use hagfish_sim::rows::Friction;
+use hagfish_validation::ValidationError;
+use hagfish_validation::frictional_knot::{self, Branch, FrictionalKnot, SIGMA, audoly_pull};
+use hagfish_validation::loose_knot::{self, Refinement};
+
+use crate::family::in_parallel;
+
+/// How much tighter (in ε) the loop a loosening run starts from is than its target: the first
+/// pull is the tightening branch's at 1.5 ε.
+const LOOSENING_START: f64 = 1.5;
+
+/// What to run.
+pub struct Request<'a> {
+    /// The friction coefficients μ.
+    pub coefficients: &'a [f64],
+    /// The target ε = √(h/R₀).
+    pub epsilons: &'a [f64],
+    /// The loop radius R₀ the rod's radius is chosen for (cm).
+    pub loop_radius_cm: f64,
+    /// Edges of the friction pyramid.
+    pub edges: usize,
+    /// Runs at a time.
+    pub jobs: usize,
+}
+
+/// One run: μ, the target ε, the branch and its pull.
+#[derive(Clone, Copy, Debug)]
+struct Case {
+    coefficient: f64,
+    target_epsilon: f64,
+    rod_radius_cm: f64,
+    branch: Branch,
+    tension_dyn: f64,
+}
+
+/// Every case of `request`; a loosening branch at or below F = 0 (μ ≥ ε/(2σ): the knot
+/// locks) has no run.
+fn cases(request: &Request<'_>, bending_stiffness_dyn_cm2: f64) -> Vec<Case> {
+    let mut cases = Vec::new();
+    for &coefficient in request.coefficients {
+        for &target_epsilon in request.epsilons {
+            let h = target_epsilon * target_epsilon * request.loop_radius_cm;
+            let rod = (h, bending_stiffness_dyn_cm2);
+            let pull = |epsilon, branch| audoly_pull(rod, epsilon, coefficient, branch);
+            let from_dyn = pull(LOOSENING_START * target_epsilon, Branch::Tightening);
+            let loosening = Branch::Loosening { from_dyn };
+            let (tight, loose) =
+                (pull(target_epsilon, Branch::Tightening), pull(target_epsilon, loosening));
+            let mut case = |branch, tension_dyn| {
+                cases.push(Case {
+                    coefficient,
+                    target_epsilon,
+                    rod_radius_cm: h,
+                    branch,
+                    tension_dyn,
+                })
+            };
+            case(Branch::Tightening, tight);
+            if loose > 0.0 {
+                case(loosening, loose);
+            }
+        }
+    }
+    cases
+}
+
+/// Runs every case and prints the table.
+pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
+    let cases = cases(request, loose_knot::bending_stiffness(root).map_err(|e| e.to_string())?);
+    let knots = in_parallel(&cases, request.jobs, |case| {
+        let friction = Friction::pyramid(case.coefficient, request.edges);
+        let refinement =
+            Refinement { rod_radius_cm: Some(case.rod_radius_cm), ..Refinement::default() };
+        frictional_knot::run(root, (case.branch, case.tension_dyn), friction, refinement)
+    })?;
+    println!("{}", table(&cases, &knots));
+    println!(
+        "`cargo xtask audoly --mu {} --epsilon {} --loop-radius {} --edges {}`: the loose \
+         trefoil (data/validation/loose_trefoil.ron, data/rods/loose.ron with h = ε²R₀)",
+        join(request.coefficients),
+        join(request.epsilons),
+        request.loop_radius_cm,
+        request.edges,
+    );
+    Ok(())
+}
+
+fn join(values: &[f64]) -> String {
+    values.iter().map(f64::to_string).collect::<Vec<_>>().join(",")
+}
+
+/// The Markdown table: a row per run (a run that failed, with why).
+fn table(cases: &[Case], knots: &[Result<FrictionalKnot, ValidationError>]) -> String {
+    let mut out = String::from(
+        "| μ | target ε | h (cm) | branch | F (dyn) | settled: R (cm), ε | friction number | \
+         σ' = σ·|number| |\n|---|---|---|---|---|---|---|---|\n",
+    );
+    for (case, knot) in cases.iter().zip(knots) {
+        let branch = match case.branch {
+            Branch::Tightening => "tightening".to_owned(),
+            Branch::Loosening { from_dyn } => format!("loosening from {from_dyn:.1} dyn"),
+        };
+        let settled = match knot {
+            Ok(knot) => format!(
+                "{:.4}, {:.4} | {:+.3} | {:.3}",
+                knot.loop_radius_cm,
+                knot.epsilon,
+                knot.friction_number,
+                SIGMA * knot.friction_number.abs()
+            ),
+            Err(error) => format!("failed: {error} | — | —"),
+        };
+        let _ = writeln!(
+            out,
+            "| {} | {} | {:.4} | {branch} | {:.2} | {settled} |",
+            case.coefficient, case.target_epsilon, case.rod_radius_cm, case.tension_dyn,
+        );
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_locked_loosening_branch_has_no_run() {
+        // μ = 0.2 locks a knot at ε ≤ 2μσ = 0.197: only its tightening run.
+        let request = Request {
+            coefficients: &[0.2],
+            epsilons: &[0.1, 0.3],
+            loop_radius_cm: 2.0,
+            edges: 8,
+            jobs: 1,
+        };
+        let cases = cases(&request, 100.0);
+        let branches: Vec<_> = cases.iter().map(|c| (c.target_epsilon, c.branch)).collect();
+        assert_eq!(branches.len(), 3, "{branches:?}");
+        assert!(matches!(branches[0], (0.1, Branch::Tightening)));
+        assert!(matches!(branches[2], (0.3, Branch::Loosening { .. })));
+        assert!((cases[1].rod_radius_cm - 0.18).abs() < 1e-12);
+    }
+}
