@@ -14,7 +14,7 @@ use hagfish_validation::ValidationError;
 use hagfish_validation::frictional_knot::{self, Branch, FrictionalKnot, SIGMA, audoly_pull};
 use hagfish_validation::loose_knot::{self, Refinement};
 
-use crate::family::in_parallel;
+use crate::family::{comma_list, in_parallel};
 
 /// How much tighter (in ε) the loop a loosening run starts from is than its target: the first
 /// pull is the tightening branch's at 1.5 ε.
@@ -88,16 +88,12 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
     println!(
         "`cargo xtask audoly --mu {} --epsilon {} --loop-radius {} --edges {}`: the loose \
          trefoil (data/validation/loose_trefoil.ron, data/rods/loose.ron with h = ε²R₀)",
-        join(request.coefficients),
-        join(request.epsilons),
+        comma_list(request.coefficients),
+        comma_list(request.epsilons),
         request.loop_radius_cm,
         request.edges,
     );
     Ok(())
-}
-
-fn join(values: &[f64]) -> String {
-    values.iter().map(f64::to_string).collect::<Vec<_>>().join(",")
 }
 
 /// The Markdown table: a row per run (a run that failed, with why).

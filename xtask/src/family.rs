@@ -192,6 +192,11 @@ pub fn shell_word(text: &str) -> String {
     if text.contains([' ', '(', ')', '[', ']']) { format!("\"{text}\"") } else { text.into() }
 }
 
+/// `values` as a command line's comma-separated list (`0.3,0.6,0.9`).
+pub fn comma_list<T: ToString>(values: &[T]) -> String {
+    values.iter().map(T::to_string).collect::<Vec<_>>().join(",")
+}
+
 /// `work` applied to each of `items` by `jobs` threads at a time; the results in the items'
 /// order.
 pub fn in_parallel<T: Sync, R: Send>(

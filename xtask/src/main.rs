@@ -15,6 +15,8 @@
 //!   (`overhand.rs`).
 //! - `lock [--mu μ,…] [--bodies N] [--time-step H] [--edges E]`: the loose trefoil with
 //!   friction tightened and let go, Audoly et al.'s loosening lock (`lock.rs`).
+//! - `audoly [--mu μ,…] [--epsilon ε,…] [--loop-radius R₀]`: the loose trefoil with friction
+//!   on Audoly et al.'s two branches, the rod's radius set by ε (`audoly.rs`).
 
 mod audoly;
 mod family;

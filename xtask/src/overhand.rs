@@ -12,7 +12,7 @@ use std::path::Path;
 use hagfish_scenario::Override;
 use hagfish_validation::overhand_pull::{self, PullEnd, PulledKnot, relative_spread, spread_along};
 
-use crate::family::{in_parallel, shell_word};
+use crate::family::{comma_list, in_parallel, shell_word};
 
 /// The smoothed curve's spacing (cm of end-to-end distance).
 const SPACING_CM: f64 = 0.25;
@@ -72,19 +72,15 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
     println!(
         "`cargo xtask overhand --turns {} --speeds {} --time-step {} --stop-force {} \
          --drop-from {} --spread-from {}{}`; data/validation/overhand_pull.ron (μ = 0.1 unless set)",
-        join(request.turns),
-        join(request.speeds),
+        comma_list(request.turns),
+        comma_list(request.speeds),
         request.time_step,
         request.stop_force,
         request.drop_from,
-        join(request.spread_from),
+        comma_list(request.spread_from),
         request.sets.iter().map(|s| format!(" --set {}", shell_word(s))).collect::<String>(),
     );
     Ok(())
-}
-
-fn join<T: ToString>(values: &[T]) -> String {
-    values.iter().map(T::to_string).collect::<Vec<_>>().join(",")
 }
 
 /// A row per run, its largest fall of the force counted from `drop_from` dyn.

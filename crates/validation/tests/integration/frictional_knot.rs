@@ -7,10 +7,10 @@ use hagfish_sim::rows::Friction;
 use hagfish_validation::frictional_knot::{
     Branch, FrictionalKnot, SIGMA, TIGHT_PULL_DYN, release, run,
 };
+use hagfish_validation::loose_knot::Refinement;
 
 /// Opened onto the pull from the shipped study's tight knot.
 const LOOSENING: Branch = Branch::Loosening { from_dyn: TIGHT_PULL_DYN };
-use hagfish_validation::loose_knot::Refinement;
 
 fn root() -> &'static Path {
     Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
