@@ -2,7 +2,8 @@
 //! of ε (`hagfish_validation::frictional_knot::run`; docs/validation.md, "Loose trefoil with
 //! friction"). F h²/B = ε⁴/2 ± μσε³ with ε = √(h/R): for each μ and target ε the rod's
 //! radius is set to h = ε²R₀ (the loop radius R₀ kept, so that every loop has as many bodies),
-//! and the knot settled on each branch at the pull the law gives there with σ = 0.492. Prints,
+//! and the knot settled on each branch at the pull the law gives there with σ = 0.492 (the
+//! tightening pull ramped slowly enough to close the loop quasi-statically). Prints,
 //! as Markdown, a row per run with the ε and the friction number (F h²/B − ε⁴/2)/(μσε³) it
 //! settled at: Audoly's ±1.
 
@@ -28,6 +29,8 @@ pub struct Request<'a> {
     pub epsilons: &'a [f64],
     /// The loop radius R₀ the rod's radius is chosen for (cm).
     pub loop_radius_cm: f64,
+    /// The tightening pull's ramp (s), within the final pull's 120 s.
+    pub ramp_s: f64,
     /// Edges of the friction pyramid.
     pub edges: usize,
     /// Runs at a time.
@@ -53,10 +56,11 @@ fn cases(request: &Request<'_>, bending_stiffness_dyn_cm2: f64) -> Vec<Case> {
             let h = target_epsilon * target_epsilon * request.loop_radius_cm;
             let rod = (h, bending_stiffness_dyn_cm2);
             let pull = |epsilon, branch| audoly_pull(rod, epsilon, coefficient, branch);
-            let from_dyn = pull(LOOSENING_START * target_epsilon, Branch::Tightening);
+            let tightening = Branch::Tightening { ramp_s: request.ramp_s };
+            let from_dyn = pull(LOOSENING_START * target_epsilon, tightening);
             let loosening = Branch::Loosening { from_dyn };
             let (tight, loose) =
-                (pull(target_epsilon, Branch::Tightening), pull(target_epsilon, loosening));
+                (pull(target_epsilon, tightening), pull(target_epsilon, loosening));
             let mut case = |branch, tension_dyn| {
                 cases.push(Case {
                     coefficient,
@@ -66,7 +70,7 @@ fn cases(request: &Request<'_>, bending_stiffness_dyn_cm2: f64) -> Vec<Case> {
                     tension_dyn,
                 })
             };
-            case(Branch::Tightening, tight);
+            case(tightening, tight);
             if loose > 0.0 {
                 case(loosening, loose);
             }
@@ -86,11 +90,12 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
     })?;
     println!("{}", table(&cases, &knots));
     println!(
-        "`cargo xtask audoly --mu {} --epsilon {} --loop-radius {} --edges {}`: the loose \
-         trefoil (data/validation/loose_trefoil.ron, data/rods/loose.ron with h = ε²R₀)",
+        "`cargo xtask audoly --mu {} --epsilon {} --loop-radius {} --ramp {} --edges {}`: the \
+         loose trefoil (data/validation/loose_trefoil.ron, data/rods/loose.ron with h = ε²R₀)",
         comma_list(request.coefficients),
         comma_list(request.epsilons),
         request.loop_radius_cm,
+        request.ramp_s,
         request.edges,
     );
     Ok(())
@@ -104,7 +109,7 @@ fn table(cases: &[Case], knots: &[Result<FrictionalKnot, ValidationError>]) -> S
     );
     for (case, knot) in cases.iter().zip(knots) {
         let branch = match case.branch {
-            Branch::Tightening => "tightening".to_owned(),
+            Branch::Tightening { ramp_s } => format!("tightening, ramped over {ramp_s} s"),
             Branch::Loosening { from_dyn } => format!("loosening from {from_dyn:.1} dyn"),
         };
         let settled = match knot {
@@ -137,13 +142,14 @@ mod tests {
             coefficients: &[0.2],
             epsilons: &[0.1, 0.3],
             loop_radius_cm: 2.0,
+            ramp_s: 60.0,
             edges: 8,
             jobs: 1,
         };
         let cases = cases(&request, 100.0);
         let branches: Vec<_> = cases.iter().map(|c| (c.target_epsilon, c.branch)).collect();
         assert_eq!(branches.len(), 3, "{branches:?}");
-        assert!(matches!(branches[0], (0.1, Branch::Tightening)));
+        assert!(matches!(branches[0], (0.1, Branch::Tightening { .. })));
         assert!(matches!(branches[2], (0.3, Branch::Loosening { .. })));
         assert!((cases[1].rod_radius_cm - 0.18).abs() < 1e-12);
     }

@@ -41,6 +41,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 use hagfish_modes::KindSelection;
 use hagfish_sim::DynamicsBackend;
+use hagfish_validation::frictional_knot::FINAL_PULL_S;
 use hagfish_validation::loose_knot::Refinement;
 
 /// Command line of `cargo xtask`.
@@ -158,6 +159,10 @@ enum Task {
         /// The loop radius R₀ (cm) each rod's radius is chosen for.
         #[arg(long, default_value_t = 2.0)]
         loop_radius: f64,
+        /// The tightening pull's ramp (s), within the final pull's 120 s: the shipped study's
+        /// 1 s closes the loop dynamically; from 20 s on the number at ε ≈ 0.1 no longer moves.
+        #[arg(long, default_value_t = 60.0)]
+        ramp: f64,
         /// Edges of the friction pyramid.
         #[arg(long, default_value_t = 8)]
         edges: usize,
@@ -281,7 +286,7 @@ fn main() -> ExitCode {
             let request = lock::Request { coefficients: &coefficients, edges, refinement, jobs };
             lock::run(&workspace_root(), &request).map(|()| true)
         }
-        Task::Audoly { coefficients, epsilons, loop_radius, edges, jobs } => {
+        Task::Audoly { coefficients, epsilons, loop_radius, ramp, edges, jobs } => {
             let positive = |x: &f64| x.is_finite() && *x > 0.0;
             if let Some(x) = coefficients.iter().chain(&epsilons).find(|x| !positive(x)) {
                 eprintln!("error: --mu and --epsilon must be positive, not {x}");
@@ -291,10 +296,17 @@ fn main() -> ExitCode {
                 eprintln!("error: --loop-radius {loop_radius}: a length in cm, positive");
                 return ExitCode::from(2);
             }
+            if !(ramp.is_finite() && (0.0..FINAL_PULL_S).contains(&ramp)) {
+                eprintln!(
+                    "error: --ramp {ramp}: seconds, from 0 to below the final pull's {FINAL_PULL_S}"
+                );
+                return ExitCode::from(2);
+            }
             let request = audoly::Request {
                 coefficients: &coefficients,
                 epsilons: &epsilons,
                 loop_radius_cm: loop_radius,
+                ramp_s: ramp,
                 edges,
                 jobs,
             };

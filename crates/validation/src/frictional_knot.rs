@@ -4,9 +4,11 @@
 //! branch (the pull must overcome friction to close the loop) and − on the loosening one.
 //!
 //! Set-up: the shipped loose trefoil (`data/validation/loose_trefoil.ron`) with friction.
-//! - Tightening: pulled at T, ramped over 1 s from the torus start. While the pull ramps
-//!   the loop opens past the branch; it then closes until friction holds it (approached
-//!   from the loose side: on the tightening branch).
+//! - Tightening: pulled at T, ramped from the torus start (over [`TIGHTENING_RAMP_S`] in the
+//!   shipped study: while the pull ramps the loop opens past the branch; it then closes until
+//!   friction holds it, approached from the loose side). How the loop gets there matters: a
+//!   slower ramp closes it quasi-statically onto a larger friction number at ε ≥ 0.1
+//!   (`cargo xtask audoly --ramp`, docs/validation.md).
 //! - Loosening: first pulled tighter (by [`TIGHT_PULL_DYN`] in the shipped study; ramped over
 //!   10 s and held), then at T at once: the loop opens until friction holds it.
 //!
@@ -38,11 +40,22 @@ pub const FINAL_PULL_S: f64 = 120.0;
 /// radius, 0.71 cm, is well inside the loosening branch at the study's pulls.
 pub const TIGHT_PULL_DYN: f64 = 100.0;
 
+/// The shipped study's tightening ramp (s): the pull rises from 0 to T over it, from the
+/// torus start.
+pub const TIGHTENING_RAMP_S: f64 = 1.0;
+
+/// How long the first pull of a loosening run (and of [`release`]) ramps (s).
+pub const LOOSENING_FIRST_RAMP_S: f64 = 10.0;
+
 /// How the knot reached its pull.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Branch {
-    /// Closed onto the pull from a looser loop.
-    Tightening,
+    /// Closed onto the pull from a looser loop: the pull ramped from 0 over `ramp_s` from the
+    /// torus start, then held; the final pull's [`FINAL_PULL_S`] include the ramp.
+    Tightening {
+        /// The ramp (s; [`TIGHTENING_RAMP_S`] in the shipped study).
+        ramp_s: f64,
+    },
     /// Opened onto the pull from a tighter loop: the one a pull of `from_dyn` holds (ramped
     /// over 10 s, held to the scenario's 40 s).
     Loosening {
@@ -90,7 +103,7 @@ fn scenario(
     refinement: Refinement,
 ) -> Result<LoadedScenario, ValidationError> {
     let first_pull = match branch {
-        Branch::Tightening => tension_dyn,
+        Branch::Tightening { .. } => tension_dyn,
         Branch::Loosening { from_dyn } => from_dyn,
     };
     let mut loaded = loose_knot::scenario(root, first_pull, refinement)?;
@@ -105,12 +118,13 @@ fn scenario(
     let mut last = first.clone();
     last.until.seconds = FINAL_PULL_S;
     match branch {
-        Branch::Tightening => {
+        Branch::Tightening { ramp_s } => {
             loaded.scenario.duration_s += FINAL_PULL_S - first.until.seconds;
             *first = last;
+            first.ramp_s = ramp_s;
         }
         Branch::Loosening { .. } => {
-            first.ramp_s = 10.0;
+            first.ramp_s = LOOSENING_FIRST_RAMP_S;
             (last.force_dyn, last.ramp_s) = (tension_dyn, 0.0);
             loaded.scenario.duration_s += FINAL_PULL_S;
             loaded.scenario.phases.push(Phase::Load(last));
@@ -129,7 +143,7 @@ pub fn audoly_pull(
     branch: Branch,
 ) -> f64 {
     let sign = match branch {
-        Branch::Tightening => 1.0,
+        Branch::Tightening { .. } => 1.0,
         Branch::Loosening { .. } => -1.0,
     };
     let number = epsilon.powi(4) / 2.0 + sign * coefficient * SIGMA * epsilon.powi(3);
@@ -196,7 +210,11 @@ pub fn release(
     loaded.scenario.duration_s -= FINAL_PULL_S;
     let let_go = loose_knot::run_loaded(&loaded)?;
     Ok(Release {
-        let_go: FrictionalKnot::of(&let_go, (Branch::Tightening, TIGHT_PULL_DYN), coefficient),
+        let_go: FrictionalKnot::of(
+            &let_go,
+            (Branch::Tightening { ramp_s: LOOSENING_FIRST_RAMP_S }, TIGHT_PULL_DYN),
+            coefficient,
+        ),
         settled: FrictionalKnot::of(&settled, (from_tight, 0.0), coefficient),
     })
 }
@@ -209,7 +227,7 @@ mod tests {
     fn audolys_pull_adds_friction_when_tightening_and_takes_it_off_when_loosening() {
         // ε = 0.2, μ = 0.1, h = 0.04 cm, B = 100: ε⁴/2 = 8·10⁻⁴, μσε³ = 3.936·10⁻⁴, B/h² = 62500.
         let rod = (0.04, 100.0);
-        let tight = audoly_pull(rod, 0.2, 0.1, Branch::Tightening);
+        let tight = audoly_pull(rod, 0.2, 0.1, Branch::Tightening { ramp_s: 1.0 });
         assert!((tight - 62_500.0 * (8e-4 + 3.936e-4)).abs() < 1e-9, "{tight}");
         let loose = audoly_pull(rod, 0.2, 0.1, Branch::Loosening { from_dyn: 0.0 });
         assert!((loose - 62_500.0 * (8e-4 - 3.936e-4)).abs() < 1e-9, "{loose}");
