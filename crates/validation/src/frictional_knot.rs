@@ -32,7 +32,7 @@ pub const SIGMA: f64 = 0.492;
 
 /// How long the final pull is held (s). A loop closing onto the tightening branch at
 /// μ = 0.02 and 20 dyn is still closing after the scenario's 40 s (friction number 1.363,
-/// 1.158 after 120 s and after 240 s); at μ = 0.05 and on the loosening branch 40 s are within
+/// 1.157 after 120 s, 1.158 after 240 s); at μ = 0.05 and on the loosening branch 40 s are within
 /// 1 % of 240 s.
 pub const FINAL_PULL_S: f64 = 120.0;
 
