@@ -57,7 +57,7 @@ pub enum Branch {
         ramp_s: f64,
     },
     /// Opened onto the pull from a tighter loop: the one a pull of `from_dyn` holds (ramped
-    /// over 10 s, held to the scenario's 40 s).
+    /// over [`LOOSENING_FIRST_RAMP_S`], held to the scenario's 40 s).
     Loosening {
         /// The pull that tightened it first (dyn; [`TIGHT_PULL_DYN`] in the shipped study).
         from_dyn: f64,
