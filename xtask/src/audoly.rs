@@ -10,16 +10,11 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use hagfish_sim::rows::Friction;
 use hagfish_validation::ValidationError;
-use hagfish_validation::frictional_knot::{self, Branch, FrictionalKnot, SIGMA, audoly_pull};
-use hagfish_validation::loose_knot::{self, Refinement};
+use hagfish_validation::frictional_knot::{AtEpsilon, Branch, FrictionalKnot, SIGMA};
+use hagfish_validation::loose_knot;
 
 use crate::family::{comma_list, in_parallel};
-
-/// How much tighter (in ε) the loop a loosening run starts from is than its target: the first
-/// pull is the tightening branch's at 1.5 ε.
-const LOOSENING_START: f64 = 1.5;
 
 /// What to run.
 pub struct Request<'a> {
@@ -37,57 +32,28 @@ pub struct Request<'a> {
     pub jobs: usize,
 }
 
-/// One run: μ, the target ε, the branch and its pull.
-#[derive(Clone, Copy, Debug)]
-struct Case {
-    coefficient: f64,
-    target_epsilon: f64,
-    rod_radius_cm: f64,
-    branch: Branch,
-    tension_dyn: f64,
-}
-
-/// Every case of `request`; a loosening branch at or below F = 0 (μ ≥ ε/(2σ): the knot
-/// locks) has no run.
-fn cases(request: &Request<'_>, bending_stiffness_dyn_cm2: f64) -> Vec<Case> {
-    let mut cases = Vec::new();
-    for &coefficient in request.coefficients {
-        for &target_epsilon in request.epsilons {
-            let h = target_epsilon * target_epsilon * request.loop_radius_cm;
-            let rod = (h, bending_stiffness_dyn_cm2);
-            let pull = |epsilon, branch| audoly_pull(rod, epsilon, coefficient, branch);
-            let tightening = Branch::Tightening { ramp_s: request.ramp_s };
-            let from_dyn = pull(LOOSENING_START * target_epsilon, tightening);
-            let loosening = Branch::Loosening { from_dyn };
-            let (tight, loose) =
-                (pull(target_epsilon, tightening), pull(target_epsilon, loosening));
-            let mut case = |branch, tension_dyn| {
-                cases.push(Case {
-                    coefficient,
-                    target_epsilon,
-                    rod_radius_cm: h,
-                    branch,
-                    tension_dyn,
-                })
-            };
-            case(tightening, tight);
-            if loose > 0.0 {
-                case(loosening, loose);
-            }
-        }
-    }
-    cases
+/// Every run of `request`, per μ and ε the tightening one and, unless the knot locks, the
+/// loosening one.
+fn cases(request: &Request<'_>, bending_stiffness_dyn_cm2: f64) -> Vec<AtEpsilon> {
+    let pairs =
+        request.coefficients.iter().flat_map(|&mu| request.epsilons.iter().map(move |&e| (mu, e)));
+    pairs
+        .flat_map(|case| {
+            let (tightening, loosening) = AtEpsilon::both_branches(
+                case,
+                request.loop_radius_cm,
+                bending_stiffness_dyn_cm2,
+                request.ramp_s,
+            );
+            std::iter::once(tightening).chain(loosening)
+        })
+        .collect()
 }
 
 /// Runs every case and prints the table.
 pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
     let cases = cases(request, loose_knot::bending_stiffness(root).map_err(|e| e.to_string())?);
-    let knots = in_parallel(&cases, request.jobs, |case| {
-        let friction = Friction::pyramid(case.coefficient, request.edges);
-        let refinement =
-            Refinement { rod_radius_cm: Some(case.rod_radius_cm), ..Refinement::default() };
-        frictional_knot::run(root, (case.branch, case.tension_dyn), friction, refinement)
-    })?;
+    let knots = in_parallel(&cases, request.jobs, |case| case.run(root, request.edges))?;
     println!("{}", table(&cases, &knots));
     println!(
         "`cargo xtask audoly --mu {} --epsilon {} --loop-radius {} --ramp {} --edges {}`: the \
@@ -102,7 +68,7 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
 }
 
 /// The Markdown table: a row per run (a run that failed, with why).
-fn table(cases: &[Case], knots: &[Result<FrictionalKnot, ValidationError>]) -> String {
+fn table(cases: &[AtEpsilon], knots: &[Result<FrictionalKnot, ValidationError>]) -> String {
     let mut out = String::from(
         "| μ | target ε | h (cm) | branch | F (dyn) | settled: R (cm), ε | friction number | \
          σ' = σ·|number| |\n|---|---|---|---|---|---|---|---|\n",

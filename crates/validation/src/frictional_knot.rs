@@ -150,6 +150,63 @@ pub fn audoly_pull(
     bending_stiffness_dyn_cm2 / (rod_radius_cm * rod_radius_cm) * number
 }
 
+/// How much tighter (in ε) the loop a loosening [`AtEpsilon`] run starts from is than its
+/// target: its first pull is the tightening branch's at 1.5 ε.
+pub const LOOSENING_START: f64 = 1.5;
+
+/// A run of Audoly et al.'s law at a target ε (`cargo xtask audoly`): the loose trefoil with
+/// the rod's radius set to h = ε²R₀ for a loop radius R₀ (its B kept, so that every loop has as
+/// many bodies), pulled at the law's F for ε on its branch with σ = 0.492.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AtEpsilon {
+    /// μ.
+    pub coefficient: f64,
+    /// The target ε.
+    pub target_epsilon: f64,
+    /// h = ε²R₀ (cm).
+    pub rod_radius_cm: f64,
+    /// The branch and how the loop reaches it.
+    pub branch: Branch,
+    /// The law's F on that branch (dyn).
+    pub tension_dyn: f64,
+}
+
+impl AtEpsilon {
+    /// The tightening run at `target_epsilon` (ramped over `ramp_s`) and the loosening one
+    /// (from the tightening pull at [`LOOSENING_START`] ε), `None` where the loosening branch
+    /// is at or below F = 0 (μ ≥ ε/(2σ): the knot locks); `bending_stiffness_dyn_cm2` is the
+    /// rod's B ([`loose_knot::bending_stiffness`]).
+    pub fn both_branches(
+        (coefficient, target_epsilon): (f64, f64),
+        loop_radius_cm: f64,
+        bending_stiffness_dyn_cm2: f64,
+        ramp_s: f64,
+    ) -> (Self, Option<Self>) {
+        let rod_radius_cm = target_epsilon * target_epsilon * loop_radius_cm;
+        let rod = (rod_radius_cm, bending_stiffness_dyn_cm2);
+        let pull = |epsilon, branch| audoly_pull(rod, epsilon, coefficient, branch);
+        let at = |branch| Self {
+            coefficient,
+            target_epsilon,
+            rod_radius_cm,
+            branch,
+            tension_dyn: pull(target_epsilon, branch),
+        };
+        let tightening = Branch::Tightening { ramp_s };
+        let from_dyn = pull(LOOSENING_START * target_epsilon, tightening);
+        let loosening = at(Branch::Loosening { from_dyn });
+        (at(tightening), Some(loosening).filter(|run| run.tension_dyn > 0.0))
+    }
+
+    /// Settles the run with a friction pyramid of `edges` edges and measures it.
+    pub fn run(&self, root: &Path, edges: usize) -> Result<FrictionalKnot, ValidationError> {
+        let friction = Friction::pyramid(self.coefficient, edges);
+        let refinement =
+            Refinement { rod_radius_cm: Some(self.rod_radius_cm), ..Refinement::default() };
+        run(root, (self.branch, self.tension_dyn), friction, refinement)
+    }
+}
+
 impl FrictionalKnot {
     /// The measures of a settled `knot` that reached `tension_dyn` on `branch` with μ =
     /// `coefficient`.

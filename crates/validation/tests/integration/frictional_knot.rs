@@ -5,7 +5,7 @@ use std::path::Path;
 
 use hagfish_sim::rows::Friction;
 use hagfish_validation::frictional_knot::{
-    Branch, FrictionalKnot, SIGMA, TIGHT_PULL_DYN, TIGHTENING_RAMP_S, audoly_pull, release, run,
+    AtEpsilon, Branch, FrictionalKnot, SIGMA, TIGHT_PULL_DYN, TIGHTENING_RAMP_S, release, run,
 };
 use hagfish_validation::loose_knot::{self, Refinement};
 
@@ -142,17 +142,12 @@ fn a_knot_let_go_locks_where_mu_reaches_its_epsilon_over_two_sigma() {
     assert!((0.11..0.125).contains(&lock), "the lock by σ' = {sigma}: μ = {lock}");
 }
 
-/// `cargo xtask audoly`'s run at μ = 0.1: the rod's radius h = ε²R₀ (its B kept), pulled at
-/// Audoly et al.'s F for `epsilon` on the branch `branch` makes of the tightening pull at
-/// 1.5 ε (a loosening run's first pull), settled.
-fn at_epsilon(epsilon: f64, loop_radius_cm: f64, branch: fn(f64) -> Branch) -> FrictionalKnot {
-    let rod_radius_cm = epsilon * epsilon * loop_radius_cm;
-    let rod = (rod_radius_cm, loose_knot::bending_stiffness(root()).expect("the rod file"));
-    let from_dyn = audoly_pull(rod, 1.5 * epsilon, 0.1, TIGHTENING);
-    let branch = branch(from_dyn);
-    let tension = audoly_pull(rod, epsilon, 0.1, branch);
-    let refinement = Refinement { rod_radius_cm: Some(rod_radius_cm), ..Refinement::default() };
-    run(root(), (branch, tension), Friction::pyramid(0.1, 8), refinement).expect("settles")
+/// `cargo xtask audoly`'s runs at μ = 0.1 and `epsilon` with a loop of `loop_radius_cm`, the
+/// tightening one ramped over 60 s: (tightening, loosening).
+fn at_epsilon(epsilon: f64, loop_radius_cm: f64) -> (AtEpsilon, AtEpsilon) {
+    let b = loose_knot::bending_stiffness(root()).expect("the rod file");
+    let (tightening, loosening) = AtEpsilon::both_branches((0.1, epsilon), loop_radius_cm, b, 60.0);
+    (tightening, loosening.expect("not locked: μ < ε/(2σ)"))
 }
 
 /// The loosening number grows with ε (docs/validation.md, "Loose trefoil with friction"):
@@ -160,11 +155,10 @@ fn at_epsilon(epsilon: f64, loop_radius_cm: f64, branch: fn(f64) -> Branch) -> F
 /// where Audoly's law, a leading order in ε, has −1 at both.
 #[test]
 fn the_loosening_friction_number_grows_with_epsilon() {
-    let loosening = |from_dyn| Branch::Loosening { from_dyn };
     let [loose, tight] = std::thread::scope(|scope| {
         [0.1, 0.2]
-            .map(|epsilon| scope.spawn(move || at_epsilon(epsilon, 2.0, loosening)))
-            .map(|run| run.join().expect("a run"))
+            .map(|epsilon| scope.spawn(move || at_epsilon(epsilon, 2.0).1.run(root(), 8)))
+            .map(|run| run.join().expect("a run").expect("settles"))
     });
     println!("{loose:?}\n{tight:?}");
     assert!(loose.friction_number < 0.0 && tight.friction_number < 0.0, "{loose:?} {tight:?}");
@@ -177,11 +171,10 @@ fn the_loosening_friction_number_grows_with_epsilon() {
 /// +1.674), where the 1 s ramp's dynamic closing gives +1.273 and +1.208.
 #[test]
 fn ramped_slowly_the_tightening_number_is_the_same_at_two_loop_radii() {
-    let slowly = |_| Branch::Tightening { ramp_s: 60.0 };
     let [wide, narrow] = std::thread::scope(|scope| {
         [2.0, 1.5]
-            .map(|loop_radius| scope.spawn(move || at_epsilon(0.2, loop_radius, slowly)))
-            .map(|run| run.join().expect("a run"))
+            .map(|loop_radius| scope.spawn(move || at_epsilon(0.2, loop_radius).0.run(root(), 8)))
+            .map(|run| run.join().expect("a run").expect("settles"))
     });
     println!("{wide:?}\n{narrow:?}");
     assert!(wide.friction_number > 1.0, "{wide:?}");
