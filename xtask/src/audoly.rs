@@ -5,13 +5,17 @@
 //! and the knot settled on each branch at the pull the law gives there with σ = 0.492 (the
 //! tightening pull ramped slowly enough to close the loop quasi-statically). Prints,
 //! as Markdown, a row per run with the ε and the friction number (F h²/B − ε⁴/2)/(μσε³) it
-//! settled at: Audoly's ±1.
+//! settled at: Audoly's ±1. With `--control`, each run also gets its frictionless control
+//! (the same rod at F₀ = B/(2R²), R its loop radius) and the friction number against it,
+//! (F h²/B − cε⁴)/(μσε³) with the control's c = F₀R₀²/B for Audoly's ½: friction's own share.
 
 use std::fmt::Write as _;
 use std::path::Path;
 
 use hagfish_validation::ValidationError;
-use hagfish_validation::frictional_knot::{AtEpsilon, Branch, FrictionalKnot, SIGMA};
+use hagfish_validation::frictional_knot::{
+    AtEpsilon, Branch, FrictionalKnot, FrictionlessControl, SIGMA,
+};
 use hagfish_validation::loose_knot;
 
 use crate::family::{comma_list, in_parallel};
@@ -28,9 +32,14 @@ pub struct Request<'a> {
     pub ramp_s: f64,
     /// Edges of the friction pyramid.
     pub edges: usize,
+    /// Whether each run gets its frictionless control.
+    pub control: bool,
     /// Runs at a time.
     pub jobs: usize,
 }
+
+/// A run's frictionless control: `None` where the run itself failed.
+type Control = Option<Result<FrictionlessControl, ValidationError>>;
 
 /// Every run of `request`, per μ and ε the tightening one and, unless the knot locks, the
 /// loosening one.
@@ -54,26 +63,47 @@ fn cases(request: &Request<'_>, bending_stiffness_dyn_cm2: f64) -> Vec<AtEpsilon
 pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
     let cases = cases(request, loose_knot::bending_stiffness(root).map_err(|e| e.to_string())?);
     let knots = in_parallel(&cases, request.jobs, |case| case.run(root, request.edges))?;
-    println!("{}", table(&cases, &knots));
+    let controls = if request.control {
+        let runs: Vec<_> = cases.iter().zip(&knots).collect();
+        Some(in_parallel(&runs, request.jobs, |(case, knot)| -> Control {
+            let knot = knot.as_ref().ok()?;
+            Some(knot.frictionless_control(root, case.refinement()))
+        })?)
+    } else {
+        None
+    };
+    println!("{}", table(&cases, &knots, controls.as_deref()));
     println!(
-        "`cargo xtask audoly --mu {} --epsilon {} --loop-radius {} --ramp {} --edges {}`: the \
-         loose trefoil (data/validation/loose_trefoil.ron, data/rods/loose.ron with h = ε²R₀)",
+        "`cargo xtask audoly --mu {} --epsilon {} --loop-radius {} --ramp {} --edges {}{}`: \
+         the loose trefoil (data/validation/loose_trefoil.ron, data/rods/loose.ron with h = \
+         ε²R₀)",
         comma_list(request.coefficients),
         comma_list(request.epsilons),
         request.loop_radius_cm,
         request.ramp_s,
         request.edges,
+        if request.control { " --control" } else { "" },
     );
     Ok(())
 }
 
-/// The Markdown table: a row per run (a run that failed, with why).
-fn table(cases: &[AtEpsilon], knots: &[Result<FrictionalKnot, ValidationError>]) -> String {
+/// The Markdown table: a row per run (a run that failed, with why), and with `controls` each
+/// run's frictionless control and its friction number against it.
+fn table(
+    cases: &[AtEpsilon],
+    knots: &[Result<FrictionalKnot, ValidationError>],
+    controls: Option<&[Control]>,
+) -> String {
     let mut out = String::from(
         "| μ | target ε | h (cm) | branch | F (dyn) | settled: R (cm), ε | friction number | \
-         σ' = σ·|number| |\n|---|---|---|---|---|---|---|---|\n",
+         σ' = σ·abs(number) |",
     );
-    for (case, knot) in cases.iter().zip(knots) {
+    out.push_str(if controls.is_some() {
+        " control: R₀ (cm), F₀R₀²/B | number against it |\n|---|---|---|---|---|---|---|---|---|---|\n"
+    } else {
+        "\n|---|---|---|---|---|---|---|---|\n"
+    });
+    for (k, (case, knot)) in cases.iter().zip(knots).enumerate() {
         let branch = match case.branch {
             Branch::Tightening { ramp_s } => format!("tightening, ramped over {ramp_s} s"),
             Branch::Loosening { from_dyn } => format!("loosening from {from_dyn:.1} dyn"),
@@ -88,9 +118,20 @@ fn table(cases: &[AtEpsilon], knots: &[Result<FrictionalKnot, ValidationError>])
             ),
             Err(error) => format!("failed: {error} | — | —"),
         };
+        let control = match (controls.map(|c| &c[k]), knot) {
+            (None, _) => String::new(),
+            (Some(Some(Ok(control))), Ok(knot)) => format!(
+                " {:.4}, {:.4} | {:+.3} |",
+                control.loop_radius_cm,
+                control.tension_number,
+                knot.controlled_friction_number(control)
+            ),
+            (Some(Some(Err(error))), _) => format!(" failed: {error} | — |"),
+            (Some(_), _) => " — | — |".to_string(),
+        };
         let _ = writeln!(
             out,
-            "| {} | {} | {:.4} | {branch} | {:.2} | {settled} |",
+            "| {} | {} | {:.4} | {branch} | {:.2} | {settled} |{control}",
             case.coefficient, case.target_epsilon, case.rod_radius_cm, case.tension_dyn,
         );
     }
@@ -110,6 +151,7 @@ mod tests {
             loop_radius_cm: 2.0,
             ramp_s: 60.0,
             edges: 8,
+            control: false,
             jobs: 1,
         };
         let cases = cases(&request, 100.0);
@@ -118,5 +160,39 @@ mod tests {
         assert!(matches!(branches[0], (0.1, Branch::Tightening { .. })));
         assert!(matches!(branches[2], (0.3, Branch::Loosening { .. })));
         assert!((cases[1].rod_radius_cm - 0.18).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_control_columns_give_the_number_against_the_control() {
+        let case = AtEpsilon {
+            coefficient: 0.1,
+            target_epsilon: 0.2,
+            rod_radius_cm: 0.08,
+            branch: Branch::Tightening { ramp_s: 60.0 },
+            tension_dyn: 20.0,
+        };
+        let knot = FrictionalKnot {
+            branch: case.branch,
+            tension_dyn: 20.0,
+            coefficient: 0.1,
+            loop_radius_cm: 2.0,
+            epsilon: 0.2,
+            friction_number: 1.0,
+            rod_radius_cm: 0.08,
+            bending_stiffness_dyn_cm2: 100.0,
+        };
+        let control =
+            FrictionlessControl { tension_dyn: 12.5, loop_radius_cm: 2.01, tension_number: 0.55 };
+        let against = knot.controlled_friction_number(&control);
+        let printed = table(&[case], &[Ok(knot)], Some(&[Some(Ok(control))]));
+        let row = printed.lines().nth(2).expect("a row");
+        assert!(row.ends_with(&format!("| 2.0100, 0.5500 | {against:+.3} |")), "{row}");
+        assert_eq!(printed.lines().next().map(|h| h.matches('|').count()), Some(11));
+        let plain = table(
+            &[case],
+            &[Err(ValidationError::Scenario { path: "x".into(), reason: "y".into() })],
+            None,
+        );
+        assert_eq!(plain.lines().next().map(|h| h.matches('|').count()), Some(9));
     }
 }

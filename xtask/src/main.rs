@@ -15,7 +15,7 @@
 //!   (`overhand.rs`).
 //! - `lock [--mu μ,…] [--bodies N] [--time-step H] [--edges E]`: the loose trefoil with
 //!   friction tightened and let go, Audoly et al.'s loosening lock (`lock.rs`).
-//! - `audoly [--mu μ,…] [--epsilon ε,…] [--loop-radius R₀]`: the loose trefoil with friction
+//! - `audoly [--mu μ,…] [--epsilon ε,…] [--loop-radius R₀] [--control]`: the loose trefoil with friction
 //!   on Audoly et al.'s two branches, the rod's radius set by ε (`audoly.rs`).
 
 mod audoly;
@@ -163,6 +163,10 @@ enum Task {
         /// 1 s closes the loop dynamically; from 20 s on the number at ε ≈ 0.1 no longer moves.
         #[arg(long, default_value_t = 60.0)]
         ramp: f64,
+        /// Also settle each run's frictionless control (the same rod at F₀ = B/(2R²), R the
+        /// run's loop radius) and print the friction number against it.
+        #[arg(long)]
+        control: bool,
         /// Edges of the friction pyramid.
         #[arg(long, default_value_t = 8)]
         edges: usize,
@@ -286,7 +290,7 @@ fn main() -> ExitCode {
             let request = lock::Request { coefficients: &coefficients, edges, refinement, jobs };
             lock::run(&workspace_root(), &request).map(|()| true)
         }
-        Task::Audoly { coefficients, epsilons, loop_radius, ramp, edges, jobs } => {
+        Task::Audoly { coefficients, epsilons, loop_radius, ramp, control, edges, jobs } => {
             let positive = |x: &f64| x.is_finite() && *x > 0.0;
             if let Some(x) = coefficients.iter().chain(&epsilons).find(|x| !positive(x)) {
                 eprintln!("error: --mu and --epsilon must be positive, not {x}");
@@ -308,6 +312,7 @@ fn main() -> ExitCode {
                 loop_radius_cm: loop_radius,
                 ramp_s: ramp,
                 edges,
+                control,
                 jobs,
             };
             audoly::run(&workspace_root(), &request).map(|()| true)

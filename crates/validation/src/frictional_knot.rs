@@ -79,6 +79,26 @@ pub struct FrictionalKnot {
     pub epsilon: f64,
     /// (F h²/B − ε⁴/2) / (μσε³): Audoly's ±1.
     pub friction_number: f64,
+    /// The rod's radius h (cm).
+    pub rod_radius_cm: f64,
+    /// The rod's bending stiffness B (dyn·cm²).
+    pub bending_stiffness_dyn_cm2: f64,
+}
+
+/// The frictionless control of a frictional knot: the same rod without friction, pulled at
+/// F₀ = B/(2R²), the pull Audoly et al.'s leading term gives for the frictional knot's loop
+/// radius R, ramped over [`TIGHTENING_RAMP_S`] and held [`FINAL_PULL_S`] as the frictional
+/// runs are (the frictionless check's 40 s do not settle the thick rods of ε ≥ 0.2: at
+/// h = 0.08 cm a loop of 2.24 cm was 2.42 cm at 40 s). Its c = F₀R₀²/B (R₀ its own loop radius, ≈ R) is the model's coefficient of ε⁴ where the
+/// law has ½: what the pull would be at that loop without friction.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FrictionlessControl {
+    /// The pull F₀ (dyn).
+    pub tension_dyn: f64,
+    /// The loop radius R₀ it settles at (cm).
+    pub loop_radius_cm: f64,
+    /// c = F₀R₀²/B (Audoly's ½).
+    pub tension_number: f64,
 }
 
 /// Settles the loose trefoil (changed by `refinement`) with `friction` on `branch` at the
@@ -89,17 +109,17 @@ pub fn run(
     friction: Friction,
     refinement: Refinement,
 ) -> Result<FrictionalKnot, ValidationError> {
-    let loaded = scenario(root, (branch, tension_dyn), friction, refinement)?;
+    let loaded = scenario(root, (branch, tension_dyn), Some(friction), refinement)?;
     let knot = loose_knot::run_loaded(&loaded)?;
     Ok(FrictionalKnot::of(&knot, (branch, tension_dyn), friction.coefficient))
 }
 
-/// The loose trefoil with `friction`, set up to settle on `branch` at the final pull
-/// `tension_dyn` (the module's set-up).
+/// The loose trefoil with `friction` (`None`: frictionless), set up to settle on `branch` at
+/// the final pull `tension_dyn` (the module's set-up).
 fn scenario(
     root: &Path,
     (branch, tension_dyn): (Branch, f64),
-    friction: Friction,
+    friction: Option<Friction>,
     refinement: Refinement,
 ) -> Result<LoadedScenario, ValidationError> {
     let first_pull = match branch {
@@ -107,7 +127,7 @@ fn scenario(
         Branch::Loosening { from_dyn } => from_dyn,
     };
     let mut loaded = loose_knot::scenario(root, first_pull, refinement)?;
-    loaded.scenario.friction = Some(friction);
+    loaded.scenario.friction = friction;
     let Some(Phase::Load(first)) = loaded.scenario.phases.first_mut() else {
         return Err(ValidationError::Scenario {
             path: loaded.path.clone(),
@@ -201,9 +221,12 @@ impl AtEpsilon {
     /// Settles the run with a friction pyramid of `edges` edges and measures it.
     pub fn run(&self, root: &Path, edges: usize) -> Result<FrictionalKnot, ValidationError> {
         let friction = Friction::pyramid(self.coefficient, edges);
-        let refinement =
-            Refinement { rod_radius_cm: Some(self.rod_radius_cm), ..Refinement::default() };
-        run(root, (self.branch, self.tension_dyn), friction, refinement)
+        run(root, (self.branch, self.tension_dyn), friction, self.refinement())
+    }
+
+    /// The rod of the run: the loose trefoil's with h = ε²R₀.
+    pub fn refinement(&self) -> Refinement {
+        Refinement { rod_radius_cm: Some(self.rod_radius_cm), ..Refinement::default() }
     }
 }
 
@@ -213,16 +236,53 @@ impl FrictionalKnot {
     fn of(knot: &LooseKnot, (branch, tension_dyn): (Branch, f64), coefficient: f64) -> Self {
         let (h, b) = (knot.rod_radius_cm, knot.bending_stiffness_dyn_cm2);
         let r = knot.loop_radius_cm();
-        let epsilon = (h / r).sqrt();
-        let term = tension_dyn * h * h / b - epsilon.powi(4) / 2.0;
-        FrictionalKnot {
+        let mut out = FrictionalKnot {
             branch,
             tension_dyn,
             coefficient,
             loop_radius_cm: r,
-            epsilon,
-            friction_number: term / (coefficient * SIGMA * epsilon.powi(3)),
-        }
+            epsilon: (h / r).sqrt(),
+            friction_number: 0.0,
+            rod_radius_cm: h,
+            bending_stiffness_dyn_cm2: b,
+        };
+        out.friction_number = out.friction_number_against(0.5);
+        out
+    }
+
+    /// (F h²/B − c ε⁴)/(μσε³): the friction number with the leading term's ½ replaced by `c`.
+    fn friction_number_against(&self, c: f64) -> f64 {
+        let (h, b, epsilon) = (self.rod_radius_cm, self.bending_stiffness_dyn_cm2, self.epsilon);
+        let term = self.tension_dyn * h * h / b - c * epsilon.powi(4);
+        term / (self.coefficient * SIGMA * epsilon.powi(3))
+    }
+
+    /// The friction number against the frictionless `control` (its c for Audoly's ½): the
+    /// share of the pull that friction holds, with whatever the model's frictionless loop
+    /// differs from the law by (its finite ε, its chain) taken out.
+    pub fn controlled_friction_number(&self, control: &FrictionlessControl) -> f64 {
+        self.friction_number_against(control.tension_number)
+    }
+
+    /// Settles this knot's [`FrictionlessControl`] on the rod `refinement` gives (the one
+    /// this knot was settled with).
+    ///
+    /// # Errors
+    /// Those of loading and settling the loose trefoil (`loose_knot.rs`).
+    pub fn frictionless_control(
+        &self,
+        root: &Path,
+        refinement: Refinement,
+    ) -> Result<FrictionlessControl, ValidationError> {
+        let pull = self.bending_stiffness_dyn_cm2 / (2.0 * self.loop_radius_cm.powi(2));
+        let tightening = Branch::Tightening { ramp_s: TIGHTENING_RAMP_S };
+        let knot = loose_knot::run_loaded(&scenario(root, (tightening, pull), None, refinement)?)?;
+        let radius = knot.loop_radius_cm();
+        Ok(FrictionlessControl {
+            tension_dyn: pull,
+            loop_radius_cm: radius,
+            tension_number: knot.tension_number(radius),
+        })
     }
 }
 
@@ -260,7 +320,7 @@ pub fn release(
 ) -> Result<Release, ValidationError> {
     let coefficient = friction.coefficient;
     let from_tight = Branch::Loosening { from_dyn: TIGHT_PULL_DYN };
-    let mut loaded = scenario(root, (from_tight, 0.0), friction, refinement)?;
+    let mut loaded = scenario(root, (from_tight, 0.0), Some(friction), refinement)?;
     let settled = loose_knot::run_loaded(&loaded)?;
     // The same run up to the moment it lets go (the same steps, bit for bit).
     loaded.scenario.phases.pop();
@@ -292,5 +352,28 @@ mod tests {
         let at_lock =
             audoly_pull(rod, 0.2, 0.2 / (2.0 * SIGMA), Branch::Loosening { from_dyn: 0.0 });
         assert!(at_lock.abs() < 1e-12, "{at_lock}");
+    }
+
+    #[test]
+    fn a_control_at_audolys_half_leaves_the_friction_number_as_it_is() {
+        // h = 0.08, B = 100, R = 2 (ε = 0.2), μ = 0.1, F = 20: F h²/B = 1.28·10⁻³.
+        let knot = FrictionalKnot {
+            branch: Branch::Tightening { ramp_s: 1.0 },
+            tension_dyn: 20.0,
+            coefficient: 0.1,
+            loop_radius_cm: 2.0,
+            epsilon: 0.2,
+            friction_number: 0.0,
+            rod_radius_cm: 0.08,
+            bending_stiffness_dyn_cm2: 100.0,
+        };
+        let control =
+            |c| FrictionlessControl { tension_dyn: 12.5, loop_radius_cm: 2.0, tension_number: c };
+        let plain = (1.28e-3 - 8e-4) / (0.1 * SIGMA * 8e-3);
+        assert!((knot.controlled_friction_number(&control(0.5)) - plain).abs() < 1e-12);
+        // A frictionless loop 10 % stiffer than the law takes 0.1 ε⁴/2 off the friction's share.
+        let stiffer = (1.28e-3 - 8.8e-4) / (0.1 * SIGMA * 8e-3);
+        let controlled = knot.controlled_friction_number(&control(0.55));
+        assert!((controlled - stiffer).abs() < 1e-12, "{controlled} {stiffer}");
     }
 }

@@ -180,3 +180,20 @@ fn ramped_slowly_the_tightening_number_is_the_same_at_two_loop_radii() {
     assert!(wide.friction_number > 1.0, "{wide:?}");
     assert!((narrow.friction_number / wide.friction_number - 1.0).abs() < 0.02, "{narrow:?}");
 }
+
+/// The excess of the friction number over Audoly's 1 is friction's own: the frictionless
+/// control (the same rod, h = 0.08 cm, pulled at F₀ = B/(2R²) for the loosening run's loop
+/// R = 1.649 cm) holds the law's ½ (measured F₀R₀²/B = 0.4997), so against it the number
+/// moves by 0.001 (−1.465 → −1.464; docs/validation.md, "Loose trefoil with friction").
+#[test]
+fn against_its_frictionless_control_the_loosening_number_keeps_its_excess() {
+    let run = at_epsilon(0.2, 2.0).1;
+    let knot = run.run(root(), 8).expect("settles");
+    let control = knot.frictionless_control(root(), run.refinement()).expect("settles");
+    let controlled = knot.controlled_friction_number(&control);
+    println!("{knot:?}\n{control:?}\ncontrolled {controlled:+.4}");
+    assert!((control.tension_number - 0.5).abs() < 0.01, "{control:?}");
+    assert!((control.loop_radius_cm / knot.loop_radius_cm - 1.0).abs() < 0.01, "{control:?}");
+    assert!((controlled - knot.friction_number).abs() < 0.02, "{controlled} {knot:?}");
+    assert!(controlled < -1.3, "the excess over Audoly's −1 stays: {controlled}");
+}
