@@ -87,8 +87,9 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
 fn run_table(runs: &[PulledKnot], drop_from: f64) -> String {
     let mut table = String::from(
         "| n | u (cm/s) | knot at start → end | ended | end-to-end (cm) | force (dyn) | largest drop | \
-         largest turn of the loop in 0.1 s | deepest penetration (% h) | steps (retried) | wall (s) | ms/step |\n\
-         |---|---|---|---|---|---|---|---|---|---|---|---|\n",
+         largest turn of the loop in 0.1 s | deepest penetration (% h) | grip off its target (largest, cm) | \
+         steps (retried) | wall (s) | ms/step |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     for run in runs {
         let last = run.samples.last();
@@ -103,9 +104,12 @@ fn run_table(runs: &[PulledKnot], drop_from: f64) -> String {
         let turn = run.largest_loop_turn(LOOP_TURN_WINDOW_S).map_or("—".into(), |turn| {
             format!("{:.1}° at {:.1} cm", turn.angle_rad.to_degrees(), turn.at_cm)
         });
+        let grip = run
+            .largest_grip_error()
+            .map_or("—".into(), |g| format!("{:.1e} at {:.1} cm", g.error_cm, g.at_cm));
         let _ = writeln!(
             table,
-            "| {} | {} | {} → {} | {ended} | {:.2} | {:.1} | {drop} | {turn} | {:.3} | {} ({}) | {:.1} | {:.2} |",
+            "| {} | {} | {} → {} | {ended} | {:.2} | {:.1} | {drop} | {turn} | {:.3} | {grip} | {} ({}) | {:.1} | {:.2} |",
             run.turns,
             run.end_speed_cm_per_s,
             run.knots.0,
@@ -187,16 +191,24 @@ fn curve_spread_table(runs: &[PulledKnot], spread_from: &[f64]) -> String {
 }
 
 /// Each run's samples as `n<N>_u<U>.csv`: time since the pull started, end-to-end distance,
-/// force, and the loop's offset across the pull from its braid (empty where no loop is found).
+/// force, the loop's offset across the pull from its braid (empty where no loop is found) and
+/// the grip's distance from its target.
 fn write_samples(out: &Path, runs: &[PulledKnot]) -> Result<(), String> {
-    const HEADER: [&str; 6] =
-        ["time_s", "end_to_end_cm", "force_dyn", "loop_x_cm", "loop_y_cm", "loop_z_cm"];
+    const HEADER: [&str; 7] = [
+        "time_s",
+        "end_to_end_cm",
+        "force_dyn",
+        "loop_x_cm",
+        "loop_y_cm",
+        "loop_z_cm",
+        "grip_error_cm",
+    ];
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     for run in runs {
         let path = out.join(format!("n{}_u{}.csv", run.turns, run.end_speed_cm_per_s));
         let mut writer =
             csv::Writer::from_path(&path).map_err(|e| format!("{}: {e}", path.display()))?;
-        let mut write = |record: [String; 6]| {
+        let mut write = |record: [String; 7]| {
             writer.write_record(record).map_err(|e| format!("{}: {e}", path.display()))
         };
         write(HEADER.map(String::from))?;
@@ -210,6 +222,7 @@ fn write_samples(out: &Path, runs: &[PulledKnot]) -> Result<(), String> {
                 x,
                 y,
                 z,
+                s.grip_error_cm.to_string(),
             ])?;
         }
         writer.flush().map_err(|e| format!("{}: {e}", path.display()))?;

@@ -42,6 +42,20 @@ pub struct PullSample {
     pub force_dyn: f64,
     /// Where the knot's loop lies across the pull, from its braid ([`knot_loop`]; cm).
     pub loop_offset_cm: Option<DVec3>,
+    /// How far the gripped point is from its target at the step's start (cm): what the
+    /// position update left off the grip's line, which its rows then take back at β/h. It
+    /// grows with the square of the joints' rates, and a pull past the knot's tightest fails
+    /// once it reaches tenths of a millimetre a step (docs/validation.md, "Loop inversion").
+    pub grip_error_cm: f64,
+}
+
+/// The grip's largest distance from its target in a pull.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GripError {
+    /// The distance (cm).
+    pub error_cm: f64,
+    /// The end-to-end distance where it was (cm).
+    pub at_cm: f64,
 }
 
 /// How a pull ended.
@@ -184,6 +198,7 @@ pub fn run(
             force_dyn: force.dot(direction),
             loop_offset_cm: knot_loop::loop_side(&centres, &contacts, direction)
                 .map(|side| side.offset_cm),
+            grip_error_cm: grip.point.distance(grip.target),
         };
         samples.push(sample);
         if trailing_mean_force(&samples).is_some_and(|force| force >= stop_force_dyn) {
@@ -281,6 +296,13 @@ impl PulledKnot {
         largest
     }
 
+    /// The largest distance of the grip from its target over the pull; `None` without samples.
+    pub fn largest_grip_error(&self) -> Option<GripError> {
+        let largest =
+            self.samples.iter().max_by(|a, b| a.grip_error_cm.total_cmp(&b.grip_error_cm));
+        largest.map(|s| GripError { error_cm: s.grip_error_cm, at_cm: s.end_to_end_cm })
+    }
+
     /// The largest fall of the smoothed force (every `spacing_cm`) below its highest value
     /// before, counted from where the force first reaches `from_dyn` (the start of the pull,
     /// where the knot takes up the slack of its starting curve, is left out).
@@ -358,6 +380,7 @@ mod tests {
                 end_to_end_cm: 30.0 + 0.01 * k as f64,
                 force_dyn: 50.0,
                 loop_offset_cm: Some(DVec3::new(0.0, angle.cos(), angle.sin())),
+                grip_error_cm: 1e-4 * k as f64,
             }
         };
         let mut knot = PulledKnot {
@@ -378,6 +401,8 @@ mod tests {
         assert!((turn.angle_rad - (PI - 1f64.to_radians())).abs() < 1e-9, "{turn:?}");
         assert!((turn.at_cm - 30.3).abs() < 1e-9, "{turn:?}");
         assert_eq!(knot.largest_loop_turn(0.01), None, "no two samples within 0.01 s");
+        let grip = knot.largest_grip_error().expect("samples");
+        assert!((grip.error_cm - 59e-4).abs() < 1e-12 && (grip.at_cm - 30.59).abs() < 1e-9);
         knot.samples.truncate(30);
         let calm = knot.largest_loop_turn(0.07).expect("loops");
         assert!((calm.angle_rad - 3f64.to_radians()).abs() < 1e-9, "{calm:?}");
@@ -402,6 +427,7 @@ mod tests {
                         end_to_end_cm: e,
                         force_dyn: factor * e,
                         loop_offset_cm: None,
+                        grip_error_cm: 0.0,
                     }
                 })
                 .collect(),
