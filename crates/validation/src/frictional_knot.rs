@@ -89,8 +89,9 @@ pub struct FrictionalKnot {
 /// F₀ = B/(2R²), the pull Audoly et al.'s leading term gives for the frictional knot's loop
 /// radius R, ramped over [`TIGHTENING_RAMP_S`] and held [`FINAL_PULL_S`] as the frictional
 /// runs are (the frictionless check's 40 s do not settle the thick rods of ε ≥ 0.2: at
-/// h = 0.08 cm a loop of 2.24 cm was 2.42 cm at 40 s). Its c = F₀R₀²/B (R₀ its own loop radius, ≈ R) is the model's coefficient of ε⁴ where the
-/// law has ½: what the pull would be at that loop without friction.
+/// h = 0.08 cm a loop of 2.24 cm was 2.42 cm at 40 s). Its c = F₀R₀²/B (R₀ its own loop
+/// radius, ≈ R) is the model's coefficient of ε⁴ where the law has ½: what the pull would be
+/// at that loop without friction.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FrictionlessControl {
     /// The pull F₀ (dyn).
@@ -236,32 +237,29 @@ impl FrictionalKnot {
     fn of(knot: &LooseKnot, (branch, tension_dyn): (Branch, f64), coefficient: f64) -> Self {
         let (h, b) = (knot.rod_radius_cm, knot.bending_stiffness_dyn_cm2);
         let r = knot.loop_radius_cm();
-        let mut out = FrictionalKnot {
+        let epsilon = (h / r).sqrt();
+        FrictionalKnot {
             branch,
             tension_dyn,
             coefficient,
             loop_radius_cm: r,
-            epsilon: (h / r).sqrt(),
-            friction_number: 0.0,
+            epsilon,
+            friction_number: friction_number_against(
+                0.5,
+                (tension_dyn, h, b),
+                (epsilon, coefficient),
+            ),
             rod_radius_cm: h,
             bending_stiffness_dyn_cm2: b,
-        };
-        out.friction_number = out.friction_number_against(0.5);
-        out
-    }
-
-    /// (F h²/B − c ε⁴)/(μσε³): the friction number with the leading term's ½ replaced by `c`.
-    fn friction_number_against(&self, c: f64) -> f64 {
-        let (h, b, epsilon) = (self.rod_radius_cm, self.bending_stiffness_dyn_cm2, self.epsilon);
-        let term = self.tension_dyn * h * h / b - c * epsilon.powi(4);
-        term / (self.coefficient * SIGMA * epsilon.powi(3))
+        }
     }
 
     /// The friction number against the frictionless `control` (its c for Audoly's ½): the
     /// share of the pull that friction holds, with whatever the model's frictionless loop
     /// differs from the law by (its finite ε, its chain) taken out.
     pub fn controlled_friction_number(&self, control: &FrictionlessControl) -> f64 {
-        self.friction_number_against(control.tension_number)
+        let rod = (self.tension_dyn, self.rod_radius_cm, self.bending_stiffness_dyn_cm2);
+        friction_number_against(control.tension_number, rod, (self.epsilon, self.coefficient))
     }
 
     /// Settles this knot's [`FrictionlessControl`] on the rod `refinement` gives (the one
@@ -284,6 +282,17 @@ impl FrictionalKnot {
             tension_number: knot.tension_number(radius),
         })
     }
+}
+
+/// (F h²/B − c ε⁴)/(μσε³) for a pull F on a rod of radius h and bending stiffness B at ε and
+/// μ: the friction number with the law's leading ½ replaced by `c`.
+fn friction_number_against(
+    c: f64,
+    (tension_dyn, h, b): (f64, f64, f64),
+    (epsilon, coefficient): (f64, f64),
+) -> f64 {
+    let term = tension_dyn * h * h / b - c * epsilon.powi(4);
+    term / (coefficient * SIGMA * epsilon.powi(3))
 }
 
 /// A knot tightened and then let go (F = 0): Audoly et al.'s loosening lock. On the loosening
