@@ -86,6 +86,7 @@ pub const PARAMETERS: &[Parameter] = &[
     p("acceptance.max_limit_excess_deg", "°", "2", "largest joint-limit excess at a step's end"),
     p("acceptance.max_inexact_residual", "-", "1e-4", "largest relative KKT residual accepted from an inexact velocity solve"),
     p("acceptance.max_joint_rate_rad_s", "rad/s", "100", "largest joint rate at a step's end (a chain blowing up passes 500 within 0.2 s)"),
+    p("acceptance.max_grip_error_cm", "cm", "None", "largest distance of a pull's gripped end from its target at a step's end (the position update's drift), Some(cm) > 0; None: not bounded"),
     p("acceptance.max_halvings", "-", "4", "a rejected step is retried as 2, 4, … 2^k substeps; then the run stops (exit 3)"),
     p("acceptance.resolve_contacts", "-", "true", "a rejected step is first retried whole with self contacts kept every 1.5 bodies (fine chains)"),
     p("phases[].Form", "-", "-", "phase: scripted knot forming with a PD pull on the tail; ends after its last step"),

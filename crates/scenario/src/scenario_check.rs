@@ -337,7 +337,10 @@ pub(crate) fn check_scenario(
         ("max_limit_excess_deg", a.max_limit_excess_deg),
         ("max_inexact_residual", a.max_inexact_residual),
         ("max_joint_rate_rad_s", a.max_joint_rate_rad_s),
-    ] {
+    ]
+    .into_iter()
+    .chain(a.max_grip_error_cm.map(|bound| ("max_grip_error_cm", bound)))
+    {
         checker.check(key, value, Range::Positive)?;
     }
     checker.check("max_halvings", f64::from(a.max_halvings), Range::AtMost(20.0))?;

@@ -29,6 +29,12 @@ pub struct StepAcceptance {
     /// family, drag down to ×0.1), while an unstable chain passes 500 rad/s within 0.2 s
     /// without any contact or limit to reject it.
     pub max_joint_rate_rad_s: f64,
+    /// Largest distance of a pull's gripped end from its target allowed at the end of a step
+    /// (cm), or `None` (the default) for no bound. The grip's velocity rows are met exactly,
+    /// but the position update q ← q + h q̇ leaves the end off its line by an error that grows
+    /// with h² and the square of the joints' rates; a pull past a knot's tightest fails once
+    /// it reaches tenths of a millimetre a step (docs/validation.md, "Loop inversion").
+    pub max_grip_error_cm: Option<f64>,
     /// How many times a rejected step is halved before the run stops as diverged: h/2, h/4,
     /// …, h/2^k (default 4: down to h/16).
     pub max_halvings: u32,
@@ -46,6 +52,7 @@ impl Default for StepAcceptance {
             max_limit_excess_deg: 2.0,
             max_inexact_residual: 1e-4,
             max_joint_rate_rad_s: 100.0,
+            max_grip_error_cm: None,
             max_halvings: 4,
             resolve_contacts: true,
         }
@@ -62,7 +69,8 @@ impl StepAcceptance {
             ("max_inexact_residual", self.max_inexact_residual),
             ("max_joint_rate_rad_s", self.max_joint_rate_rad_s),
         ];
-        for (name, value) in bounds {
+        let grip = self.max_grip_error_cm.map(|bound| ("max_grip_error_cm", bound));
+        for (name, value) in bounds.into_iter().chain(grip) {
             if !(value.is_finite() && value > 0.0) {
                 return Err(SimError::InvalidOption { name, value, expected: "finite and > 0" });
             }
@@ -111,6 +119,13 @@ pub enum Rejection {
         /// [`StepAcceptance::max_joint_rate_rad_s`].
         bound: f64,
     },
+    /// A pull's gripped end too far from its target at the end of the step.
+    GripError {
+        /// Measured (cm).
+        cm: f64,
+        /// [`StepAcceptance::max_grip_error_cm`].
+        bound: f64,
+    },
     /// A `SolvedInexact` velocity solve whose residual is too large.
     InexactSolve {
         /// The solve's worst relative KKT residual.
@@ -141,6 +156,9 @@ impl std::fmt::Display for Rejection {
             Rejection::JointRate { rad_s, bound } => {
                 write!(f, "a joint turning at {rad_s:.1} rad/s (bound {bound} rad/s)")
             }
+            Rejection::GripError { cm, bound } => {
+                write!(f, "the grip {cm:.4} cm from its target (bound {bound} cm)")
+            }
             Rejection::InexactSolve { residual, bound } => {
                 write!(f, "inexact velocity solve, residual {residual:.2e} (bound {bound:.0e})")
             }
@@ -159,6 +177,8 @@ pub struct EndOfStep {
     pub limit_excess: f64,
     /// Largest rotation rate |q̇ᵢ| of a joint (rad/s; NaN if any rate is not finite).
     pub joint_rate: f64,
+    /// How far a pull's gripped end is from its target (cm; 0 without a grip).
+    pub grip_error_cm: f64,
     /// The worst relative KKT residual of the velocity solve, if it was `SolvedInexact`.
     pub inexact_residual: Option<f64>,
 }
@@ -181,6 +201,10 @@ impl StepAcceptance {
             Some(Rejection::LimitExcess { degrees, bound: self.max_limit_excess_deg })
         } else if end.joint_rate > self.max_joint_rate_rad_s || end.joint_rate.is_nan() {
             Some(Rejection::JointRate { rad_s: end.joint_rate, bound: self.max_joint_rate_rad_s })
+        } else if let Some(bound) =
+            self.max_grip_error_cm.filter(|&b| end.grip_error_cm > b || end.grip_error_cm.is_nan())
+        {
+            Some(Rejection::GripError { cm: end.grip_error_cm, bound })
         } else {
             end.inexact_residual.filter(|r| r.is_nan() || *r > self.max_inexact_residual).map(
                 |residual| Rejection::InexactSolve { residual, bound: self.max_inexact_residual },
@@ -201,8 +225,11 @@ mod tests {
             wall_penetration_relative: bounds.max_wall_penetration_relative,
             limit_excess: bounds.max_limit_excess_deg.to_radians() * (1.0 - 1e-12),
             joint_rate: bounds.max_joint_rate_rad_s,
+            grip_error_cm: 0.01,
             inexact_residual: Some(bounds.max_inexact_residual),
         };
+        assert_eq!(bounds.judge(&at), None, "the grip is not bounded by default");
+        let bounds = StepAcceptance { max_grip_error_cm: Some(0.01), ..bounds };
         assert_eq!(bounds.judge(&at), None);
         let above = |change: fn(&mut EndOfStep)| {
             let mut end = at;
@@ -224,6 +251,8 @@ mod tests {
         ));
         assert!(matches!(above(|e| e.joint_rate *= 1.01), Some(Rejection::JointRate { .. })));
         assert!(matches!(above(|e| e.joint_rate = f64::NAN), Some(Rejection::JointRate { .. })));
+        assert!(matches!(above(|e| e.grip_error_cm *= 1.01), Some(Rejection::GripError { .. })));
+        assert!(matches!(above(|e| e.grip_error_cm = f64::NAN), Some(Rejection::GripError { .. })));
         assert!(matches!(
             above(|e| e.inexact_residual = Some(f64::NAN)),
             Some(Rejection::InexactSolve { .. })
@@ -237,6 +266,11 @@ mod tests {
         assert!(matches!(
             bad.validate(),
             Err(SimError::InvalidOption { name: "max_limit_excess_deg", .. })
+        ));
+        let grip = StepAcceptance { max_grip_error_cm: Some(0.0), ..StepAcceptance::default() };
+        assert!(matches!(
+            grip.validate(),
+            Err(SimError::InvalidOption { name: "max_grip_error_cm", .. })
         ));
         let many = StepAcceptance { max_halvings: 21, ..StepAcceptance::default() };
         assert!(many.validate().is_err());

@@ -267,8 +267,26 @@ pub fn check_result(
         wall_penetration_relative: penetration.wall_relative,
         limit_excess: limit_excess(model, &state.q),
         joint_rate: rotation_rate(model, &state.qdot),
+        grip_error_cm: grip_error(model, options, state, data),
         inexact_residual: inexact.then_some(solve.residuals.worst_relative),
     })
+}
+
+/// How far the step left a pull's gripped end from its target (cm; 0 without a grip): the
+/// tail end now ([`ControlContext::tail_end`], the grip's point) against the step's target
+/// moved on by h at its velocity. `data` must hold the kinematics of `state`.
+fn grip_error(model: &Model, options: &StepOptions, state: &State, data: &StepData) -> f64 {
+    let Some(grip) = data.actuation.grip else { return 0.0 };
+    let context = ControlContext {
+        model,
+        state,
+        kinematics: &data.tree,
+        centreline: &data.centreline,
+        self_contacts: &data.self_contacts,
+        time_step: options.time_step,
+    };
+    let (_, end, _) = context.tail_end();
+    end.distance(grip.target + options.time_step * grip.velocity)
 }
 
 /// The largest excess of a joint angle in `q` over its limits (rad, 0 when all are within;

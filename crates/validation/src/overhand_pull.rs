@@ -44,8 +44,8 @@ pub struct PullSample {
     pub loop_offset_cm: Option<DVec3>,
     /// How far the gripped point is from its target at the step's start (cm): what the
     /// position update left off the grip's line, which its rows then take back at β/h. It
-    /// grows with the square of the joints' rates, and a pull past the knot's tightest fails
-    /// once it reaches tenths of a millimetre a step (docs/validation.md, "Loop inversion").
+    /// grows with the square of the joints' rates as a knot tightens; the scenario's step
+    /// acceptance bounds it (docs/decisions/0038-grip-drift-bounded-on-the-pulls.md).
     pub grip_error_cm: f64,
 }
 

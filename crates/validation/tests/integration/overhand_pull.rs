@@ -68,3 +68,28 @@ fn the_nine_crossing_loop_inverts_and_the_five_crossing_loop_does_not() {
     let fall = five.largest_drop(0.25, 200.0).expect("past 200 dyn");
     assert!(fall.fraction < 0.05, "{fall:?}");
 }
+
+/// The step's bound on the grip's distance from its target (`acceptance.max_grip_error_cm`):
+/// one finer than rounding rejects every step of the pull, whole and in substeps, and the
+/// run fails naming the grip; one above the drift (the scenario's 0.03 cm, or 1 cm) changes
+/// nothing, sample for sample, against no bound.
+#[test]
+fn the_grip_bound_rejects_a_drifting_step_and_changes_nothing_below_it() {
+    let with = |bound: &str| {
+        let set =
+            hagfish_scenario::Override::parse(&format!("acceptance.max_grip_error_cm={bound}"))
+                .expect("an override");
+        run(root(), (1, 0.9), 0.02, 30.0, &[set]).expect("the pull runs")
+    };
+    let free = with("None");
+    assert_eq!(free.end, PullEnd::Force);
+    let largest = free.largest_grip_error().expect("samples").error_cm;
+    assert!(largest > 1e-12 && largest < 1e-2, "{largest}");
+    let shipped = run(root(), (1, 0.9), 0.02, 30.0, &[]).expect("the pull runs");
+    assert_eq!(shipped.samples, free.samples);
+    assert_eq!(with("Some(1.0)").samples, free.samples);
+    match &with("Some(1e-12)").end {
+        PullEnd::Failed(why) => assert!(why.contains("from its target"), "{why}"),
+        other => panic!("a bound below the drift must fail the pull: {other:?}"),
+    }
+}
