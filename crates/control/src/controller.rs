@@ -35,15 +35,19 @@ impl ControlContext<'_> {
         self.kinematics.velocities[body].point_velocity(self.centre(body))
     }
 
-    /// The tail end, where loads and grips act: the last body, the far end of its axis
-    /// (`centre + (ℓ/2) x̂`, cm) and its frame's rotation.
+    /// The tail end, where loads and grips act ([`tail_end`]).
     pub fn tail_end(&self) -> (usize, DVec3, DMat3) {
-        let tail = self.model.body_count() - 1;
-        let frame = &self.kinematics.body_frames[tail];
-        let end =
-            frame.translation + frame.rotation.col(0) * (0.5 * self.model.bodies()[tail].length);
-        (tail, end, frame.rotation)
+        tail_end(self.model, self.kinematics)
     }
+}
+
+/// The tail end of `model` posed as `kinematics` holds it, where loads and grips act: the last
+/// body, the far end of its axis (`centre + (ℓ/2) x̂`, cm) and its frame's rotation.
+pub fn tail_end(model: &Model, kinematics: &Data) -> (usize, DVec3, DMat3) {
+    let tail = model.body_count() - 1;
+    let frame = &kinematics.body_frames[tail];
+    let end = frame.translation + frame.rotation.col(0) * (0.5 * model.bodies()[tail].length);
+    (tail, end, frame.rotation)
 }
 
 /// A point force on a body, applied explicitly for one step.

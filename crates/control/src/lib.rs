@@ -74,7 +74,7 @@ mod tube_length;
 mod until;
 
 pub use controller::{
-    Actuation, ControlContext, Controller, Grip, Passive, PointDamper, PointForce,
+    Actuation, ControlContext, Controller, Grip, Passive, PointDamper, PointForce, tail_end,
 };
 pub use controller_state::ControllerState;
 pub use crossings::{Crossing, Layer, crossings_of_tail};

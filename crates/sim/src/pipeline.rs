@@ -13,7 +13,7 @@
 //! Each stage is a public function of the immutable model and options and the mutable step
 //! data, so tests and benchmarks can run any prefix.
 
-use hagfish_control::{ControlContext, Controller};
+use hagfish_control::{ControlContext, Controller, tail_end};
 use hagfish_solver::SolveStatus;
 use hagfish_tree::{Model, State};
 
@@ -267,25 +267,17 @@ pub fn check_result(
         wall_penetration_relative: penetration.wall_relative,
         limit_excess: limit_excess(model, &state.q),
         joint_rate: rotation_rate(model, &state.qdot),
-        grip_error_cm: grip_error(model, options, state, data),
+        grip_error_cm: grip_error(model, options, data),
         inexact_residual: inexact.then_some(solve.residuals.worst_relative),
     })
 }
 
 /// How far the step left a pull's gripped end from its target (cm; 0 without a grip): the
-/// tail end now ([`ControlContext::tail_end`], the grip's point) against the step's target
-/// moved on by h at its velocity. `data` must hold the kinematics of `state`.
-fn grip_error(model: &Model, options: &StepOptions, state: &State, data: &StepData) -> f64 {
+/// tail end now ([`tail_end`], the grip's point) against the step's target moved on by h at
+/// its velocity. `data` must hold the kinematics of the step's end.
+fn grip_error(model: &Model, options: &StepOptions, data: &StepData) -> f64 {
     let Some(grip) = data.actuation.grip else { return 0.0 };
-    let context = ControlContext {
-        model,
-        state,
-        kinematics: &data.tree,
-        centreline: &data.centreline,
-        self_contacts: &data.self_contacts,
-        time_step: options.time_step,
-    };
-    let (_, end, _) = context.tail_end();
+    let (_, end, _) = tail_end(model, &data.tree);
     end.distance(grip.target + options.time_step * grip.velocity)
 }
 
