@@ -5,16 +5,19 @@
 //! and the knot settled on each branch at the pull the law gives there with σ = 0.492 (the
 //! tightening pull ramped slowly enough to close the loop quasi-statically). Prints,
 //! as Markdown, a row per run with the ε and the friction number (F h²/B − ε⁴/2)/(μσε³) it
-//! settled at: Audoly's ±1. With `--control`, each run also gets its frictionless control
-//! (the same rod at F₀ = B/(2R²), R its loop radius) and the friction number against it,
-//! (F h²/B − cε⁴)/(μσε³) with the control's c = F₀R₀²/B for Audoly's ½: friction's own share.
+//! settled at (Audoly's ±1), the loop measured two ways: at its points ⊥ the pull, and by its
+//! first integral H, R = √(B/(2H)) (`hagfish_validation::loose_knot`), with H's spread along
+//! the loop. With `--control`, each run also gets its frictionless control
+//! (the same rod at F₀ = B/(2R²), R its loop radius at the ⊥ points; none where it has none)
+//! and the friction number against it, (F h²/B − cε⁴)/(μσε³) with the control's
+//! c = F₀R₀²/B for Audoly's ½: friction's own share.
 
 use std::fmt::Write as _;
 use std::path::Path;
 
 use hagfish_validation::ValidationError;
 use hagfish_validation::frictional_knot::{
-    AtEpsilon, Branch, FrictionalKnot, FrictionlessControl, SIGMA,
+    AtEpsilon, Branch, FrictionalKnot, FrictionlessControl, LoopMeasure,
 };
 use hagfish_validation::loose_knot;
 
@@ -67,6 +70,7 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
         let runs: Vec<_> = cases.iter().zip(&knots).collect();
         Some(in_parallel(&runs, request.jobs, |(case, knot)| -> Control {
             let knot = knot.as_ref().ok()?;
+            knot.perpendicular.as_ref()?;
             Some(knot.frictionless_control(root, case.refinement()))
         })?)
     } else {
@@ -87,22 +91,27 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
     Ok(())
 }
 
-/// The Markdown table: a row per run (a run that failed, with why), and with `controls` each
-/// run's frictionless control and its friction number against it.
+/// The Markdown table: a row per run (a run that failed, with why) with its loop measured
+/// at the points ⊥ the pull and by its first integral H, and with `controls` each run's
+/// frictionless control and its friction number against it.
 fn table(
     cases: &[AtEpsilon],
     knots: &[Result<FrictionalKnot, ValidationError>],
     controls: Option<&[Control]>,
 ) -> String {
     let mut out = String::from(
-        "| μ | target ε | h (cm) | branch | F (dyn) | settled: R (cm), ε | friction number | \
-         σ' = σ·abs(number) |",
+        "| μ | target ε | h (cm) | branch | F (dyn) | at ⊥: R (cm), ε | friction number | \
+         by H: R (cm), ε | friction number | H's spread on the loop |",
     );
     out.push_str(if controls.is_some() {
-        " control: R₀ (cm), F₀R₀²/B | number against it |\n|---|---|---|---|---|---|---|---|---|---|\n"
+        " control: R₀ (cm), F₀R₀²/B | number against it |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n"
     } else {
-        "\n|---|---|---|---|---|---|---|---|\n"
+        "\n|---|---|---|---|---|---|---|---|---|---|\n"
     });
+    let measure = |m: Option<&LoopMeasure>| match m {
+        Some(m) => format!("{:.4}, {:.4} | {:+.3}", m.loop_radius_cm, m.epsilon, m.friction_number),
+        None => "no joint to measure | —".to_string(),
+    };
     for (k, (case, knot)) in cases.iter().zip(knots).enumerate() {
         let branch = match case.branch {
             Branch::Tightening { ramp_s } => format!("tightening, ramped over {ramp_s} s"),
@@ -110,22 +119,25 @@ fn table(
         };
         let settled = match knot {
             Ok(knot) => format!(
-                "{:.4}, {:.4} | {:+.3} | {:.3}",
-                knot.loop_radius_cm,
-                knot.epsilon,
-                knot.friction_number,
-                SIGMA * knot.friction_number.abs()
+                "{} | {} | {}",
+                measure(knot.perpendicular.as_ref()),
+                measure(knot.first_integral.as_ref()),
+                knot.first_integral_spread
+                    .map_or_else(|| "—".to_string(), |s| format!("{:.1} %", 100.0 * s)),
             ),
-            Err(error) => format!("failed: {error} | — | —"),
+            Err(error) => format!("failed: {error} | — | — | — | —"),
         };
         let control = match (controls.map(|c| &c[k]), knot) {
             (None, _) => String::new(),
-            (Some(Some(Ok(control))), Ok(knot)) => format!(
-                " {:.4}, {:.4} | {:+.3} |",
-                control.loop_radius_cm,
-                control.tension_number,
-                knot.controlled_friction_number(control)
-            ),
+            (Some(Some(Ok(control))), Ok(knot)) => {
+                let against = knot
+                    .controlled_friction_number(control)
+                    .map_or_else(|_| "—".to_string(), |n| format!("{n:+.3}"));
+                format!(
+                    " {:.4}, {:.4} | {against} |",
+                    control.loop_radius_cm, control.tension_number
+                )
+            }
             (Some(Some(Err(error))), _) => format!(" failed: {error} | — |"),
             (Some(_), _) => " — | — |".to_string(),
         };
@@ -175,24 +187,35 @@ mod tests {
             branch: case.branch,
             tension_dyn: 20.0,
             coefficient: 0.1,
-            loop_radius_cm: 2.0,
-            epsilon: 0.2,
-            friction_number: 1.0,
+            perpendicular: Some(LoopMeasure {
+                loop_radius_cm: 2.0,
+                epsilon: 0.2,
+                friction_number: 1.0,
+            }),
+            first_integral: Some(LoopMeasure {
+                loop_radius_cm: 1.9,
+                epsilon: 0.205,
+                friction_number: 1.2,
+            }),
+            first_integral_spread: Some(0.004),
             rod_radius_cm: 0.08,
             bending_stiffness_dyn_cm2: 100.0,
         };
         let control =
             FrictionlessControl { tension_dyn: 12.5, loop_radius_cm: 2.01, tension_number: 0.55 };
-        let against = knot.controlled_friction_number(&control);
+        let against = knot.controlled_friction_number(&control).expect("a ⊥ measure");
         let printed = table(&[case], &[Ok(knot)], Some(&[Some(Ok(control))]));
         let row = printed.lines().nth(2).expect("a row");
         assert!(row.ends_with(&format!("| 2.0100, 0.5500 | {against:+.3} |")), "{row}");
-        assert_eq!(printed.lines().next().map(|h| h.matches('|').count()), Some(11));
+        assert!(row.contains("| 1.9000, 0.2050 | +1.200 | 0.4 % |"), "{row}");
+        assert_eq!(printed.lines().next().map(|h| h.matches('|').count()), Some(13));
+        assert_eq!(row.matches('|').count(), 13, "{row}");
         let plain = table(
             &[case],
             &[Err(ValidationError::Scenario { path: "x".into(), reason: "y".into() })],
             None,
         );
-        assert_eq!(plain.lines().next().map(|h| h.matches('|').count()), Some(9));
+        assert_eq!(plain.lines().next().map(|h| h.matches('|').count()), Some(11));
+        assert_eq!(plain.lines().nth(2).map(|row| row.matches('|').count()), Some(11));
     }
 }

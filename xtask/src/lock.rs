@@ -9,7 +9,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use hagfish_sim::rows::Friction;
-use hagfish_validation::frictional_knot::{self, Release, SIGMA};
+use hagfish_validation::frictional_knot::{self, Release};
 use hagfish_validation::loose_knot::Refinement;
 
 use crate::family::in_parallel;
@@ -48,23 +48,24 @@ fn table(releases: &[Release]) -> String {
          σ' = ε/(2μ) if opened | Audoly's lock ε₀/(2σ), σ = 0.492 |\n|---|---|---|---|---|---|---|\n",
     );
     for release in releases {
-        let (let_go, settled) = (&release.let_go, &release.settled);
+        let (let_go, settled) = (release.let_go_loop(), release.settled_loop());
+        let coefficient = release.let_go.coefficient;
         let sigma = if release.opening() > OPENED {
-            format!("{:.3}", settled.epsilon / (2.0 * settled.coefficient))
+            format!("{:.3}", settled.epsilon / (2.0 * coefficient))
         } else {
             "locked".to_owned()
         };
         let _ = writeln!(
             out,
             "| {} | {:.4}, {:.4} | {:+.3} | {:.4}, {:.4} | {:.1} % | {sigma} | {:.4} |",
-            let_go.coefficient,
+            coefficient,
             let_go.loop_radius_cm,
             let_go.epsilon,
             let_go.friction_number,
             settled.loop_radius_cm,
             settled.epsilon,
             100.0 * release.opening(),
-            let_go.epsilon / (2.0 * SIGMA),
+            release.lock_coefficient(),
         );
     }
     out

@@ -12,10 +12,13 @@
 //! - Loosening: first pulled tighter (by [`TIGHT_PULL_DYN`] in the shipped study; ramped over
 //!   10 s and held), then at T at once: the loop opens until friction holds it.
 //!
-//! Each is settled (the final pull held [`FINAL_PULL_S`]) and its loop radius R measured as
-//! the frictionless check measures it (`loose_knot.rs`); the friction term F h²/B − ε⁴/2 is
-//! reported over μσε³, the **friction number**: +1 on Audoly's tightening branch, −1 on the
-//! loosening one.
+//! Each is settled (the final pull held [`FINAL_PULL_S`]) and its loop radius R measured two
+//! ways (`loose_knot.rs`): as the frictionless check measures it, from the curvature where the
+//! loop's tangent is ⊥ the pull, and from the loop's first integral H, R = √(B/(2H)) (the
+//! same at leading order in h/R; the second needs no point ⊥ the pull, which a thick rod's
+//! loop may not have outside its braid). For each the friction term F h²/B − ε⁴/2 is reported
+//! over μσε³, the **friction number**: +1 on Audoly's tightening branch, −1 on the loosening
+//! one.
 
 use std::path::Path;
 
@@ -73,16 +76,30 @@ pub struct FrictionalKnot {
     pub tension_dyn: f64,
     /// μ.
     pub coefficient: f64,
+    /// The loop measured where its tangent is ⊥ the pull; `None` where no such point lies
+    /// outside the braid.
+    pub perpendicular: Option<LoopMeasure>,
+    /// The loop measured by its first integral H; `None` where the loop has no joint outside
+    /// the braid.
+    pub first_integral: Option<LoopMeasure>,
+    /// (max − min)/mean of H over the loop's joints (0 on a settled loop; `None` with
+    /// `first_integral`).
+    pub first_integral_spread: Option<f64>,
+    /// The rod's radius h (cm).
+    pub rod_radius_cm: f64,
+    /// The rod's bending stiffness B (dyn·cm²).
+    pub bending_stiffness_dyn_cm2: f64,
+}
+
+/// One measure of a settled frictional loop: its radius R, ε = √(h/R) and the friction number.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LoopMeasure {
     /// The loop radius R (cm).
     pub loop_radius_cm: f64,
     /// ε = √(h/R).
     pub epsilon: f64,
     /// (F h²/B − ε⁴/2) / (μσε³): Audoly's ±1.
     pub friction_number: f64,
-    /// The rod's radius h (cm).
-    pub rod_radius_cm: f64,
-    /// The rod's bending stiffness B (dyn·cm²).
-    pub bending_stiffness_dyn_cm2: f64,
 }
 
 /// The frictionless control of a frictional knot: the same rod without friction, pulled at
@@ -111,8 +128,15 @@ pub fn run(
     refinement: Refinement,
 ) -> Result<FrictionalKnot, ValidationError> {
     let loaded = scenario(root, (branch, tension_dyn), Some(friction), refinement)?;
-    let knot = loose_knot::run_loaded(&loaded)?;
-    Ok(FrictionalKnot::of(&knot, (branch, tension_dyn), friction.coefficient))
+    let knot = loose_knot::settle_and_measure(&loaded)?;
+    let frictional = FrictionalKnot::of(&knot, (branch, tension_dyn), friction.coefficient);
+    if frictional.perpendicular.is_none() && frictional.first_integral.is_none() {
+        return Err(ValidationError::Scenario {
+            path: loaded.path.clone(),
+            reason: "the settled loop has no joint outside its braid to measure".into(),
+        });
+    }
+    Ok(frictional)
 }
 
 /// The loose trefoil with `friction` (`None`: frictionless), set up to settle on `branch` at
@@ -236,43 +260,67 @@ impl FrictionalKnot {
     /// `coefficient`.
     fn of(knot: &LooseKnot, (branch, tension_dyn): (Branch, f64), coefficient: f64) -> Self {
         let (h, b) = (knot.rod_radius_cm, knot.bending_stiffness_dyn_cm2);
-        let r = knot.loop_radius_cm();
-        let epsilon = (h / r).sqrt();
+        let measure = |r: f64| {
+            let epsilon = (h / r).sqrt();
+            let rod = (tension_dyn, h, b);
+            let friction_number = friction_number_against(0.5, rod, (epsilon, coefficient));
+            LoopMeasure { loop_radius_cm: r, epsilon, friction_number }
+        };
+        let loop_integral = knot.loop_first_integral;
         FrictionalKnot {
             branch,
             tension_dyn,
             coefficient,
-            loop_radius_cm: r,
-            epsilon,
-            friction_number: friction_number_against(
-                0.5,
-                (tension_dyn, h, b),
-                (epsilon, coefficient),
-            ),
+            perpendicular: (!knot.loop_radii_cm.is_empty()).then(|| measure(knot.loop_radius_cm())),
+            first_integral: loop_integral.map(|integral| measure(integral.loop_radius_cm(b))),
+            first_integral_spread: loop_integral.map(|integral| integral.spread),
             rod_radius_cm: h,
             bending_stiffness_dyn_cm2: b,
         }
     }
 
-    /// The friction number against the frictionless `control` (its c for Audoly's ½): the
-    /// share of the pull that friction holds, with whatever the model's frictionless loop
-    /// differs from the law by (its finite ε, its chain) taken out.
-    pub fn controlled_friction_number(&self, control: &FrictionlessControl) -> f64 {
+    /// The loop measured where its tangent is ⊥ the pull, or why there is none.
+    ///
+    /// # Errors
+    /// [`ValidationError::Scenario`] where the settled loop has no point ⊥ the pull outside
+    /// its braid.
+    pub fn at_perpendicular(&self) -> Result<&LoopMeasure, ValidationError> {
+        self.perpendicular.as_ref().ok_or_else(|| ValidationError::Scenario {
+            path: loose_knot::SCENARIO.into(),
+            reason: "no point of the settled loop has its tangent perpendicular to the pull".into(),
+        })
+    }
+
+    /// The friction number against the frictionless `control` (its c for Audoly's ½), at the
+    /// loop measured where its tangent is ⊥ the pull: the share of the pull that friction
+    /// holds, with whatever the model's frictionless loop differs from the law by (its finite
+    /// ε, its chain) taken out.
+    ///
+    /// # Errors
+    /// Those of [`FrictionalKnot::at_perpendicular`].
+    pub fn controlled_friction_number(
+        &self,
+        control: &FrictionlessControl,
+    ) -> Result<f64, ValidationError> {
         let rod = (self.tension_dyn, self.rod_radius_cm, self.bending_stiffness_dyn_cm2);
-        friction_number_against(control.tension_number, rod, (self.epsilon, self.coefficient))
+        let epsilon = self.at_perpendicular()?.epsilon;
+        Ok(friction_number_against(control.tension_number, rod, (epsilon, self.coefficient)))
     }
 
     /// Settles this knot's [`FrictionlessControl`] on the rod `refinement` gives (the one
-    /// this knot was settled with).
+    /// this knot was settled with), for the loop radius measured where its tangent is ⊥ the
+    /// pull.
     ///
     /// # Errors
-    /// Those of loading and settling the loose trefoil (`loose_knot.rs`).
+    /// Those of loading and settling the loose trefoil (`loose_knot.rs`), and of
+    /// [`FrictionalKnot::at_perpendicular`].
     pub fn frictionless_control(
         &self,
         root: &Path,
         refinement: Refinement,
     ) -> Result<FrictionlessControl, ValidationError> {
-        let pull = self.bending_stiffness_dyn_cm2 / (2.0 * self.loop_radius_cm.powi(2));
+        let radius = self.at_perpendicular()?.loop_radius_cm;
+        let pull = self.bending_stiffness_dyn_cm2 / (2.0 * radius * radius);
         let tightening = Branch::Tightening { ramp_s: TIGHTENING_RAMP_S };
         let knot = loose_knot::run_loaded(&scenario(root, (tightening, pull), None, refinement)?)?;
         let radius = knot.loop_radius_cm();
@@ -309,14 +357,24 @@ pub struct Release {
 }
 
 impl Release {
-    /// How far the loop opened: R_settled / R_let_go − 1.
+    /// How far the loop opened: R_settled / R_let_go − 1 (at the points ⊥ the pull).
     pub fn opening(&self) -> f64 {
-        self.settled.loop_radius_cm / self.let_go.loop_radius_cm - 1.0
+        self.settled_loop().loop_radius_cm / self.let_go_loop().loop_radius_cm - 1.0
     }
 
     /// Audoly's lock for the knot as let go: μ = ε₀/(2σ).
     pub fn lock_coefficient(&self) -> f64 {
-        self.let_go.epsilon / (2.0 * SIGMA)
+        self.let_go_loop().epsilon / (2.0 * SIGMA)
+    }
+
+    /// The let-go loop at its points ⊥ the pull ([`release`] has made sure it has them).
+    pub fn let_go_loop(&self) -> &LoopMeasure {
+        self.let_go.perpendicular.as_ref().expect("release measures the loop at its ⊥ points")
+    }
+
+    /// The settled loop at its points ⊥ the pull ([`release`] has made sure it has them).
+    pub fn settled_loop(&self) -> &LoopMeasure {
+        self.settled.perpendicular.as_ref().expect("release measures the loop at its ⊥ points")
     }
 }
 
@@ -370,19 +428,24 @@ mod tests {
             branch: Branch::Tightening { ramp_s: 1.0 },
             tension_dyn: 20.0,
             coefficient: 0.1,
-            loop_radius_cm: 2.0,
-            epsilon: 0.2,
-            friction_number: 0.0,
+            perpendicular: Some(LoopMeasure {
+                loop_radius_cm: 2.0,
+                epsilon: 0.2,
+                friction_number: 0.0,
+            }),
+            first_integral: None,
+            first_integral_spread: None,
             rod_radius_cm: 0.08,
             bending_stiffness_dyn_cm2: 100.0,
         };
         let control =
             |c| FrictionlessControl { tension_dyn: 12.5, loop_radius_cm: 2.0, tension_number: c };
         let plain = (1.28e-3 - 8e-4) / (0.1 * SIGMA * 8e-3);
-        assert!((knot.controlled_friction_number(&control(0.5)) - plain).abs() < 1e-12);
+        let at_half = knot.controlled_friction_number(&control(0.5)).expect("a ⊥ measure");
+        assert!((at_half - plain).abs() < 1e-12);
         // A frictionless loop 10 % stiffer than the law takes 0.1 ε⁴/2 off the friction's share.
         let stiffer = (1.28e-3 - 8.8e-4) / (0.1 * SIGMA * 8e-3);
-        let controlled = knot.controlled_friction_number(&control(0.55));
+        let controlled = knot.controlled_friction_number(&control(0.55)).expect("a ⊥ measure");
         assert!((controlled - stiffer).abs() < 1e-12, "{controlled} {stiffer}");
     }
 }

@@ -14,7 +14,12 @@
 //!   and [`BRAID_MARGIN_SEGMENTS`] body lengths of arc from any contact): the chain's segment directions are the tangents at the
 //!   segments' midpoints, interpolated linearly to the crossing; the curvature `θ/(2ℓ)` of the
 //!   bending joints (θ the angle between the segments a joint joins), interpolated likewise;
-//! - `H/T` at every joint from the internal forces: `|m_bend|²/(2B) + m_twist²/(2C) + N`.
+//! - `H/T` at every joint from the internal forces: `|m_bend|²/(2B) + m_twist²/(2C) + N`;
+//! - the loop's H: its mean over the joints of the loop (the longest contact-free stretch
+//!   between the rod's first and last contact, less the braid margin at both ends), where no
+//!   force acts, so that H is the same at each of them ([`LoopFirstIntegral`]). With friction
+//!   H jumps across the braid, and the loop's H, not the pull, sets its radius:
+//!   `R = √(B/(2H))` at leading order, a measure of the loop that needs no point ⊥ the pull.
 
 use std::path::Path;
 
@@ -61,6 +66,30 @@ pub struct LooseKnot {
     pub outside_braid: Vec<bool>,
     /// Whether each joint is a bending joint.
     pub bending_joint: Vec<bool>,
+    /// The first integral on the loop, `None` where the loop has no joint outside the braid.
+    pub loop_first_integral: Option<LoopFirstIntegral>,
+}
+
+/// The first integral H = Bκ²/2 + Cτ²/2 + n·t over the joints of a settled knot's loop.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LoopFirstIntegral {
+    /// Its mean over the loop's joints (dyn).
+    pub mean_dyn: f64,
+    /// (max − min)/mean over them. H is one number along a settled loop, so this is the
+    /// chain's discretisation: 2–11 % in `cargo xtask audoly`'s runs, as the frictionless
+    /// check's H/T outside the braid (2.3 % at h/R = 0.009 on 400 bodies).
+    pub spread: f64,
+    /// The loop's joints it is taken over.
+    pub joints: usize,
+}
+
+impl LoopFirstIntegral {
+    /// The loop radius R = √(B/(2H)) that H gives (cm): where the loop's tangent is ⊥ the pull,
+    /// n·t → 0 at leading order in h/R and Bκ²/2 → H, as `T R²/B = 1/2` has it without
+    /// friction (where H = T).
+    pub fn loop_radius_cm(&self, bending_stiffness_dyn_cm2: f64) -> f64 {
+        (bending_stiffness_dyn_cm2 / (2.0 * self.mean_dyn)).sqrt()
+    }
 }
 
 impl LooseKnot {
@@ -137,8 +166,24 @@ pub fn run(
 }
 
 /// Settles `loaded` (the loose-trefoil scenario, changed as a study needs) and measures it,
-/// with the check of [`run`] that the knot is still the one it started as.
+/// with the check of [`run`] that the knot is still the one it started as; an error if no
+/// point of the settled loop has its tangent ⊥ the pull outside the braid.
 pub fn run_loaded(loaded: &LoadedScenario) -> Result<LooseKnot, ValidationError> {
+    let knot = settle_and_measure(loaded)?;
+    if knot.loop_radii_cm.is_empty() {
+        return Err(ValidationError::Scenario {
+            path: loaded.path.clone(),
+            reason: "no point of the settled loop has its tangent perpendicular to the pull \
+                     (is the knot still there?)"
+                .into(),
+        });
+    }
+    Ok(knot)
+}
+
+/// [`run_loaded`] without its demand for a point ⊥ the pull: the loop radii may be none (the
+/// frictional study measures such a loop by its first integral).
+pub fn settle_and_measure(loaded: &LoadedScenario) -> Result<LooseKnot, ValidationError> {
     let Some(InitialShape::OpenTorusKnot(start)) = loaded.scenario.initial_shape else {
         return Err(ValidationError::Scenario {
             path: loaded.path.clone(),
@@ -150,7 +195,7 @@ pub fn run_loaded(loaded: &LoadedScenario) -> Result<LooseKnot, ValidationError>
     if found != expected {
         return Err(ValidationError::KnotChanged { path: loaded.path.clone(), expected, found });
     }
-    measure(&settled)
+    Ok(measure(&settled))
 }
 
 /// The knot type (Rolfsen name) of the settled rod's body centres.
@@ -162,8 +207,9 @@ fn knot_type(settled: &Settled) -> String {
         .map_or_else(|e| format!("? ({e})"), |report| report.knot.to_string())
 }
 
-/// The loop radii and the first integral of a settled loose knot.
-pub fn measure(settled: &Settled) -> Result<LooseKnot, ValidationError> {
+/// The loop radii (none where no point ⊥ the pull lies outside the braid) and the first
+/// integral of a settled loose knot.
+pub fn measure(settled: &Settled) -> LooseKnot {
     let (world, rod) = (&settled.world, &settled.rod);
     let model = world.model();
     let data = world.data();
@@ -208,7 +254,7 @@ pub fn measure(settled: &Settled) -> Result<LooseKnot, ValidationError> {
         };
         loop_radii_cm.push(1.0 / kappa);
     }
-    let first_integral = data
+    let first_integral: Vec<f64> = data
         .internal
         .loads
         .iter()
@@ -217,16 +263,24 @@ pub fn measure(settled: &Settled) -> Result<LooseKnot, ValidationError> {
             (bend * bend / (2.0 * b) + load.twist_dyn_cm.powi(2) / (2.0 * c) + load.tension_dyn) / t
         })
         .collect();
-    let outside_braid = (0..joints.len()).map(|j| outside(j as f64 * ell)).collect();
-    if loop_radii_cm.is_empty() {
-        return Err(ValidationError::Scenario {
-            path: std::path::PathBuf::from(SCENARIO),
-            reason: "no point of the settled loop has its tangent perpendicular to the pull \
-                     (is the knot still there?)"
-                .into(),
-        });
-    }
-    Ok(LooseKnot {
+    let outside_braid: Vec<bool> = (0..joints.len()).map(|j| outside(j as f64 * ell)).collect();
+    let on_loop = loop_stretch(&contacts).map(|(from, to)| {
+        move |j: usize| (from + margin..=to - margin).contains(&(j as f64 * ell))
+    });
+    let loop_first_integral = on_loop.and_then(|on_loop| {
+        let values: Vec<f64> =
+            (0..joints.len()).filter(|&j| on_loop(j)).map(|j| first_integral[j] * t).collect();
+        let mean = values.iter().sum::<f64>() / values.len() as f64;
+        let low = values.iter().copied().fold(f64::INFINITY, f64::min);
+        let high = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let spread = (high - low) / mean;
+        (!values.is_empty()).then_some(LoopFirstIntegral {
+            mean_dyn: mean,
+            spread,
+            joints: values.len(),
+        })
+    });
+    LooseKnot {
         tension_dyn: t,
         bending_stiffness_dyn_cm2: b,
         rod_radius_cm: rod.radius_cm,
@@ -234,7 +288,17 @@ pub fn measure(settled: &Settled) -> Result<LooseKnot, ValidationError> {
         first_integral,
         outside_braid,
         bending_joint: bending,
-    })
+        loop_first_integral,
+    }
+}
+
+/// The loop among the contacts at arc lengths `contacts` (cm, in any order): the longest
+/// stretch between two of them that holds none, as (from, to); `None` with fewer than two.
+fn loop_stretch(contacts: &[f64]) -> Option<(f64, f64)> {
+    let mut sorted = contacts.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    let gaps = sorted.windows(2).map(|pair| (pair[0], pair[1]));
+    gaps.max_by(|a, b| (a.1 - a.0).total_cmp(&(b.1 - b.0)))
 }
 
 /// The pulls of the study (dyn): 5 to 50, spanning 10×, so R spans √10.
@@ -350,5 +414,29 @@ fn tension_number_check(name: &str, knot: &LooseKnot) -> Check {
         measured: knot.tension_number(r),
         unit: "",
         tolerance: 0.1,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_loop_is_the_longest_stretch_without_a_contact() {
+        // A braid's contacts at 10–12 cm and 30–31 cm of arc (either strand, in any order):
+        // the loop runs from 12 to 30 cm.
+        let contacts = [30.5, 10.0, 12.0, 11.0, 31.0, 30.0];
+        assert_eq!(loop_stretch(&contacts), Some((12.0, 30.0)));
+        assert_eq!(loop_stretch(&[4.0]), None);
+        assert_eq!(loop_stretch(&[]), None);
+    }
+
+    #[test]
+    fn the_loop_radius_of_a_first_integral_holds_audolys_half() {
+        // H R²/B = 1/2: B = 100 dyn·cm², H = 12.5 dyn → R = 2 cm.
+        let integral = LoopFirstIntegral { mean_dyn: 12.5, spread: 0.0, joints: 10 };
+        let radius = integral.loop_radius_cm(100.0);
+        assert!((radius - 2.0).abs() < 1e-15, "{radius}");
+        assert!((12.5 * radius * radius / 100.0 - 0.5).abs() < 1e-15);
     }
 }
