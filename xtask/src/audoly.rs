@@ -19,7 +19,7 @@ use hagfish_validation::ValidationError;
 use hagfish_validation::frictional_knot::{
     AtEpsilon, Branch, FrictionalKnot, FrictionlessControl, LoopMeasure,
 };
-use hagfish_validation::loose_knot;
+use hagfish_validation::loose_knot::{self, Refinement};
 
 use crate::family::{comma_list, in_parallel};
 
@@ -35,6 +35,8 @@ pub struct Request<'a> {
     pub ramp_s: f64,
     /// Edges of the friction pyramid.
     pub edges: usize,
+    /// Bodies and time step instead of the rod file's and the scenario's.
+    pub resolution: Refinement,
     /// Whether each run gets its frictionless control.
     pub control: bool,
     /// Runs at a time.
@@ -57,7 +59,10 @@ fn cases(request: &Request<'_>, bending_stiffness_dyn_cm2: f64) -> Vec<AtEpsilon
                 bending_stiffness_dyn_cm2,
                 request.ramp_s,
             );
-            std::iter::once(tightening).chain(loosening)
+            let resolution = request.resolution;
+            std::iter::once(tightening)
+                .chain(loosening)
+                .map(move |run| AtEpsilon { resolution, ..run })
         })
         .collect()
 }
@@ -77,8 +82,9 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
         None
     };
     println!("{}", table(&cases, &knots, controls.as_deref()));
+    let resolution = request.resolution;
     println!(
-        "`cargo xtask audoly --mu {} --epsilon {} --loop-radius {} --ramp {} --edges {}{}`: \
+        "`cargo xtask audoly --mu {} --epsilon {} --loop-radius {} --ramp {} --edges {}{}{}{}`: \
          the loose trefoil (data/validation/loose_trefoil.ron, data/rods/loose.ron with h = \
          ε²R₀)",
         comma_list(request.coefficients),
@@ -86,6 +92,8 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
         request.loop_radius_cm,
         request.ramp_s,
         request.edges,
+        resolution.bodies.map_or_else(String::new, |n| format!(" --bodies {n}")),
+        resolution.time_step_s.map_or_else(String::new, |h| format!(" --time-step {h}")),
         if request.control { " --control" } else { "" },
     );
     Ok(())
@@ -163,6 +171,7 @@ mod tests {
             loop_radius_cm: 2.0,
             ramp_s: 60.0,
             edges: 8,
+            resolution: Refinement::default(),
             control: false,
             jobs: 1,
         };
@@ -182,6 +191,7 @@ mod tests {
             rod_radius_cm: 0.08,
             branch: Branch::Tightening { ramp_s: 60.0 },
             tension_dyn: 20.0,
+            resolution: Refinement::default(),
         };
         let knot = FrictionalKnot {
             branch: case.branch,

@@ -15,8 +15,9 @@
 //!   (`overhand.rs`).
 //! - `lock [--mu μ,…] [--bodies N] [--time-step H] [--edges E]`: the loose trefoil with
 //!   friction tightened and let go, Audoly et al.'s loosening lock (`lock.rs`).
-//! - `audoly [--mu μ,…] [--epsilon ε,…] [--loop-radius R₀] [--control]`: the loose trefoil with friction
-//!   on Audoly et al.'s two branches, the rod's radius set by ε (`audoly.rs`).
+//! - `audoly [--mu μ,…] [--epsilon ε,…] [--loop-radius R₀] [--bodies N] [--time-step H]
+//!   [--control]`: the loose trefoil with friction on Audoly et al.'s two branches, the rod's
+//!   radius set by ε (`audoly.rs`).
 
 mod audoly;
 mod family;
@@ -171,6 +172,13 @@ enum Task {
         /// Edges of the friction pyramid.
         #[arg(long, default_value_t = 8)]
         edges: usize,
+        /// Bodies of the rod (the rod file's 400 if not given): a thin rod's braid needs more.
+        #[arg(long)]
+        bodies: Option<usize>,
+        /// Time step (s; the scenario's 0.02 if not given): a thin rod needs a smaller one, so
+        /// that no strand passes through another within a step.
+        #[arg(long)]
+        time_step: Option<f64>,
         /// Runs at a time.
         #[arg(long, default_value_t = 2)]
         jobs: usize,
@@ -291,7 +299,17 @@ fn main() -> ExitCode {
             let request = lock::Request { coefficients: &coefficients, edges, refinement, jobs };
             lock::run(&workspace_root(), &request).map(|()| true)
         }
-        Task::Audoly { coefficients, epsilons, loop_radius, ramp, control, edges, jobs } => {
+        Task::Audoly {
+            coefficients,
+            epsilons,
+            loop_radius,
+            ramp,
+            control,
+            edges,
+            bodies,
+            time_step,
+            jobs,
+        } => {
             let positive = |x: &f64| x.is_finite() && *x > 0.0;
             if let Some(x) = coefficients.iter().chain(&epsilons).find(|x| !positive(x)) {
                 eprintln!("error: --mu and --epsilon must be positive, not {x}");
@@ -313,6 +331,7 @@ fn main() -> ExitCode {
                 loop_radius_cm: loop_radius,
                 ramp_s: ramp,
                 edges,
+                resolution: Refinement { bodies, time_step_s: time_step, ..Refinement::default() },
                 control,
                 jobs,
             };

@@ -214,6 +214,10 @@ pub struct AtEpsilon {
     pub branch: Branch,
     /// The law's F on that branch (dyn).
     pub tension_dyn: f64,
+    /// Bodies and time step instead of the rod file's and the scenario's (a thin rod needs
+    /// more of both: `cargo xtask audoly --bodies --time-step`); only these two of the
+    /// refinement are read.
+    pub resolution: Refinement,
 }
 
 impl AtEpsilon {
@@ -236,6 +240,7 @@ impl AtEpsilon {
             rod_radius_cm,
             branch,
             tension_dyn: pull(target_epsilon, branch),
+            resolution: Refinement::default(),
         };
         let tightening = Branch::Tightening { ramp_s };
         let from_dyn = pull(LOOSENING_START * target_epsilon, tightening);
@@ -249,9 +254,9 @@ impl AtEpsilon {
         run(root, (self.branch, self.tension_dyn), friction, self.refinement())
     }
 
-    /// The rod of the run: the loose trefoil's with h = ε²R₀.
+    /// The rod of the run: the loose trefoil's with h = ε²R₀, at the run's resolution.
     pub fn refinement(&self) -> Refinement {
-        Refinement { rod_radius_cm: Some(self.rod_radius_cm), ..Refinement::default() }
+        Refinement { rod_radius_cm: Some(self.rod_radius_cm), ..self.resolution }
     }
 }
 
