@@ -82,8 +82,8 @@ pub struct FrictionalKnot {
     /// The loop measured by its first integral H; `None` where the loop has no joint outside
     /// the braid.
     pub first_integral: Option<LoopMeasure>,
-    /// (max − min)/mean of H over the loop's joints (0 on a settled loop; `None` with
-    /// `first_integral`).
+    /// (max − min)/mean of H over the loop's joints, the chain's discretisation
+    /// ([`loose_knot::LoopFirstIntegral::spread`]); `None` with `first_integral`.
     pub first_integral_spread: Option<f64>,
     /// The rod's radius h (cm).
     pub rod_radius_cm: f64,

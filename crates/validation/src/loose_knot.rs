@@ -263,20 +263,22 @@ pub fn measure(settled: &Settled) -> LooseKnot {
             (bend * bend / (2.0 * b) + load.twist_dyn_cm.powi(2) / (2.0 * c) + load.tension_dyn) / t
         })
         .collect();
-    let outside_braid: Vec<bool> = (0..joints.len()).map(|j| outside(j as f64 * ell)).collect();
+    let outside_braid = (0..joints.len()).map(|j| outside(j as f64 * ell)).collect();
     let on_loop = loop_stretch(&contacts).map(|(from, to)| {
         move |j: usize| (from + margin..=to - margin).contains(&(j as f64 * ell))
     });
     let loop_first_integral = on_loop.and_then(|on_loop| {
         let values: Vec<f64> =
             (0..joints.len()).filter(|&j| on_loop(j)).map(|j| first_integral[j] * t).collect();
+        if values.is_empty() {
+            return None;
+        }
         let mean = values.iter().sum::<f64>() / values.len() as f64;
         let low = values.iter().copied().fold(f64::INFINITY, f64::min);
         let high = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        let spread = (high - low) / mean;
-        (!values.is_empty()).then_some(LoopFirstIntegral {
+        Some(LoopFirstIntegral {
             mean_dyn: mean,
-            spread,
+            spread: (high - low) / mean,
             joints: values.len(),
         })
     });
