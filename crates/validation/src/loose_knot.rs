@@ -76,8 +76,9 @@ pub struct LoopFirstIntegral {
     /// Its mean over the loop's joints (dyn).
     pub mean_dyn: f64,
     /// (max − min)/mean over them. H is one number along a settled loop, so this is the
-    /// chain's discretisation: 2–11 % in `cargo xtask audoly`'s runs, as the frictionless
-    /// check's H/T outside the braid (2.3 % at h/R = 0.009 on 400 bodies).
+    /// chain's discretisation: 0.3–11 % in `cargo xtask audoly`'s runs (less on finer
+    /// chains), as the frictionless check's H/T outside the braid (2.3 % at h/R = 0.009 on
+    /// 400 bodies).
     pub spread: f64,
     /// The loop's joints it is taken over.
     pub joints: usize,
