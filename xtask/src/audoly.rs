@@ -74,8 +74,8 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
     let controls = if request.control {
         let runs: Vec<_> = cases.iter().zip(&knots).collect();
         Some(in_parallel(&runs, request.jobs, |(case, knot)| -> Control {
-            let knot = knot.as_ref().ok()?;
-            knot.perpendicular.as_ref()?;
+            // A control is pulled for the loop radius at the ⊥ points: none without them.
+            let knot = knot.as_ref().ok().filter(|knot| knot.perpendicular.is_some())?;
             Some(knot.frictionless_control(root, case.refinement()))
         })?)
     } else {
