@@ -17,7 +17,7 @@ use std::path::Path;
 
 use hagfish_validation::ValidationError;
 use hagfish_validation::frictional_knot::{
-    AtEpsilon, Branch, FrictionalKnot, FrictionlessControl, LoopMeasure,
+    AtEpsilon, Branch, FrictionalKnot, FrictionlessControl, LoopMeasure, TighteningStart,
 };
 use hagfish_validation::loose_knot::{self, Refinement};
 
@@ -33,6 +33,8 @@ pub struct Request<'a> {
     pub loop_radius_cm: f64,
     /// The tightening pull's ramp (s), within the final pull's 120 s.
     pub ramp_s: f64,
+    /// Where the tightening ramp starts.
+    pub tightening_start: TighteningStart,
     /// Edges of the friction pyramid.
     pub edges: usize,
     /// Bodies and time step instead of the rod file's and the scenario's.
@@ -57,7 +59,7 @@ fn cases(request: &Request<'_>, bending_stiffness_dyn_cm2: f64) -> Vec<AtEpsilon
                 case,
                 request.loop_radius_cm,
                 bending_stiffness_dyn_cm2,
-                request.ramp_s,
+                (request.ramp_s, request.tightening_start),
             );
             let resolution = request.resolution;
             std::iter::once(tightening)
@@ -84,7 +86,7 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
     println!("{}", table(&cases, &knots, controls.as_deref()));
     let resolution = request.resolution;
     println!(
-        "`cargo xtask audoly --mu {} --epsilon {} --loop-radius {} --ramp {} --edges {}{}{}{}`: \
+        "`cargo xtask audoly --mu {} --epsilon {} --loop-radius {} --ramp {} --edges {}{}{}{}{}`: \
          the loose trefoil (data/validation/loose_trefoil.ron, data/rods/loose.ron with h = \
          ε²R₀)",
         comma_list(request.coefficients),
@@ -94,6 +96,10 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
         request.edges,
         resolution.bodies.map_or_else(String::new, |n| format!(" --bodies {n}")),
         resolution.time_step_s.map_or_else(String::new, |h| format!(" --time-step {h}")),
+        match request.tightening_start {
+            TighteningStart::Torus => "",
+            TighteningStart::Looser => " --tighten-from-looser",
+        },
         if request.control { " --control" } else { "" },
     );
     Ok(())
@@ -122,7 +128,12 @@ fn table(
     };
     for (k, (case, knot)) in cases.iter().zip(knots).enumerate() {
         let branch = match case.branch {
-            Branch::Tightening { ramp_s } => format!("tightening, ramped over {ramp_s} s"),
+            Branch::Tightening { ramp_s, from_dyn: None } => {
+                format!("tightening, ramped over {ramp_s} s")
+            }
+            Branch::Tightening { ramp_s, from_dyn: Some(from_dyn) } => {
+                format!("tightening from {from_dyn:.2} dyn, ramped over {ramp_s} s")
+            }
             Branch::Loosening { from_dyn } => format!("loosening from {from_dyn:.1} dyn"),
         };
         let settled = match knot {
@@ -170,6 +181,7 @@ mod tests {
             epsilons: &[0.1, 0.3],
             loop_radius_cm: 2.0,
             ramp_s: 60.0,
+            tightening_start: TighteningStart::Torus,
             edges: 8,
             resolution: Refinement::default(),
             control: false,
@@ -189,7 +201,7 @@ mod tests {
             coefficient: 0.1,
             target_epsilon: 0.2,
             rod_radius_cm: 0.08,
-            branch: Branch::Tightening { ramp_s: 60.0 },
+            branch: Branch::Tightening { ramp_s: 60.0, from_dyn: None },
             tension_dyn: 20.0,
             resolution: Refinement::default(),
         };

@@ -16,7 +16,7 @@
 //! - `lock [--mu μ,…] [--bodies N] [--time-step H] [--edges E]`: the loose trefoil with
 //!   friction tightened and let go, Audoly et al.'s loosening lock (`lock.rs`).
 //! - `audoly [--mu μ,…] [--epsilon ε,…] [--loop-radius R₀] [--bodies N] [--time-step H]
-//!   [--control]`: the loose trefoil with friction on Audoly et al.'s two branches, the rod's
+//!   [--tighten-from-looser] [--control]`: the loose trefoil with friction on Audoly et al.'s two branches, the rod's
 //!   radius set by ε (`audoly.rs`).
 
 mod audoly;
@@ -42,7 +42,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 use hagfish_modes::KindSelection;
 use hagfish_sim::DynamicsBackend;
-use hagfish_validation::frictional_knot::FINAL_PULL_S;
+use hagfish_validation::frictional_knot::{FINAL_PULL_S, TighteningStart};
 use hagfish_validation::loose_knot::Refinement;
 
 /// Command line of `cargo xtask`.
@@ -165,6 +165,11 @@ enum Task {
         /// 1 s closes the loop dynamically; from 20 s on the number at ε ≈ 0.1 no longer moves.
         #[arg(long, default_value_t = 60.0)]
         ramp: f64,
+        /// Start each tightening ramp from the loop the loosening branch holds at ε/1.5
+        /// instead of the torus: at ε = 0.05 and μ ≥ 0.03 the loop opening from the torus
+        /// stops short of the target, inside the range friction holds.
+        #[arg(long)]
+        tighten_from_looser: bool,
         /// Also settle each run's frictionless control (the same rod at F₀ = B/(2R²), R the
         /// run's loop radius) and print the friction number against it.
         #[arg(long)]
@@ -304,6 +309,7 @@ fn main() -> ExitCode {
             epsilons,
             loop_radius,
             ramp,
+            tighten_from_looser,
             control,
             edges,
             bodies,
@@ -330,6 +336,11 @@ fn main() -> ExitCode {
                 epsilons: &epsilons,
                 loop_radius_cm: loop_radius,
                 ramp_s: ramp,
+                tightening_start: if tighten_from_looser {
+                    TighteningStart::Looser
+                } else {
+                    TighteningStart::Torus
+                },
                 edges,
                 resolution: Refinement { bodies, time_step_s: time_step, ..Refinement::default() },
                 control,

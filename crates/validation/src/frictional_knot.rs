@@ -53,11 +53,16 @@ pub const LOOSENING_FIRST_RAMP_S: f64 = 10.0;
 /// How the knot reached its pull.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Branch {
-    /// Closed onto the pull from a looser loop: the pull ramped from 0 over `ramp_s` from the
-    /// torus start, then held; the final pull's [`FINAL_PULL_S`] include the ramp.
+    /// Closed onto the pull from a looser loop: the pull ramped from 0 over `ramp_s`, then
+    /// held; the final pull's [`FINAL_PULL_S`] include the ramp.
     Tightening {
         /// The ramp (s; [`TIGHTENING_RAMP_S`] in the shipped study).
         ramp_s: f64,
+        /// Where the ramp starts: `None` from the torus start (the shipped study), or the
+        /// loop a first pull of this many dyn holds (ramped over [`LOOSENING_FIRST_RAMP_S`],
+        /// held to the scenario's 40 s), looser than the final pull's where friction stops
+        /// a loop opening from the torus short of it.
+        from_dyn: Option<f64>,
     },
     /// Opened onto the pull from a tighter loop: the one a pull of `from_dyn` holds (ramped
     /// over [`LOOSENING_FIRST_RAMP_S`], held to the scenario's 40 s).
@@ -148,8 +153,10 @@ fn scenario(
     refinement: Refinement,
 ) -> Result<LoadedScenario, ValidationError> {
     let first_pull = match branch {
-        Branch::Tightening { .. } => tension_dyn,
-        Branch::Loosening { from_dyn } => from_dyn,
+        Branch::Tightening { from_dyn: None, .. } => tension_dyn,
+        Branch::Tightening { from_dyn: Some(from_dyn), .. } | Branch::Loosening { from_dyn } => {
+            from_dyn
+        }
     };
     let mut loaded = loose_knot::scenario(root, first_pull, refinement)?;
     loaded.scenario.friction = friction;
@@ -162,19 +169,22 @@ fn scenario(
     // The final pull is held FINAL_PULL_S (the scenario holds its pull 40 s).
     let mut last = first.clone();
     last.until.seconds = FINAL_PULL_S;
-    match branch {
-        Branch::Tightening { ramp_s } => {
-            loaded.scenario.duration_s += FINAL_PULL_S - first.until.seconds;
-            *first = last;
-            first.ramp_s = ramp_s;
-        }
-        Branch::Loosening { .. } => {
-            first.ramp_s = LOOSENING_FIRST_RAMP_S;
-            (last.force_dyn, last.ramp_s) = (tension_dyn, 0.0);
-            loaded.scenario.duration_s += FINAL_PULL_S;
-            loaded.scenario.phases.push(Phase::Load(last));
-        }
+    if let Branch::Tightening { ramp_s, from_dyn: None } = branch {
+        // From the torus: the final pull alone, ramped.
+        loaded.scenario.duration_s += FINAL_PULL_S - first.until.seconds;
+        *first = last;
+        first.ramp_s = ramp_s;
+        return Ok(loaded);
     }
+    // From the loop the first pull holds (to the scenario's 40 s): then the final pull.
+    let final_ramp_s = match branch {
+        Branch::Tightening { ramp_s, .. } => ramp_s,
+        Branch::Loosening { .. } => 0.0,
+    };
+    first.ramp_s = LOOSENING_FIRST_RAMP_S;
+    (last.force_dyn, last.ramp_s) = (tension_dyn, final_ramp_s);
+    loaded.scenario.duration_s += FINAL_PULL_S;
+    loaded.scenario.phases.push(Phase::Load(last));
     Ok(loaded)
 }
 
@@ -199,6 +209,18 @@ pub fn audoly_pull(
 /// target: its first pull is the tightening branch's at 1.5 ε.
 pub const LOOSENING_START: f64 = 1.5;
 
+/// Where an [`AtEpsilon`] run's tightening ramp starts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum TighteningStart {
+    /// From the torus start (the shipped study).
+    #[default]
+    Torus,
+    /// From the loop the loosening branch holds at ε/[`LOOSENING_START`] (its pull, at least
+    /// 0): looser than the target, where friction stops a loop opening from the torus short of
+    /// it (μ ≥ 0.03 at ε = 0.05).
+    Looser,
+}
+
 /// A run of Audoly et al.'s law at a target ε (`cargo xtask audoly`): the loose trefoil with
 /// the rod's radius set to h = ε²R₀ for a loop radius R₀ (its B kept, so that every loop has as
 /// many bodies), pulled at the law's F for ε on its branch with σ = 0.492.
@@ -221,15 +243,15 @@ pub struct AtEpsilon {
 }
 
 impl AtEpsilon {
-    /// The tightening run at `target_epsilon` (ramped over `ramp_s`) and the loosening one
-    /// (from the tightening pull at [`LOOSENING_START`] ε), `None` where the loosening branch
-    /// is at or below F = 0 (μ ≥ ε/(2σ): the knot locks); `bending_stiffness_dyn_cm2` is the
-    /// rod's B ([`loose_knot::bending_stiffness`]).
+    /// The tightening run at `target_epsilon` (ramped over `ramp_s` from `start`) and the
+    /// loosening one (from the tightening pull at [`LOOSENING_START`] ε), `None` where the
+    /// loosening branch is at or below F = 0 (μ ≥ ε/(2σ): the knot locks);
+    /// `bending_stiffness_dyn_cm2` is the rod's B ([`loose_knot::bending_stiffness`]).
     pub fn both_branches(
         (coefficient, target_epsilon): (f64, f64),
         loop_radius_cm: f64,
         bending_stiffness_dyn_cm2: f64,
-        ramp_s: f64,
+        (ramp_s, start): (f64, TighteningStart),
     ) -> (Self, Option<Self>) {
         let rod_radius_cm = target_epsilon * target_epsilon * loop_radius_cm;
         let rod = (rod_radius_cm, bending_stiffness_dyn_cm2);
@@ -242,10 +264,17 @@ impl AtEpsilon {
             tension_dyn: pull(target_epsilon, branch),
             resolution: Refinement::default(),
         };
-        let tightening = Branch::Tightening { ramp_s };
-        let from_dyn = pull(LOOSENING_START * target_epsilon, tightening);
-        let loosening = at(Branch::Loosening { from_dyn });
-        (at(tightening), Some(loosening).filter(|run| run.tension_dyn > 0.0))
+        let from_torus = Branch::Tightening { ramp_s, from_dyn: None };
+        let loosening =
+            Branch::Loosening { from_dyn: pull(LOOSENING_START * target_epsilon, from_torus) };
+        let tightening = match start {
+            TighteningStart::Torus => from_torus,
+            TighteningStart::Looser => {
+                let looser = pull(target_epsilon / LOOSENING_START, loosening).max(0.0);
+                Branch::Tightening { ramp_s, from_dyn: Some(looser) }
+            }
+        };
+        (at(tightening), Some(at(loosening)).filter(|run| run.tension_dyn > 0.0))
     }
 
     /// Settles the run with a friction pyramid of `edges` edges and measures it.
@@ -326,7 +355,7 @@ impl FrictionalKnot {
     ) -> Result<FrictionlessControl, ValidationError> {
         let radius = self.at_perpendicular()?.loop_radius_cm;
         let pull = self.bending_stiffness_dyn_cm2 / (2.0 * radius * radius);
-        let tightening = Branch::Tightening { ramp_s: TIGHTENING_RAMP_S };
+        let tightening = Branch::Tightening { ramp_s: TIGHTENING_RAMP_S, from_dyn: None };
         let knot = loose_knot::run_loaded(&scenario(root, (tightening, pull), None, refinement)?)?;
         let radius = knot.loop_radius_cm();
         Ok(FrictionlessControl {
@@ -392,6 +421,7 @@ pub fn release(
 ) -> Result<Release, ValidationError> {
     let coefficient = friction.coefficient;
     let from_tight = Branch::Loosening { from_dyn: TIGHT_PULL_DYN };
+    let closed = Branch::Tightening { ramp_s: LOOSENING_FIRST_RAMP_S, from_dyn: None };
     let mut loaded = scenario(root, (from_tight, 0.0), Some(friction), refinement)?;
     let settled = loose_knot::run_loaded(&loaded)?;
     // The same run up to the moment it lets go (the same steps, bit for bit).
@@ -399,11 +429,7 @@ pub fn release(
     loaded.scenario.duration_s -= FINAL_PULL_S;
     let let_go = loose_knot::run_loaded(&loaded)?;
     Ok(Release {
-        let_go: FrictionalKnot::of(
-            &let_go,
-            (Branch::Tightening { ramp_s: LOOSENING_FIRST_RAMP_S }, TIGHT_PULL_DYN),
-            coefficient,
-        ),
+        let_go: FrictionalKnot::of(&let_go, (closed, TIGHT_PULL_DYN), coefficient),
         settled: FrictionalKnot::of(&settled, (from_tight, 0.0), coefficient),
     })
 }
@@ -416,7 +442,7 @@ mod tests {
     fn audolys_pull_adds_friction_when_tightening_and_takes_it_off_when_loosening() {
         // ε = 0.2, μ = 0.1, h = 0.04 cm, B = 100: ε⁴/2 = 8·10⁻⁴, μσε³ = 3.936·10⁻⁴, B/h² = 62500.
         let rod = (0.04, 100.0);
-        let tight = audoly_pull(rod, 0.2, 0.1, Branch::Tightening { ramp_s: 1.0 });
+        let tight = audoly_pull(rod, 0.2, 0.1, Branch::Tightening { ramp_s: 1.0, from_dyn: None });
         assert!((tight - 62_500.0 * (8e-4 + 3.936e-4)).abs() < 1e-9, "{tight}");
         let loose = audoly_pull(rod, 0.2, 0.1, Branch::Loosening { from_dyn: 0.0 });
         assert!((loose - 62_500.0 * (8e-4 - 3.936e-4)).abs() < 1e-9, "{loose}");
@@ -426,11 +452,62 @@ mod tests {
         assert!(at_lock.abs() < 1e-12, "{at_lock}");
     }
 
+    /// The loads of a run's scenario: (force, ramp, held until) per phase.
+    fn loads(branch: Branch, tension_dyn: f64) -> Vec<(f64, f64, f64)> {
+        let root = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."));
+        let loaded = scenario(root, (branch, tension_dyn), None, Refinement::default())
+            .expect("the loose trefoil loads");
+        let phases = loaded.scenario.phases.iter();
+        phases
+            .map(|phase| match phase {
+                Phase::Load(load) => (load.force_dyn, load.ramp_s, load.until.seconds),
+                other => panic!("not a load: {other:?}"),
+            })
+            .collect()
+    }
+
+    #[test]
+    fn each_branch_reaches_its_final_pull_from_its_side() {
+        let torus = Branch::Tightening { ramp_s: 60.0, from_dyn: None };
+        assert_eq!(loads(torus, 5.0), [(5.0, 60.0, FINAL_PULL_S)]);
+        let looser = Branch::Tightening { ramp_s: 60.0, from_dyn: Some(0.5) };
+        assert_eq!(
+            loads(looser, 5.0),
+            [(0.5, LOOSENING_FIRST_RAMP_S, 40.0), (5.0, 60.0, FINAL_PULL_S)]
+        );
+        let loosening = Branch::Loosening { from_dyn: 20.0 };
+        assert_eq!(
+            loads(loosening, 2.0),
+            [(20.0, LOOSENING_FIRST_RAMP_S, 40.0), (2.0, 0.0, FINAL_PULL_S)]
+        );
+    }
+
+    #[test]
+    fn a_looser_start_is_the_loosening_law_at_a_smaller_epsilon_and_never_a_push() {
+        let start = (60.0, TighteningStart::Looser);
+        // ε = 0.05 on R₀ = 4 cm (h = 0.01 cm), B = 1: at μ = 0.03 the law at ε/1.5 is open.
+        let (tightening, _) = AtEpsilon::both_branches((0.03, 0.05), 4.0, 1.0, start);
+        let Branch::Tightening { from_dyn: Some(from), .. } = tightening.branch else {
+            panic!("{:?}", tightening.branch)
+        };
+        let law = audoly_pull(
+            (0.01, 1.0),
+            0.05 / LOOSENING_START,
+            0.03,
+            Branch::Loosening { from_dyn: 0.0 },
+        );
+        assert!((from - law).abs() < 1e-12 * law, "{from} {law}");
+        assert!(from > 0.0 && from < tightening.tension_dyn, "{from}");
+        // At μ = 0.04 it is locked there (μ > ε/(3σ)): the start pulls with nothing.
+        let (locked, _) = AtEpsilon::both_branches((0.04, 0.05), 4.0, 1.0, start);
+        assert!(matches!(locked.branch, Branch::Tightening { from_dyn: Some(0.0), .. }));
+    }
+
     #[test]
     fn a_control_at_audolys_half_leaves_the_friction_number_as_it_is() {
         // h = 0.08, B = 100, R = 2 (ε = 0.2), μ = 0.1, F = 20: F h²/B = 1.28·10⁻³.
         let knot = FrictionalKnot {
-            branch: Branch::Tightening { ramp_s: 1.0 },
+            branch: Branch::Tightening { ramp_s: 1.0, from_dyn: None },
             tension_dyn: 20.0,
             coefficient: 0.1,
             perpendicular: Some(LoopMeasure {

@@ -51,7 +51,7 @@ pub const BRAID_MARGIN_SEGMENTS: f64 = 4.0;
 /// What the settled loose knot measured.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LooseKnot {
-    /// The pull T (dyn).
+    /// The pull T it settled under (dyn).
     pub tension_dyn: f64,
     /// The rod's bending stiffness B (dyn·cm²).
     pub bending_stiffness_dyn_cm2: f64,
@@ -60,7 +60,7 @@ pub struct LooseKnot {
     /// Radii of curvature (cm) where the loop's tangent is perpendicular to the pull, in
     /// order along the rod (two for a loop: where it rises and where it comes back).
     pub loop_radii_cm: Vec<f64>,
-    /// The first integral at every joint over T, `H_j/T`.
+    /// The first integral at every joint, `H_j` (dyn).
     pub first_integral: Vec<f64>,
     /// Whether each joint lies outside the braid (see [`BRAID_MARGIN`]).
     pub outside_braid: Vec<bool>,
@@ -107,7 +107,7 @@ impl LooseKnot {
     /// The largest `|H_j/T − 1|` over the joints `select` picks (by index).
     pub fn worst_first_integral(&self, select: impl Fn(usize) -> bool) -> f64 {
         let deviations = self.first_integral.iter().enumerate().filter(|(j, _)| select(*j));
-        deviations.map(|(_, h)| (h - 1.0).abs()).fold(0.0, f64::max)
+        deviations.map(|(_, h)| (h / self.tension_dyn - 1.0).abs()).fold(0.0, f64::max)
     }
 }
 
@@ -261,7 +261,7 @@ pub fn measure(settled: &Settled) -> LooseKnot {
         .iter()
         .map(|load| {
             let bend = load.bending_dyn_cm();
-            (bend * bend / (2.0 * b) + load.twist_dyn_cm.powi(2) / (2.0 * c) + load.tension_dyn) / t
+            bend * bend / (2.0 * b) + load.twist_dyn_cm.powi(2) / (2.0 * c) + load.tension_dyn
         })
         .collect();
     let outside_braid = (0..joints.len()).map(|j| outside(j as f64 * ell)).collect();
@@ -270,7 +270,7 @@ pub fn measure(settled: &Settled) -> LooseKnot {
     });
     let loop_first_integral = on_loop.and_then(|on_loop| {
         let values: Vec<f64> =
-            (0..joints.len()).filter(|&j| on_loop(j)).map(|j| first_integral[j] * t).collect();
+            (0..joints.len()).filter(|&j| on_loop(j)).map(|j| first_integral[j]).collect();
         if values.is_empty() {
             return None;
         }

@@ -15,7 +15,8 @@ pub struct Settled {
     pub controller: PhasedController,
     /// The rod.
     pub rod: Rod,
-    /// The scenario's first load phase.
+    /// The scenario's last load phase: the load the rod settled under (a scenario that
+    /// loads it twice, as a frictional knot opened onto a smaller pull, ends with it).
     pub load: LoadPhase,
 }
 
@@ -29,7 +30,7 @@ impl Settled {
     }
 }
 
-/// The rod and first load phase of `loaded`, or why the scenario is not a rod under a load.
+/// The rod and last load phase of `loaded`, or why the scenario is not a rod under a load.
 pub fn rod_and_load(loaded: &LoadedScenario) -> Result<(Rod, LoadPhase), ValidationError> {
     let not = |reason: &str| ValidationError::Scenario {
         path: loaded.path.clone(),
@@ -38,7 +39,7 @@ pub fn rod_and_load(loaded: &LoadedScenario) -> Result<(Rod, LoadPhase), Validat
     let hagfish_anatomy::Body::Rod(rod) = &loaded.body else {
         return Err(not("its body is not a rod"));
     };
-    let load = loaded.scenario.phases.iter().find_map(|p| match p {
+    let load = loaded.scenario.phases.iter().rev().find_map(|p| match p {
         Phase::Load(load) => Some(load.clone()),
         _ => None,
     });
