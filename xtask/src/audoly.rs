@@ -3,7 +3,8 @@
 //! friction"). F h²/B = ε⁴/2 ± μσε³ with ε = √(h/R): for each μ and target ε the rod's
 //! radius is set to h = ε²R₀ (the loop radius R₀ kept, so that every loop has as many bodies),
 //! and the knot settled on each branch at the pull the law gives there with σ = 0.492 (the
-//! tightening pull ramped slowly enough to close the loop quasi-statically). Prints,
+//! tightening pull ramped slowly enough to close the loop quasi-statically, from the torus or,
+//! with `--tighten-from-looser`, from the loop the loosening law holds at ε/1.5). Prints,
 //! as Markdown, a row per run with the ε and the friction number (F h²/B − ε⁴/2)/(μσε³) it
 //! settled at (Audoly's ±1), the loop measured two ways: at its points ⊥ the pull, and by its
 //! first integral H, R = √(B/(2H)) (`hagfish_validation::loose_knot`), with H's spread along
