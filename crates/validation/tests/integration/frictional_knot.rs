@@ -30,9 +30,10 @@ fn perpendicular(knot: &FrictionalKnot) -> &LoopMeasure {
 /// Audoly's sign on each branch, is linear in μ on the loosening branch (the friction numbers
 /// at the two μ within 10 % of each other; measured −1.369, −1.363) and of one size on both
 /// branches at μ = 0.05 (within 10 %; measured +1.340, −1.363): the form of their law, with
-/// σ = 0.66–0.67 rather than 0.492. On the tightening branch it is not linear in μ: the loop
-/// closes onto +1.157 at μ = 0.02 against +1.341 at 0.05 (held 120 s; after the scenario's
-/// 40 s it was still closing, at +1.363), docs/validation.md, "Loose trefoil with friction".
+/// σ = 0.66–0.67 rather than 0.492. From the torus start the tightening branch is not linear
+/// in μ: the loop closes onto +1.157 at μ = 0.02 against +1.341 at 0.05 (held 120 s; after the
+/// scenario's 40 s it was still closing, at +1.363); from a looser loop +1.27–1.29 and +1.34
+/// (`TighteningStart::Looser`), docs/validation.md, "Loose trefoil with friction".
 #[test]
 fn the_frictional_loose_trefoil_holds_its_loop_by_a_term_of_audolys_form() {
     let cases = [(TIGHTENING, 0.02), (TIGHTENING, 0.05), (LOOSENING, 0.02), (LOOSENING, 0.05)];
