@@ -11,10 +11,12 @@
 //! the loop. With `--control`, each run also gets its frictionless control
 //! (the same rod at F₀ = B/(2R²), R its loop radius at the ⊥ points; none where it has none)
 //! and the friction number against it, (F h²/B − cε⁴)/(μσε³) with the control's
-//! c = F₀R₀²/B for Audoly's ½: friction's own share.
+//! c = F₀R₀²/B for Audoly's ½: friction's own share. Each run's ε and friction number (by H
+//! where it has one) go to stderr as it ends.
 
 use std::fmt::Write as _;
 use std::path::Path;
+use std::time::Instant;
 
 use hagfish_validation::ValidationError;
 use hagfish_validation::frictional_knot::{
@@ -73,7 +75,11 @@ fn cases(request: &Request<'_>, bending_stiffness_dyn_cm2: f64) -> Vec<AtEpsilon
 /// Runs every case and prints the table.
 pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
     let cases = cases(request, loose_knot::bending_stiffness(root).map_err(|e| e.to_string())?);
-    let knots = in_parallel(&cases, request.jobs, |case| case.run(root, request.edges))?;
+    let knots = in_parallel(&cases, request.jobs, |case| {
+        let (clock, knot) = (Instant::now(), case.run(root, request.edges));
+        eprintln!("{}", progress(case, &knot, clock.elapsed().as_secs_f64()));
+        knot
+    })?;
     let controls = if request.control {
         let runs: Vec<_> = cases.iter().zip(&knots).collect();
         Some(in_parallel(&runs, request.jobs, |(case, knot)| -> Control {
@@ -104,6 +110,28 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
         if request.control { " --control" } else { "" },
     );
     Ok(())
+}
+
+/// The line printed to stderr as `case`'s run ends after `wall_s` seconds, so that a long set
+/// of runs shows its progress.
+fn progress(
+    case: &AtEpsilon,
+    knot: &Result<FrictionalKnot, ValidationError>,
+    wall_s: f64,
+) -> String {
+    let (mu, epsilon) = (case.coefficient, case.target_epsilon);
+    let branch = match case.branch {
+        Branch::Tightening { .. } => "tightening",
+        Branch::Loosening { .. } => "loosening",
+    };
+    let outcome = match knot {
+        Ok(knot) => match knot.first_integral.as_ref().or(knot.perpendicular.as_ref()) {
+            Some(m) => format!("ε {:.4}, friction number {:+.3}", m.epsilon, m.friction_number),
+            None => "no loop to measure".to_string(),
+        },
+        Err(error) => format!("failed: {error}"),
+    };
+    format!("audoly: μ = {mu}, target ε = {epsilon}, {branch}: {outcome} ({wall_s:.0} s)")
 }
 
 /// The Markdown table: a row per run (a run that failed, with why) with its loop measured
@@ -173,6 +201,25 @@ fn table(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_progress_line_names_its_run_and_outcome() {
+        let case = AtEpsilon {
+            coefficient: 0.03,
+            target_epsilon: 0.05,
+            rod_radius_cm: 0.01,
+            branch: Branch::Tightening { ramp_s: 60.0, from_dyn: Some(0.07) },
+            tension_dyn: 4.97,
+            resolution: Refinement::default(),
+        };
+        let failed = Err(ValidationError::Scenario { path: "x".into(), reason: "lost".into() });
+        let line = progress(&case, &failed, 12.3);
+        assert!(
+            line.starts_with("audoly: μ = 0.03, target ε = 0.05, tightening: failed"),
+            "{line}"
+        );
+        assert!(line.contains("lost") && line.ends_with("(12 s)"), "{line}");
+    }
 
     #[test]
     fn a_locked_loosening_branch_has_no_run() {

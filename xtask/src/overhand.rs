@@ -4,12 +4,13 @@
 //! ended, the largest force drop, the deepest penetration, the wall time), per knot the
 //! smoothed force at the same end-to-end distances for every speed, and per knot the speeds'
 //! spread along the whole pull; writes each run's samples to `<out>/n<N>_u<U>.csv` when `out`
-//! is given.
+//! is given. Each pull's steps, wall time and last force go to stderr as it ends.
 
 use std::fmt::Write as _;
 use std::path::Path;
 
 use hagfish_scenario::Override;
+use hagfish_validation::ValidationError;
 use hagfish_validation::overhand_pull::{self, PullEnd, PulledKnot, relative_spread, spread_along};
 
 use crate::family::{comma_list, in_parallel, shell_word};
@@ -59,7 +60,9 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
         .map(|s| Override::parse(s).map_err(|e| format!("--set {s}: {e}")))
         .collect::<Result<_, _>>()?;
     let runs = in_parallel(&cases, request.jobs, |&case| {
-        overhand_pull::run(root, case, request.time_step, request.stop_force, &sets)
+        let run = overhand_pull::run(root, case, request.time_step, request.stop_force, &sets);
+        eprintln!("{}", progress(case, &run));
+        run
     })?;
     let runs: Vec<PulledKnot> =
         runs.into_iter().collect::<Result<_, _>>().map_err(|e| e.to_string())?;
@@ -81,6 +84,22 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
         request.sets.iter().map(|s| format!(" --set {}", shell_word(s))).collect::<String>(),
     );
     Ok(())
+}
+
+/// The line printed to stderr as each pull of `(turns, speed)` ends, so that a long grid
+/// shows its progress.
+fn progress((turns, speed): (usize, f64), run: &Result<PulledKnot, ValidationError>) -> String {
+    let case = format!("overhand: n = {turns}, u = {speed} cm/s");
+    match run {
+        Ok(run) => format!(
+            "{case}: {} steps ({} retried) in {:.1} s, last force {}",
+            run.steps,
+            run.retried_steps,
+            run.wall_s,
+            run.samples.last().map_or("—".into(), |s| format!("{:.1} dyn", s.force_dyn)),
+        ),
+        Err(error) => format!("{case}: failed: {error}"),
+    }
 }
 
 /// A row per run, its largest fall of the force counted from `drop_from` dyn.
@@ -228,4 +247,17 @@ fn write_samples(out: &Path, runs: &[PulledKnot]) -> Result<(), String> {
         writer.flush().map_err(|e| format!("{}: {e}", path.display()))?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_progress_line_names_its_pull_and_outcome() {
+        let failed = Err(ValidationError::Scenario { path: "x".into(), reason: "no pull".into() });
+        let line = progress((3, 0.6), &failed);
+        assert!(line.starts_with("overhand: n = 3, u = 0.6 cm/s: failed"), "{line}");
+        assert!(line.contains("no pull"), "{line}");
+    }
 }
