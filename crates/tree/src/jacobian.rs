@@ -94,7 +94,8 @@ pub fn add_point_rows(
 /// three base rows in one walk), for the points `(b_k, x_k, scale_k)` (at most 64), in one
 /// walk from the highest-numbered body to its root instead of one walk per point and
 /// direction: a DOF a on that path gets `n_j·v_a C + ((X × n_j)·ω_a)` with `C = Σ scale_k`
-/// and `X = Σ scale_k x_k` over the points at or below it. Once the walk has passed the
+/// and `X = Σ scale_k x_k` over the points at or below it (the points read, and the moment
+/// arms `X × n_j` formed, only at the bodies that carry a point). Once the walk has passed the
 /// lowest-numbered point's body (if that is on the path), C and X no longer change, and the
 /// rest of the path is added run by run over [`crate::Data::axis_components`] as
 /// `s_a · (X × n_j; C n_j)`. Points whose bodies are not on the path are added one by one
@@ -121,19 +122,36 @@ pub fn add_point_rows_along<const K: usize>(
         }
         return;
     }
+    // The points' bodies, deepest first: the walk looks at the points only where it reaches
+    // one of them, and forms the moment arms X × n_j only where X changes.
+    let mut point_bodies = [0usize; 64];
+    for (slot, point) in point_bodies.iter_mut().zip(points) {
+        *slot = point.0;
+    }
+    let point_bodies = &mut point_bodies[..points.len()];
+    point_bodies.sort_unstable_by(|a, b| b.cmp(a));
+    let mut reached = 0;
     let (mut total, mut moment, mut on_path) = (0.0, DVec3::ZERO, 0u64);
+    let mut moment_arms = directions.map(|n| moment.cross(n));
     let mut next = Some(deepest);
     while let Some(body) = next {
-        for (k, &(b, x, scale)) in points.iter().enumerate() {
-            if b == body {
-                total += scale;
-                moment += scale * x;
-                on_path |= 1 << k;
+        // The path's bodies decrease (children come after their parents): the points' bodies
+        // above this one were met already or are off the path (added below, one by one).
+        while point_bodies.get(reached).is_some_and(|&b| b > body) {
+            reached += 1;
+        }
+        if point_bodies.get(reached) == Some(&body) {
+            for (k, &(b, x, scale)) in points.iter().enumerate() {
+                if b == body {
+                    total += scale;
+                    moment += scale * x;
+                    on_path |= 1 << k;
+                }
             }
+            moment_arms = directions.map(|n| moment.cross(n));
         }
         let joint = &model.joints()[body];
-        for (row, n) in rows.iter_mut().zip(directions) {
-            let moment_arm = moment.cross(n);
+        for ((row, n), moment_arm) in rows.iter_mut().zip(directions).zip(moment_arms) {
             for a in joint.dofs() {
                 let s = &data.axes[a];
                 row[a] += total * n.dot(s.linear) + moment_arm.dot(s.angular);
