@@ -84,6 +84,9 @@ pub struct TreeFactor {
     lane_columns: RefCell<Vec<f64>>,
     /// The number of children of each body (the chains of [`TreeFactor::wrench_span`]).
     child_counts: Vec<usize>,
+    /// The highest-numbered child of each body (`None` for a leaf): the first one the
+    /// leaf-to-root pass eliminates, which starts its parent's articulated inertia.
+    last_children: Vec<Option<usize>>,
     /// The six interleaved columns of [`TreeFactor::wrench_span`] (n entries).
     span_lanes: RefCell<Vec<[f64; 6]>>,
 }
@@ -101,9 +104,12 @@ impl TreeFactor {
             }
             dofs.push(range);
         }
-        let mut child_counts = vec![0; nb];
-        for parent in model.joints().iter().filter_map(|j| j.parent) {
-            child_counts[parent] += 1;
+        let (mut child_counts, mut last_children) = (vec![0; nb], vec![None; nb]);
+        for (child, joint) in model.joints().iter().enumerate() {
+            if let Some(parent) = joint.parent {
+                child_counts[parent] += 1;
+                last_children[parent] = Some(child);
+            }
         }
         Ok(Self {
             parents: model.joints().iter().map(|j| j.parent).collect(),
@@ -120,6 +126,7 @@ impl TreeFactor {
             lane_bias: RefCell::new(vec![0.0; 6 * nb * LANES]),
             lane_columns: RefCell::new(vec![0.0; n * LANES]),
             child_counts,
+            last_children,
             span_lanes: RefCell::new(vec![[0.0; 6]; n]),
         })
     }
@@ -158,12 +165,15 @@ impl TreeFactor {
     /// inertia on a joint without damping or stiffness).
     pub fn factor(&mut self) -> Result<(), SolverError> {
         self.factored = false;
-        for (block, inertia) in self.articulated.iter_mut().zip(&self.inertias) {
-            *block = Block6::from_inertia(inertia);
-        }
         for body in (0..self.parents.len()).rev() {
             let range = self.dofs[body].clone();
             let start = range.start;
+            // A body's block starts as its inertia Ĩ_i where it is first written, in this one
+            // pass: a leaf's here, a parent's when its highest-numbered child (the first
+            // eliminated) adds to it below.
+            if self.last_children[body].is_none() {
+                self.articulated[body] = Block6::from_inertia(&self.inertias[body]);
+            }
             // The body's block by reference (its parent's, earlier in the list, is the only
             // one written below): no 6 × 6 copy per body.
             let (ancestors, rest) = self.articulated.split_at_mut(body);
@@ -199,6 +209,9 @@ impl TreeFactor {
                 self.gains[a] = gain * (1.0 / row[i]);
             }
             if let Some(parent) = self.parents[body] {
+                if self.last_children[parent] == Some(body) {
+                    ancestors[parent] = Block6::from_inertia(&self.inertias[parent]);
+                }
                 ancestors[parent].add_downdated(articulated, &self.gains[range]);
             }
         }
