@@ -132,7 +132,8 @@ pub fn add_point_rows_along<const K: usize>(
     point_bodies.sort_unstable_by(|a, b| b.cmp(a));
     let mut reached = 0;
     let (mut total, mut moment, mut on_path) = (0.0, DVec3::ZERO, 0u64);
-    let mut moment_arms = directions.map(|n| moment.cross(n));
+    // Formed at the walk's first body, the deepest point's.
+    let mut moment_arms = [DVec3::ZERO; K];
     let mut next = Some(deepest);
     while let Some(body) = next {
         // The path's bodies decrease (children come after their parents): the points' bodies
