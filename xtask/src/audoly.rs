@@ -8,10 +8,13 @@
 //! as Markdown, a row per run with the ε and the friction number (F h²/B − ε⁴/2)/(μσε³) it
 //! settled at (Audoly's ±1), the loop measured two ways: at its points ⊥ the pull, and by its
 //! first integral H, R = √(B/(2H)) (`hagfish_validation::loose_knot`), with H's spread along
-//! the loop. With `--control`, each run also gets its frictionless control
+//! the loop, and beside each friction number the braid's normal-force number N h²/(σBε³)
+//! (N the self contacts' normal forces summed): Coulomb's bound on it, and Audoly's σ at
+//! leading order. With `--control`, each run also gets its frictionless control
 //! (the same rod at F₀ = B/(2R²), R its loop radius at the ⊥ points; none where it has none)
 //! and the friction number against it, (F h²/B − cε⁴)/(μσε³) with the control's
-//! c = F₀R₀²/B for Audoly's ½: friction's own share. Each run's ε and friction number (by H
+//! c = F₀R₀²/B for Audoly's ½: friction's own share, and the control braid's normal-force
+//! number. Each run's ε and friction number (by H
 //! where it has one) go to stderr as it ends.
 
 use std::fmt::Write as _;
@@ -126,7 +129,10 @@ fn progress(
     };
     let outcome = match knot {
         Ok(knot) => match knot.first_integral.as_ref().or(knot.perpendicular.as_ref()) {
-            Some(m) => format!("ε {:.4}, friction number {:+.3}", m.epsilon, m.friction_number),
+            Some(m) => format!(
+                "ε {:.4}, friction number {:+.3}, normal-force number {:.3}",
+                m.epsilon, m.friction_number, m.normal_force_number
+            ),
             None => "no loop to measure".to_string(),
         },
         Err(error) => format!("failed: {error}"),
@@ -144,16 +150,20 @@ fn table(
 ) -> String {
     let mut out = String::from(
         "| μ | target ε | h (cm) | branch | F (dyn) | at ⊥: R (cm), ε | friction number | \
-         by H: R (cm), ε | friction number | H's spread on the loop |",
+         N h²/(σBε³) | by H: R (cm), ε | friction number | N h²/(σBε³) | H's spread on the loop |",
     );
     out.push_str(if controls.is_some() {
-        " control: R₀ (cm), F₀R₀²/B | number against it |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n"
+        " control: R₀ (cm), F₀R₀²/B | N₀ h²/(σBε₀³) | number against it |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n"
     } else {
-        "\n|---|---|---|---|---|---|---|---|---|---|\n"
+        "\n|---|---|---|---|---|---|---|---|---|---|---|---|\n"
     });
     let measure = |m: Option<&LoopMeasure>| match m {
-        Some(m) => format!("{:.4}, {:.4} | {:+.3}", m.loop_radius_cm, m.epsilon, m.friction_number),
-        None => "no joint to measure | —".to_string(),
+        Some(m) => format!(
+            "{:.4}, {:.4} | {:+.3} | {:.3}",
+            m.loop_radius_cm, m.epsilon, m.friction_number, m.normal_force_number
+        ),
+        None => "no joint to measure | — | —".to_string(),
     };
     for (k, (case, knot)) in cases.iter().zip(knots).enumerate() {
         let branch = match case.branch {
@@ -173,7 +183,7 @@ fn table(
                 knot.first_integral_spread
                     .map_or_else(|| "—".to_string(), |s| format!("{:.1} %", 100.0 * s)),
             ),
-            Err(error) => format!("failed: {error} | — | — | — | —"),
+            Err(error) => format!("failed: {error} | — | — | — | — | — | —"),
         };
         let control = match (controls.map(|c| &c[k]), knot) {
             (None, _) => String::new(),
@@ -182,12 +192,12 @@ fn table(
                     .controlled_friction_number(control)
                     .map_or_else(|_| "—".to_string(), |n| format!("{n:+.3}"));
                 format!(
-                    " {:.4}, {:.4} | {against} |",
-                    control.loop_radius_cm, control.tension_number
+                    " {:.4}, {:.4} | {:.3} | {against} |",
+                    control.loop_radius_cm, control.tension_number, control.normal_force_number
                 )
             }
-            (Some(Some(Err(error))), _) => format!(" failed: {error} | — |"),
-            (Some(_), _) => " — | — |".to_string(),
+            (Some(Some(Err(error))), _) => format!(" failed: {error} | — | — |"),
+            (Some(_), _) => " — | — | — |".to_string(),
         };
         let _ = writeln!(
             out,
@@ -261,31 +271,40 @@ mod tests {
                 loop_radius_cm: 2.0,
                 epsilon: 0.2,
                 friction_number: 1.0,
+                normal_force_number: 1.1,
             }),
             first_integral: Some(LoopMeasure {
                 loop_radius_cm: 1.9,
                 epsilon: 0.205,
                 friction_number: 1.2,
+                normal_force_number: 1.3,
             }),
             first_integral_spread: Some(0.004),
             rod_radius_cm: 0.08,
             bending_stiffness_dyn_cm2: 100.0,
         };
-        let control =
-            FrictionlessControl { tension_dyn: 12.5, loop_radius_cm: 2.01, tension_number: 0.55 };
+        let control = FrictionlessControl {
+            tension_dyn: 12.5,
+            loop_radius_cm: 2.01,
+            tension_number: 0.55,
+            normal_force_number: 1.05,
+        };
         let against = knot.controlled_friction_number(&control).expect("a ⊥ measure");
         let printed = table(&[case], &[Ok(knot)], Some(&[Some(Ok(control))]));
         let row = printed.lines().nth(2).expect("a row");
-        assert!(row.ends_with(&format!("| 2.0100, 0.5500 | {against:+.3} |")), "{row}");
-        assert!(row.contains("| 1.9000, 0.2050 | +1.200 | 0.4 % |"), "{row}");
-        assert_eq!(printed.lines().next().map(|h| h.matches('|').count()), Some(13));
-        assert_eq!(row.matches('|').count(), 13, "{row}");
+        assert!(row.ends_with(&format!("| 2.0100, 0.5500 | 1.050 | {against:+.3} |")), "{row}");
+        assert!(row.contains("| 2.0000, 0.2000 | +1.000 | 1.100 |"), "{row}");
+        assert!(row.contains("| 1.9000, 0.2050 | +1.200 | 1.300 | 0.4 % |"), "{row}");
+        assert_eq!(printed.lines().next().map(|h| h.matches('|').count()), Some(16));
+        assert_eq!(printed.lines().nth(1).map(|h| h.matches('|').count()), Some(16));
+        assert_eq!(row.matches('|').count(), 16, "{row}");
         let plain = table(
             &[case],
             &[Err(ValidationError::Scenario { path: "x".into(), reason: "y".into() })],
             None,
         );
-        assert_eq!(plain.lines().next().map(|h| h.matches('|').count()), Some(11));
-        assert_eq!(plain.lines().nth(2).map(|row| row.matches('|').count()), Some(11));
+        assert_eq!(plain.lines().next().map(|h| h.matches('|').count()), Some(13));
+        assert_eq!(plain.lines().nth(1).map(|h| h.matches('|').count()), Some(13));
+        assert_eq!(plain.lines().nth(2).map(|row| row.matches('|').count()), Some(13));
     }
 }

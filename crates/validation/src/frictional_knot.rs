@@ -105,6 +105,12 @@ pub struct LoopMeasure {
     pub epsilon: f64,
     /// (F h²/B − ε⁴/2) / (μσε³): Audoly's ±1.
     pub friction_number: f64,
+    /// N h²/(σBε³), N the braid's total normal force
+    /// ([`loose_knot::contact_normal_force_dyn`]): the friction number Coulomb's law gives
+    /// where every contact slides along the strands, μN over μσBε³/h² (the friction
+    /// number's bound: the law's |F − H| ≤ μN across the braid). Audoly's σ is this
+    /// number's 1 at leading order in ε.
+    pub normal_force_number: f64,
 }
 
 /// The frictionless control of a frictional knot: the same rod without friction, pulled at
@@ -122,6 +128,9 @@ pub struct FrictionlessControl {
     pub loop_radius_cm: f64,
     /// c = F₀R₀²/B (Audoly's ½).
     pub tension_number: f64,
+    /// Its braid's normal force N₀ h²/(σBε₀³), ε₀ = √(h/R₀)
+    /// ([`LoopMeasure::normal_force_number`]): the frictionless braid's.
+    pub normal_force_number: f64,
 }
 
 /// Settles the loose trefoil (changed by `refinement`) with `friction` on `branch` at the
@@ -298,7 +307,9 @@ impl FrictionalKnot {
             let epsilon = (h / r).sqrt();
             let rod = (tension_dyn, h, b);
             let friction_number = friction_number_against(0.5, rod, (epsilon, coefficient));
-            LoopMeasure { loop_radius_cm: r, epsilon, friction_number }
+            let normal_force_number =
+                normal_force_number(knot.contact_normal_force_dyn, (h, b), epsilon);
+            LoopMeasure { loop_radius_cm: r, epsilon, friction_number, normal_force_number }
         };
         let loop_integral = knot.loop_first_integral;
         FrictionalKnot {
@@ -358,12 +369,25 @@ impl FrictionalKnot {
         let tightening = Branch::Tightening { ramp_s: TIGHTENING_RAMP_S, from_dyn: None };
         let knot = loose_knot::run_loaded(&scenario(root, (tightening, pull), None, refinement)?)?;
         let radius = knot.loop_radius_cm();
+        let (h, b) = (self.rod_radius_cm, self.bending_stiffness_dyn_cm2);
+        let epsilon = (h / radius).sqrt();
         Ok(FrictionlessControl {
             tension_dyn: pull,
             loop_radius_cm: radius,
             tension_number: knot.tension_number(radius),
+            normal_force_number: normal_force_number(
+                knot.contact_normal_force_dyn,
+                (h, b),
+                epsilon,
+            ),
         })
     }
+}
+
+/// N h²/(σBε³) for a braid's total normal force N on a rod of radius h and bending
+/// stiffness B at ε ([`LoopMeasure::normal_force_number`]).
+fn normal_force_number(normal_force_dyn: f64, (h, b): (f64, f64), epsilon: f64) -> f64 {
+    normal_force_dyn * h * h / (SIGMA * b * epsilon.powi(3))
 }
 
 /// (F h²/B − c ε⁴)/(μσε³) for a pull F on a rod of radius h and bending stiffness B at ε and
@@ -514,14 +538,19 @@ mod tests {
                 loop_radius_cm: 2.0,
                 epsilon: 0.2,
                 friction_number: 0.0,
+                normal_force_number: 0.0,
             }),
             first_integral: None,
             first_integral_spread: None,
             rod_radius_cm: 0.08,
             bending_stiffness_dyn_cm2: 100.0,
         };
-        let control =
-            |c| FrictionlessControl { tension_dyn: 12.5, loop_radius_cm: 2.0, tension_number: c };
+        let control = |c| FrictionlessControl {
+            tension_dyn: 12.5,
+            loop_radius_cm: 2.0,
+            tension_number: c,
+            normal_force_number: 1.0,
+        };
         let plain = (1.28e-3 - 8e-4) / (0.1 * SIGMA * 8e-3);
         let at_half = knot.controlled_friction_number(&control(0.5)).expect("a ⊥ measure");
         assert!((at_half - plain).abs() < 1e-12);

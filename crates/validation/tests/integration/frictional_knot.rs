@@ -213,7 +213,10 @@ fn ramped_slowly_the_tightening_number_is_the_same_at_two_loop_radii() {
 /// The excess of the friction number over Audoly's 1 is friction's own: the frictionless
 /// control (the same rod, h = 0.08 cm, pulled at F₀ = B/(2R²) for the loosening run's loop
 /// R = 1.649 cm) holds the law's ½ (measured F₀R₀²/B = 0.4997), so against it the number
-/// moves by 0.001 (−1.465 → −1.464; docs/validation.md, "Loose trefoil with friction").
+/// moves by 0.001 (−1.465 → −1.464). And it is the braid's normal force N: friction holds
+/// 0.94 of Coulomb's μN (normal-force number 1.560), and the frictionless control's braid
+/// already carries 1.736 times Audoly's σBε³/h² (docs/validation.md, "Loose trefoil with
+/// friction").
 #[test]
 fn against_its_frictionless_control_the_loosening_number_keeps_its_excess() {
     let run = at_epsilon(0.2, 2.0).1;
@@ -226,6 +229,10 @@ fn against_its_frictionless_control_the_loosening_number_keeps_its_excess() {
     assert!((control.loop_radius_cm / measured.loop_radius_cm - 1.0).abs() < 0.01, "{control:?}");
     assert!((controlled - measured.friction_number).abs() < 0.02, "{controlled} {knot:?}");
     assert!(controlled < -1.3, "the excess over Audoly's −1 stays: {controlled}");
+    // Coulomb's bound |F − H| ≤ μN, nearly reached: the contacts slide along the strands.
+    let held = -measured.friction_number / measured.normal_force_number;
+    assert!((0.85..=1.0).contains(&held), "friction holds {held} of μN: {knot:?}");
+    assert!(control.normal_force_number > 1.5, "the frictionless braid's N: {control:?}");
     assert_the_first_integral_measures_the_loop_as_its_perpendicular_points_do(&knot);
 }
 
