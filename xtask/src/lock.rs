@@ -2,8 +2,10 @@
 //! (`hagfish_validation::frictional_knot::release`): for each μ the knot is tightened by
 //! 100 dyn, let go (F = 0) and settled; prints, as Markdown, a row per μ with the knot as let
 //! go (with its friction number on the tightening branch at 100 dyn) and as settled, how far
-//! its loop opened, σ' = ε/(2μ) of a knot that opened, and Audoly's lock ε₀/(2σ) with
-//! σ = 0.492 (docs/validation.md, "The loosening lock").
+//! its loop opened, σ' = ε/(2μ) of a knot that opened, the settled braid's normal force N as
+//! N h²/(Bε³) (the σ' that Coulomb's μN would give where every contact slides: Audoly's σ at
+//! leading order), and Audoly's lock ε₀/(2σ) with σ = 0.492 (docs/validation.md, "The
+//! loosening lock").
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -45,7 +47,8 @@ pub fn run(root: &Path, request: &Request<'_>) -> Result<(), String> {
 fn table(releases: &[Release]) -> String {
     let mut out = String::from(
         "| μ | let go: R (cm), ε₀ | its friction number at 100 dyn | settled: R (cm), ε | opened | \
-         σ' = ε/(2μ) if opened | Audoly's lock ε₀/(2σ), σ = 0.492 |\n|---|---|---|---|---|---|---|\n",
+         σ' = ε/(2μ) if opened | settled braid's N h²/(Bε³) | Audoly's lock ε₀/(2σ), σ = 0.492 |\n\
+         |---|---|---|---|---|---|---|---|\n",
     );
     for release in releases {
         let (let_go, settled) = (release.let_go_loop(), release.settled_loop());
@@ -57,7 +60,7 @@ fn table(releases: &[Release]) -> String {
         };
         let _ = writeln!(
             out,
-            "| {} | {:.4}, {:.4} | {:+.3} | {:.4}, {:.4} | {:.1} % | {sigma} | {:.4} |",
+            "| {} | {:.4}, {:.4} | {:+.3} | {:.4}, {:.4} | {:.1} % | {sigma} | {:.3} | {:.4} |",
             coefficient,
             let_go.loop_radius_cm,
             let_go.epsilon,
@@ -65,6 +68,7 @@ fn table(releases: &[Release]) -> String {
             settled.loop_radius_cm,
             settled.epsilon,
             100.0 * release.opening(),
+            frictional_knot::SIGMA * settled.normal_force_number,
             release.lock_coefficient(),
         );
     }

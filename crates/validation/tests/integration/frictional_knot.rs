@@ -134,8 +134,10 @@ fn at_the_shipped_rod_radius_the_friction_number_is_converged_in_the_bodies() {
 /// ε = 0.130: σ' = ε/(2μ) = 0.592); at μ = 0.125 it is locked (1.1 %: the loop's elastic
 /// give as the pull goes, 1.0–1.2 % at every μ from 0.117 to 0.2). The lock's law holds with
 /// the σ' of the opened knot: ε₀/(2σ') of the locked knot lies within the bracket (measured
-/// 0.114), where Audoly's σ = 0.492 puts it at 0.1375, beyond it. The bracket in finer steps,
-/// on 800 bodies, at h = 0.01 s and with E = 16 edges: docs/validation.md, "The loosening lock".
+/// 0.114), where Audoly's σ = 0.492 puts it at 0.1375, beyond it. And σ' is the opened
+/// braid's own normal force N h²/(Bε³) (measured 0.581): the loop opened until friction held
+/// Coulomb's μN. The bracket in finer steps, on 800 bodies, at h = 0.01 s and with E = 16
+/// edges: docs/validation.md, "The loosening lock".
 #[test]
 fn a_knot_let_go_locks_where_mu_reaches_its_epsilon_over_two_sigma() {
     let [opens, locks] = std::thread::scope(|scope| {
@@ -165,6 +167,8 @@ fn a_knot_let_go_locks_where_mu_reaches_its_epsilon_over_two_sigma() {
     let lock = locks.let_go_loop().epsilon / (2.0 * sigma);
     println!("σ' = {sigma:.3} of the opened knot; its lock ε₀/(2σ') = {lock:.4}");
     assert!((0.11..0.125).contains(&lock), "the lock by σ' = {sigma}: μ = {lock}");
+    let braid = SIGMA * opens.settled_loop().normal_force_number;
+    assert!((braid / sigma - 1.0).abs() < 0.05, "σ' = {sigma}, the braid's N h²/(Bε³) {braid}");
 }
 
 /// `cargo xtask audoly`'s runs at μ = 0.1 and `epsilon` with a loop of `loop_radius_cm`, the
