@@ -21,8 +21,8 @@
 //!   H jumps across the braid, and the loop's H, not the pull, sets its radius:
 //!   `R = √(B/(2H))` at leading order, a measure of the loop that needs no point ⊥ the pull;
 //! - the braid's total normal force N, the self-contact rows' multipliers summed over the
-//!   time step ([`contact_normal_force_dyn`]): with friction μ the braid holds at most μN of
-//!   the jump of H across it.
+//!   time step and averaged over the last second ([`Settled::contact_normal_force_dyn`]):
+//!   with friction μ the braid holds at most μN of the jump of H across it.
 
 use std::path::Path;
 
@@ -31,7 +31,6 @@ use hagfish_anatomy::Body;
 use hagfish_control::Phase;
 use hagfish_knots::{KnotOptions, analyse_knot};
 use hagfish_scenario::{InitialShape, LoadedScenario};
-use hagfish_sim::rows::RowGroup;
 use hagfish_tree::JointKind;
 
 use crate::check::Check;
@@ -72,11 +71,10 @@ pub struct LooseKnot {
     pub bending_joint: Vec<bool>,
     /// The first integral on the loop, `None` where the loop has no joint outside the braid.
     pub loop_first_integral: Option<LoopFirstIntegral>,
-    /// The self contacts' normal forces summed over the braid at the settled step, N = Σ λ/h
-    /// over the self-contact rows (dyn): each row's direction d has d·n̂ = 1 (the normal
-    /// alone, or a friction pyramid's edge n̂ + μt̂), so its multiplier λ is its normal
-    /// impulse. Coulomb's law bounds the tension friction can hold across the braid by μN,
-    /// reached where every contact slides along the strands ([`contact_normal_force_dyn`]).
+    /// The braid's total normal force N = Σ λ/h over the self-contact rows, averaged over the
+    /// settle's last second ([`Settled::contact_normal_force_dyn`]; dyn). Coulomb's law
+    /// bounds the tension friction can hold across the braid by μN, reached where every
+    /// contact slides along the strands.
     pub contact_normal_force_dyn: f64,
 }
 
@@ -294,7 +292,7 @@ pub fn measure(settled: &Settled) -> LooseKnot {
         })
     });
     LooseKnot {
-        contact_normal_force_dyn: contact_normal_force_dyn(world),
+        contact_normal_force_dyn: settled.contact_normal_force_dyn,
         tension_dyn: t,
         bending_stiffness_dyn_cm2: b,
         rod_radius_cm: rod.radius_cm,
@@ -304,18 +302,6 @@ pub fn measure(settled: &Settled) -> LooseKnot {
         bending_joint: bending,
         loop_first_integral,
     }
-}
-
-/// The normal forces of `world`'s self contacts over its last step, summed (dyn): the
-/// multipliers its last solve gave the self-contact rows (kept by their keys for the next
-/// step's warm start) over the time step. A row's direction d has d·n̂ = 1, so Σ λ/h is the
-/// braid's total normal force N whichever of a pyramid's edges carry it.
-pub fn contact_normal_force_dyn(world: &hagfish_sim::World) -> f64 {
-    let contact = RowGroup::Contact.tag().index();
-    let rows = world.data().warm_start.carried().iter();
-    let impulse: f64 =
-        rows.filter(|row| usize::from(row.key.group) == contact).map(|row| row.lambda).sum();
-    impulse / world.options().time_step
 }
 
 /// The loop among the contacts at arc lengths `contacts` (cm, in any order): the longest

@@ -4,6 +4,7 @@ use hagfish_anatomy::Rod;
 use hagfish_control::{LoadPhase, Phase, PhasedController};
 use hagfish_scenario::LoadedScenario;
 use hagfish_sim::World;
+use hagfish_sim::rows::RowGroup;
 
 use crate::error::ValidationError;
 
@@ -18,6 +19,29 @@ pub struct Settled {
     /// The scenario's last load phase: the load the rod settled under (a scenario that
     /// loads it twice, as a frictional knot opened onto a smaller pull, ends with it).
     pub load: LoadPhase,
+    /// The self contacts' total normal force N = Σ λ/h over the self-contact rows (each row's
+    /// direction d has d·n̂ = 1, so its multiplier λ is its normal impulse), averaged over the
+    /// steps of the last second (dyn): a settled knot's contact set can cycle from step to
+    /// step (a contact found every other step), and its N with it.
+    pub contact_normal_force_dyn: f64,
+}
+
+/// The time over whose steps [`Settled::contact_normal_force_dyn`] is averaged (s). On the
+/// loose trefoil at 50 dyn the contact set settles into a cycle of two steps (25 and 26
+/// contacts) whose N differ by 7 %: the last step's alone is one of the two.
+const NORMAL_FORCE_WINDOW_S: f64 = 1.0;
+
+/// The normal forces of `world`'s self contacts over its last step, summed (dyn): the
+/// multipliers its last solve gave the self-contact rows (kept by their keys for the next
+/// step's warm start) over the time step. A row's direction d has d·n̂ = 1 (the normal alone,
+/// or a friction pyramid's edge n̂ + μt̂), so Σ λ/h is the contacts' total normal force N
+/// whichever of a pyramid's edges carry it.
+fn contact_normal_force_dyn(world: &World) -> f64 {
+    let contact = RowGroup::Contact.tag().index();
+    let rows = world.data().warm_start.carried().iter();
+    let impulse: f64 =
+        rows.filter(|row| usize::from(row.key.group) == contact).map(|row| row.lambda).sum();
+    impulse / world.options().time_step
 }
 
 impl Settled {
@@ -53,8 +77,11 @@ pub fn settle(loaded: &LoadedScenario) -> Result<Settled, ValidationError> {
     let (mut world, mut controller) = loaded.build()?;
     let scenario = &loaded.scenario;
     let steps = (scenario.duration_s / scenario.time_step_s).round() as u64;
+    let window = (NORMAL_FORCE_WINDOW_S / scenario.time_step_s).round() as usize;
+    let mut normal_force = TrailingMean::new(window);
     while !controller.finished() && world.steps() < steps {
         world.step(&mut controller)?;
+        normal_force.push(contact_normal_force_dyn(&world));
     }
     if !controller.finished() {
         return Err(ValidationError::NotSettled {
@@ -63,5 +90,58 @@ pub fn settle(loaded: &LoadedScenario) -> Result<Settled, ValidationError> {
             energy_erg: hagfish_tree::kinetic_energy(&world.data().tree),
         });
     }
-    Ok(Settled { world, controller, rod, load })
+    let contact_normal_force_dyn = normal_force.mean();
+    Ok(Settled { world, controller, rod, load, contact_normal_force_dyn })
+}
+
+/// The mean of the last `window` values pushed (a ring of them).
+struct TrailingMean {
+    values: Vec<f64>,
+    window: usize,
+    pushed: usize,
+}
+
+impl TrailingMean {
+    /// A mean over the last `window` values (at least one).
+    fn new(window: usize) -> Self {
+        let window = window.max(1);
+        Self { values: Vec::with_capacity(window), window, pushed: 0 }
+    }
+
+    /// Adds `value`, replacing the oldest once `window` are held.
+    fn push(&mut self, value: f64) {
+        match self.values.len() < self.window {
+            true => self.values.push(value),
+            false => self.values[self.pushed % self.window] = value,
+        }
+        self.pushed += 1;
+    }
+
+    /// The mean of the values held (NaN before the first).
+    fn mean(&self) -> f64 {
+        self.values.iter().sum::<f64>() / self.values.len() as f64
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_trailing_mean_holds_the_last_values_only() {
+        let mut mean = TrailingMean::new(3);
+        assert!(mean.mean().is_nan());
+        mean.push(1.0);
+        assert_eq!(mean.mean(), 1.0);
+        for value in [2.0, 3.0, 10.0, 20.0] {
+            mean.push(value);
+        }
+        assert_eq!(mean.mean(), (3.0 + 10.0 + 20.0) / 3.0);
+        mean.push(30.0);
+        assert_eq!(mean.mean(), (10.0 + 20.0 + 30.0) / 3.0);
+        let mut one = TrailingMean::new(0);
+        one.push(4.0);
+        one.push(5.0);
+        assert_eq!(one.mean(), 5.0);
+    }
 }

@@ -219,7 +219,7 @@ fn ramped_slowly_the_tightening_number_is_the_same_at_two_loop_radii() {
 /// R = 1.649 cm) holds the law's ½ (measured F₀R₀²/B = 0.4997), so against it the number
 /// moves by 0.001 (−1.465 → −1.464). And it is the braid's normal force N: friction holds
 /// 0.94 of Coulomb's μN (normal-force number 1.560), and the frictionless control's braid
-/// already carries 1.736 times Audoly's σBε³/h² (docs/validation.md, "Loose trefoil with
+/// already carries 1.733 times Audoly's σBε³/h² (docs/validation.md, "Loose trefoil with
 /// friction").
 #[test]
 fn against_its_frictionless_control_the_loosening_number_keeps_its_excess() {
