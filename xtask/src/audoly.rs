@@ -14,8 +14,7 @@
 //! (the same rod at F₀ = B/(2R²), R its loop radius at the ⊥ points; none where it has none)
 //! and the friction number against it, (F h²/B − cε⁴)/(μσε³) with the control's
 //! c = F₀R₀²/B for Audoly's ½: friction's own share, and the control braid's normal-force
-//! number. Each run's ε and friction number (by H
-//! where it has one) go to stderr as it ends.
+//! number. Each run's ε and friction number (by H where it has one) go to stderr as it ends.
 
 use std::fmt::Write as _;
 use std::path::Path;

@@ -106,10 +106,10 @@ pub struct LoopMeasure {
     /// (F h²/B − ε⁴/2) / (μσε³): Audoly's ±1.
     pub friction_number: f64,
     /// N h²/(σBε³), N the braid's total normal force
-    /// ([`LooseKnot::contact_normal_force_dyn`](loose_knot::LooseKnot::contact_normal_force_dyn)): the friction number Coulomb's law gives
-    /// where every contact slides along the strands, μN over μσBε³/h² (the friction
-    /// number's bound: the law's |F − H| ≤ μN across the braid). Audoly's σ is this
-    /// number's 1 at leading order in ε.
+    /// ([`LooseKnot::contact_normal_force_dyn`](loose_knot::LooseKnot::contact_normal_force_dyn)):
+    /// the friction number Coulomb's law gives where every contact slides along the strands,
+    /// μN over μσBε³/h² (the friction number's bound: the law's |F − H| ≤ μN across the
+    /// braid). Audoly's σ is this number's 1 at leading order in ε.
     pub normal_force_number: f64,
 }
 

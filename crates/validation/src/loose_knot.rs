@@ -292,7 +292,6 @@ pub fn measure(settled: &Settled) -> LooseKnot {
         })
     });
     LooseKnot {
-        contact_normal_force_dyn: settled.contact_normal_force_dyn,
         tension_dyn: t,
         bending_stiffness_dyn_cm2: b,
         rod_radius_cm: rod.radius_cm,
@@ -301,6 +300,7 @@ pub fn measure(settled: &Settled) -> LooseKnot {
         outside_braid,
         bending_joint: bending,
         loop_first_integral,
+        contact_normal_force_dyn: settled.contact_normal_force_dyn,
     }
 }
 
