@@ -32,15 +32,14 @@ pub struct Settled {
 const NORMAL_FORCE_WINDOW_S: f64 = 1.0;
 
 /// The normal forces of `world`'s self contacts over its last step, summed (dyn): the
-/// multipliers its last solve gave the self-contact rows (kept by their keys for the next
-/// step's warm start) over the time step. A row's direction d has d·n̂ = 1 (the normal alone,
-/// or a friction pyramid's edge n̂ + μt̂), so Σ λ/h is the contacts' total normal force N
-/// whichever of a pyramid's edges carry it.
+/// multipliers its last solve gave the self-contact rows, over the time step. A row's
+/// direction d has d·n̂ = 1 (the normal alone, or a friction pyramid's edge n̂ + μt̂), so Σ λ/h
+/// is the contacts' total normal force N whichever of a pyramid's edges carry it.
 fn contact_normal_force_dyn(world: &World) -> f64 {
-    let contact = RowGroup::Contact.tag().index();
-    let rows = world.data().warm_start.carried().iter();
-    let impulse: f64 =
-        rows.filter(|row| usize::from(row.key.group) == contact).map(|row| row.lambda).sum();
+    let data = world.data();
+    let rows = data.rows.sources().iter().zip(data.solver.multipliers());
+    let contact = RowGroup::Contact.tag();
+    let impulse: f64 = rows.filter(|(row, _)| row.tag == contact).map(|(_, lambda)| lambda).sum();
     impulse / world.options().time_step
 }
 
