@@ -18,8 +18,12 @@
 //! - `audoly [--mu μ,…] [--epsilon ε,…] [--loop-radius R₀] [--bodies N] [--time-step H]
 //!   [--tighten-from-looser] [--control]`: the loose trefoil with friction on Audoly et al.'s two branches, the rod's
 //!   radius set by ε (`audoly.rs`).
+//! - `braid --radius H --force F [--bodies N] [--time-step H] [--export PATH]`: the frictionless
+//!   loose trefoil settled at one pull, its braid's normal force, for a peer's check
+//!   (`braid.rs`, `bench/peers/audoly_braid.py`).
 
 mod audoly;
+mod braid;
 mod family;
 mod family_cases;
 mod family_cylinder;
@@ -188,6 +192,27 @@ enum Task {
         #[arg(long, default_value_t = 2)]
         jobs: usize,
     },
+    /// Settles the frictionless loose trefoil on a rod of radius h at the pull F and prints its
+    /// braid's total normal force N, as N h²/(σBε³) with ε = (2Fh²/B)^¼ (Audoly's σ is its 1 at
+    /// leading order), and its loop radius; with `--export`, writes them, the rod and its
+    /// settled centreline as JSON (for `bench/peers/audoly_braid.py`).
+    Braid {
+        /// The rod's radius h (cm).
+        #[arg(long)]
+        radius: f64,
+        /// The pull F (dyn).
+        #[arg(long)]
+        force: f64,
+        /// Bodies of the rod (the rod file's 400 if not given).
+        #[arg(long)]
+        bodies: Option<usize>,
+        /// Time step (s; the scenario's 0.02 if not given).
+        #[arg(long)]
+        time_step: Option<f64>,
+        /// Where to write the JSON.
+        #[arg(long)]
+        export: Option<PathBuf>,
+    },
     /// Runs a knot scenario on the family of bodies and time steps (ES103 and 15 variants)
     /// and prints its knot table (Markdown), as in docs/physics.md.
     Family {
@@ -303,6 +328,20 @@ fn main() -> ExitCode {
             let refinement = Refinement { bodies, time_step_s: time_step, ..Refinement::default() };
             let request = lock::Request { coefficients: &coefficients, edges, refinement, jobs };
             lock::run(&workspace_root(), &request).map(|()| true)
+        }
+        Task::Braid { radius, force, bodies, time_step, export } => {
+            let positive = |x: f64| x.is_finite() && x > 0.0;
+            if !(positive(radius) && positive(force)) {
+                eprintln!("error: --radius {radius} and --force {force} must be positive");
+                return ExitCode::from(2);
+            }
+            let request = braid::Request {
+                rod_radius_cm: radius,
+                tension_dyn: force,
+                resolution: Refinement { bodies, time_step_s: time_step, ..Refinement::default() },
+                export: export.as_deref(),
+            };
+            braid::run(&workspace_root(), &request).map(|()| true)
         }
         Task::Audoly {
             coefficients,

@@ -29,6 +29,7 @@ use crate::error::ValidationError;
 use hagfish_scenario::LoadedScenario;
 
 use crate::loose_knot::{self, LooseKnot, Refinement};
+use crate::settle::Settled;
 
 /// Audoly et al.'s braid coefficient σ of the trefoil.
 pub const SIGMA: f64 = 0.492;
@@ -366,8 +367,7 @@ impl FrictionalKnot {
     ) -> Result<FrictionlessControl, ValidationError> {
         let radius = self.at_perpendicular()?.loop_radius_cm;
         let pull = self.bending_stiffness_dyn_cm2 / (2.0 * radius * radius);
-        let tightening = Branch::Tightening { ramp_s: TIGHTENING_RAMP_S, from_dyn: None };
-        let knot = loose_knot::run_loaded(&scenario(root, (tightening, pull), None, refinement)?)?;
+        let (knot, _) = frictionless_settled(root, pull, refinement)?;
         let radius = knot.loop_radius_cm();
         let (h, b) = (self.rod_radius_cm, self.bending_stiffness_dyn_cm2);
         let epsilon = (h / radius).sqrt();
@@ -384,9 +384,29 @@ impl FrictionalKnot {
     }
 }
 
+/// The frictionless loose trefoil (changed by `refinement`) settled at the pull `tension_dyn`
+/// as a [`FrictionlessControl`] is (ramped over [`TIGHTENING_RAMP_S`] from the torus and held
+/// [`FINAL_PULL_S`]), measured, with the settled world (for its centreline).
+///
+/// # Errors
+/// Those of loading and settling the loose trefoil (`loose_knot.rs`), and where no point of
+/// the settled loop has its tangent ⊥ the pull.
+pub fn frictionless_settled(
+    root: &Path,
+    tension_dyn: f64,
+    refinement: Refinement,
+) -> Result<(LooseKnot, Settled), ValidationError> {
+    let tightening = Branch::Tightening { ramp_s: TIGHTENING_RAMP_S, from_dyn: None };
+    let loaded = scenario(root, (tightening, tension_dyn), None, refinement)?;
+    let settled = loose_knot::settle_checked(&loaded)?;
+    let knot = loose_knot::measure(&settled);
+    loose_knot::require_loop_radius(&knot, &loaded)?;
+    Ok((knot, settled))
+}
+
 /// N h²/(σBε³) for a braid's total normal force N on a rod of radius h and bending
 /// stiffness B at ε ([`LoopMeasure::normal_force_number`]).
-fn normal_force_number(normal_force_dyn: f64, (h, b): (f64, f64), epsilon: f64) -> f64 {
+pub fn normal_force_number(normal_force_dyn: f64, (h, b): (f64, f64), epsilon: f64) -> f64 {
     normal_force_dyn * h * h / (SIGMA * b * epsilon.powi(3))
 }
 

@@ -179,6 +179,16 @@ pub fn run(
 /// point of the settled loop has its tangent ⊥ the pull outside the braid.
 pub fn run_loaded(loaded: &LoadedScenario) -> Result<LooseKnot, ValidationError> {
     let knot = settle_and_measure(loaded)?;
+    require_loop_radius(&knot, loaded)?;
+    Ok(knot)
+}
+
+/// An error unless `knot` (settled from `loaded`) has a point of its loop whose tangent is ⊥
+/// the pull outside the braid, where its loop radius is measured.
+pub fn require_loop_radius(
+    knot: &LooseKnot,
+    loaded: &LoadedScenario,
+) -> Result<(), ValidationError> {
     if knot.loop_radii_cm.is_empty() {
         return Err(ValidationError::Scenario {
             path: loaded.path.clone(),
@@ -187,12 +197,19 @@ pub fn run_loaded(loaded: &LoadedScenario) -> Result<LooseKnot, ValidationError>
                 .into(),
         });
     }
-    Ok(knot)
+    Ok(())
 }
 
 /// [`run_loaded`] without its demand for a point ⊥ the pull: the loop radii may be none (the
 /// frictional study measures such a loop by its first integral).
 pub fn settle_and_measure(loaded: &LoadedScenario) -> Result<LooseKnot, ValidationError> {
+    settle_checked(loaded).map(|settled| measure(&settled))
+}
+
+/// Settles `loaded` (a loose knot started as an open torus knot), or an error if the knot it
+/// settled into is not the one it started as (the step lets a thin strand pass through another
+/// when it moves more than its diameter in one step).
+pub fn settle_checked(loaded: &LoadedScenario) -> Result<Settled, ValidationError> {
     let Some(InitialShape::OpenTorusKnot(start)) = loaded.scenario.initial_shape else {
         return Err(ValidationError::Scenario {
             path: loaded.path.clone(),
@@ -204,7 +221,7 @@ pub fn settle_and_measure(loaded: &LoadedScenario) -> Result<LooseKnot, Validati
     if found != expected {
         return Err(ValidationError::KnotChanged { path: loaded.path.clone(), expected, found });
     }
-    Ok(measure(&settled))
+    Ok(settled)
 }
 
 /// The knot type (Rolfsen name) of the settled rod's body centres.

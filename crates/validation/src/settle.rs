@@ -46,10 +46,23 @@ fn contact_normal_force_dyn(world: &World) -> f64 {
 impl Settled {
     /// World position of the tail end (the far end of the last body, where loads act; cm).
     pub fn tail_end(&self) -> glam::DVec3 {
-        let data = &self.world.data().tree;
         let last = self.world.model().body_count() - 1;
-        let frame = &data.body_frames[last];
-        frame.translation + frame.rotation.col(0) * (0.5 * self.world.model().bodies()[last].length)
+        self.body_end(last, 0.5)
+    }
+
+    /// The rod's centreline as the polyline of its bodies' ends (cm): the head end of the
+    /// first body, then the far end of every body (bodies + 1 points; a body's axis is its
+    /// frame's x).
+    pub fn body_ends(&self) -> Vec<glam::DVec3> {
+        let bodies = self.world.model().body_count();
+        let head = (bodies > 0).then(|| self.body_end(0, -0.5));
+        head.into_iter().chain((0..bodies).map(|b| self.body_end(b, 0.5))).collect()
+    }
+
+    /// The point `side` body lengths along body `b`'s axis from its centre (cm).
+    fn body_end(&self, b: usize, side: f64) -> glam::DVec3 {
+        let frame = &self.world.data().tree.body_frames[b];
+        frame.translation + frame.rotation.col(0) * (side * self.world.model().bodies()[b].length)
     }
 }
 

@@ -3,12 +3,14 @@
 
 use std::path::Path;
 
+use hagfish_control::Phase;
 use hagfish_sim::rows::Friction;
 use hagfish_validation::frictional_knot::{
     AtEpsilon, Branch, FrictionalKnot, LoopMeasure, SIGMA, TIGHT_PULL_DYN, TIGHTENING_RAMP_S,
     TighteningStart, release, run,
 };
 use hagfish_validation::loose_knot::{self, Refinement};
+use hagfish_validation::settle;
 
 /// Closed onto the pull from the torus start, as the shipped study ramps it.
 const TIGHTENING: Branch = Branch::Tightening { ramp_s: TIGHTENING_RAMP_S, from_dyn: None };
@@ -282,4 +284,30 @@ fn from_a_looser_loop_the_tightening_branch_holds_more_than_from_the_torus() {
         "the branch's loop is the widest held"
     );
     assert_the_first_integral_measures_the_loop_as_its_perpendicular_points_do(&looser);
+}
+
+/// The settled rod's centreline as `cargo xtask braid` exports it for a peer
+/// (`Settled::body_ends`): one point more than the bodies, from the head end at the wall, each
+/// a body's length from the one before (the bodies are rigid and jointed at their ends), to
+/// the tail end where the pull acts; and bent (a second of the pull from the torus start).
+#[test]
+fn the_exported_centreline_runs_through_the_ends_of_the_bodies() {
+    let mut loaded = loose_knot::scenario(root(), 10.0, Refinement::default()).expect("loads");
+    let Some(Phase::Load(load)) = loaded.scenario.phases.first_mut() else {
+        panic!("the loose trefoil starts with its load");
+    };
+    load.until.seconds = 1.0;
+    loaded.scenario.duration_s = 2.0;
+    let settled = settle(&loaded).expect("the load phase ends");
+    let (ends, rod) = (settled.body_ends(), &settled.rod);
+    assert_eq!(ends.len(), rod.body_count + 1);
+    assert!(ends[0].length() < 1e-12, "the head end at the wall: {}", ends[0]);
+    let ell = rod.segment_length_cm();
+    for (k, pair) in ends.windows(2).enumerate() {
+        let gap = pair[0].distance(pair[1]);
+        assert!((gap - ell).abs() < 1e-9 * ell, "body {k}: ends {gap} cm apart, its length {ell}");
+    }
+    assert!(ends[rod.body_count].distance(settled.tail_end()) < 1e-12);
+    let span = ends[0].distance(ends[rod.body_count]);
+    assert!(span < 0.9 * rod.length_cm, "the rod is bent: its ends {span} cm apart");
 }
